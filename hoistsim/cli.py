@@ -1,0 +1,162 @@
+"""The `hoistsim` command line.
+
+Exit status: 0 success, 1 a run that could not be completed (chattering, solver
+failure), 2 bad input (scenario, options, files).  Errors are one line on
+stderr; --debug shows the traceback.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+import click
+
+from .scenario import ScenarioError
+
+BAD_INPUT, RUN_FAILED = 2, 1
+
+
+class _Failure(Exception):
+    def __init__(self, message: str, status: int):
+        super().__init__(message)
+        self.status = status
+
+
+def _fail(message: str, status: int = BAD_INPUT):
+    raise _Failure(message, status)
+
+
+def _guarded(func):
+    """Turn known failures into one line on stderr and an exit status."""
+
+    def wrapper(*args, debug: bool = False, **kwargs):
+        try:
+            return func(*args, **kwargs)
+        except _Failure as exc:
+            if debug:
+                raise
+            click.echo(f"hoistsim: error: {exc}", err=True)
+            sys.exit(exc.status)
+        except ScenarioError as exc:
+            if debug:
+                raise
+            click.echo(f"hoistsim: error: {exc}", err=True)
+            sys.exit(BAD_INPUT)
+        except KeyboardInterrupt:
+            click.echo("hoistsim: interrupted; nothing was written", err=True)
+            sys.exit(130)
+        except Exception as exc:  # an internal error: still one line unless --debug
+            if debug:
+                raise
+            text = str(exc).strip().splitlines()
+            click.echo(f"hoistsim: internal error: {type(exc).__name__}: {text[0] if text else ''} "
+                       "(run again with --debug for the traceback)", err=True)
+            sys.exit(RUN_FAILED)
+
+    wrapper.__name__ = func.__name__
+    wrapper.__doc__ = func.__doc__
+    return wrapper
+
+
+debug_option = click.option("--debug", is_flag=True, help="Show Python tracebacks on errors.")
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="hoistsim")
+def main():
+    """Start-up of a winch hoist: motor, cone clutch (stick-slip), gears, drum and load."""
+
+
+@main.command()
+@click.argument("scenario", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", "output", required=True, type=click.Path(dir_okay=False),
+              help="HDF5 file to write (replaced atomically).")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
+              help='Override a scenario key, e.g. --set clutch.engagement_force="2500 N". Repeatable.')
+@debug_option
+def run(scenario, output, overrides, debug):
+    """Simulate SCENARIO (every sweep value, when it has a sweep) and write OUTPUT."""
+    _guarded(_run)(scenario, output, overrides, debug=debug)
+
+
+def _run(scenario_path, output, overrides):
+    from .scenario import load_scenario, sweep_values
+
+    scenario = load_scenario(scenario_path, overrides=list(overrides))
+    runs_to_do = sweep_values(scenario)
+    target = Path(output)
+    if not target.parent.exists() and str(target.parent):
+        _fail(f"{output}: the folder {target.parent} does not exist")
+
+    from . import _jax
+    from .output import write_runs
+    from .simulation import SimulationError, simulate
+
+    _jax.enable_compilation_cache()
+    started = time.perf_counter()
+    results = []
+    for label, one in runs_to_do:
+        try:
+            results.append(simulate(one, label=label))
+        except SimulationError as exc:
+            _fail(str(exc), RUN_FAILED)
+    command = "hoistsim run " + " ".join([scenario_path, "-o", output, *(f"--set {o}" for o in overrides)])
+    try:
+        write_runs(target, results, command=command)
+    except OSError as exc:
+        _fail(f"{output}: cannot write: {exc.strerror or exc}")
+    elapsed = time.perf_counter() - started
+    from .report import run_table
+
+    click.echo(run_table(results))
+    click.echo(f"wrote {output} ({len(results)} run{'s' if len(results) != 1 else ''}, {elapsed:.2f} s)")
+
+
+@main.command()
+@click.argument("scenario", type=click.Path(dir_okay=False))
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a scenario key.")
+@debug_option
+def check(scenario, overrides, debug):
+    """Validate SCENARIO and print the reduced model, without simulating."""
+    _guarded(_check)(scenario, overrides, debug=debug)
+
+
+def _check(scenario_path, overrides):
+    from .report import reduced_model_table
+    from .scenario import load_scenario, sweep_values
+
+    scenario = load_scenario(scenario_path, overrides=list(overrides))
+    runs = sweep_values(scenario)
+    click.echo(reduced_model_table(scenario))
+    click.echo(f"{scenario_path}: valid ({len(runs)} run{'s' if len(runs) != 1 else ''})")
+
+
+@main.command()
+@click.argument("results", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", "output", required=True, type=click.Path(dir_okay=False),
+              help="Figure file: .png, .svg or .pdf.")
+@debug_option
+def plot(results, output, debug):
+    """Plot speed and clutch-slip histories of every run in RESULTS (an HDF5 file)."""
+    _guarded(_plot)(results, output, debug=debug)
+
+
+def _plot(results, output):
+    suffix = Path(output).suffix.lower()
+    if suffix not in (".png", ".svg", ".pdf"):
+        _fail(f"{output}: the figure must be .png, .svg or .pdf")
+    if not Path(results).is_file():
+        _fail(f"{results}: no such results file")
+    from .plotting import plot_file
+
+    try:
+        plot_file(results, output)
+    except OSError as exc:
+        _fail(f"{results}: cannot read: {exc}")
+    click.echo(f"wrote {output}")
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

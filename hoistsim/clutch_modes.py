@@ -1,0 +1,157 @@
+"""The clutch's modes: dynamics, guards and switching rules, as small pure functions.
+
+Everything here works on JAX arrays (traced or batched).  The restart loop in
+:mod:`hoistsim.hybrid` strings them together; keeping them apart makes each rule
+easy to read and to test alone.
+
+State vector y (SI):
+    0 motor_speed     omega_a, rad/s
+    1 output_speed    omega_b, rad/s (pinion shaft)
+    2 load_position   m, up positive
+    3 clutch_energy   J, dissipated by slip so far
+    4 motor_work      J, done by the motor so far
+"""
+
+from __future__ import annotations
+
+import equinox as eqx
+import jax.numpy as jnp
+
+from .model import LOCKED, OPEN, SLIP_BACKWARD, SLIP_FORWARD, Drivetrain
+
+MOTOR_SPEED, OUTPUT_SPEED, LOAD_POSITION, CLUTCH_ENERGY, MOTOR_WORK = range(5)
+STATE_SIZE = 5
+
+# Event kinds, stored as codes in the compiled loop and as strings in the output.
+EVENT_KINDS = ("lock", "unlock", "reversal", "engage", "disengage", "brake_release")
+NO_EVENT = -1
+LOCK, UNLOCK, REVERSAL, ENGAGE, DISENGAGE, BRAKE_RELEASE = range(6)
+
+
+class Segment(eqx.Module):
+    """What holds between two scheduled boundaries: a linear force, a held or free drum."""
+
+    start: object  # s
+    end: object  # s
+    force_start: object  # N, engagement force at ``start`` on this segment's line
+    force_slope: object  # N/s
+    drum_held: object  # bool, or None when no effect can hold the drum
+    is_open: object  # bool: the force is zero on the whole segment
+
+    def engagement_force(self, t):
+        return self.force_start + self.force_slope * (t - self.start)
+
+
+def slip_direction(mode):
+    """+1 while the motor side runs faster, -1 while it runs slower, 0 when locked or open."""
+    return jnp.where(mode == SLIP_FORWARD, 1.0, jnp.where(mode == SLIP_BACKWARD, -1.0, 0.0))
+
+
+def locked_acceleration(drivetrain: Drivetrain, motor_torque, drum_held):
+    """Common acceleration of both shafts when locked (rad/s^2); zero while the brake holds."""
+    free = (motor_torque - drivetrain.load_torque) / (drivetrain.motor_inertia + drivetrain.output_inertia)
+    return free if drum_held is None else jnp.where(drum_held, 0.0, free)
+
+
+def locked_torque(drivetrain: Drivetrain, speed, drum_held):
+    """Torque a locked clutch carries at shaft speed ``speed`` (N*m).
+
+    Whatever of the motor torque does not accelerate the motor's own inertia:
+    T_c = C - J_a alpha, i.e. (J_b C + J_a T_L)/(J_a + J_b) with a free drum and
+    C itself while the brake holds the drum.
+    """
+    motor_torque = drivetrain.motor_torque(speed)
+    return motor_torque - drivetrain.motor_inertia * locked_acceleration(drivetrain, motor_torque, drum_held)
+
+
+def static_check(drivetrain: Drivetrain, segment: Segment, t, speed):
+    """Mode at zero slip: locked if the static capacity holds the locked torque, else slip its way."""
+    torque = locked_torque(drivetrain, speed, segment.drum_held)
+    capacity = drivetrain.static_capacity(segment.engagement_force(t))
+    return jnp.where(jnp.abs(torque) <= capacity, LOCKED,
+                     jnp.where(torque > 0, SLIP_FORWARD, SLIP_BACKWARD))
+
+
+class Rates(eqx.Module):
+    """Torques and accelerations in a mode (arrays broadcast over rows)."""
+
+    motor_torque: object
+    clutch_torque: object
+    motor_acceleration: object
+    output_acceleration: object
+    slip_power: object  # W dissipated in the clutch
+
+
+def rates(drivetrain: Drivetrain, mode, force, motor_speed, output_speed, drum_held) -> Rates:
+    """The equations of motion of physics.md for every mode at once, selected by ``mode``."""
+    motor_torque = drivetrain.motor_torque(motor_speed)
+    alpha_locked = locked_acceleration(drivetrain, motor_torque, drum_held)
+    slip_torque = slip_direction(mode) * drivetrain.kinetic_torque(force)  # 0 when open
+    output_free = (slip_torque - drivetrain.load_torque) / drivetrain.output_inertia
+    output_slipping = output_free if drum_held is None else jnp.where(drum_held, 0.0, output_free)
+    locked = mode == LOCKED
+    return Rates(
+        motor_torque=motor_torque,
+        clutch_torque=jnp.where(locked, motor_torque - drivetrain.motor_inertia * alpha_locked, slip_torque),
+        motor_acceleration=jnp.where(locked, alpha_locked, (motor_torque - slip_torque) / drivetrain.motor_inertia),
+        output_acceleration=jnp.where(locked, alpha_locked, output_slipping),
+        slip_power=slip_torque * (motor_speed - output_speed),
+    )
+
+
+def vector_field(t, y, args):
+    drivetrain, segment, mode = args
+    motor_speed, output_speed = y[MOTOR_SPEED], y[OUTPUT_SPEED]
+    r = rates(drivetrain, mode, segment.engagement_force(t), motor_speed, output_speed, segment.drum_held)
+    return jnp.stack([
+        r.motor_acceleration,
+        r.output_acceleration,
+        drivetrain.load_speed(output_speed),
+        r.slip_power,
+        r.motor_torque * motor_speed,
+    ])
+
+
+# Guards: positive inside their mode, an event where they fall to zero.  Outside
+# their mode they are a constant 1 and never fire.  A guard that is exactly zero
+# at a restart (slip right after an unlock) cannot fire: diffrax needs a strictly
+# positive value before a non-positive one.
+
+
+def slip_guard(t, y, args, **kwargs):
+    """Slip speed in the direction of slip: reaches 0 when the two sides meet."""
+    drivetrain, segment, mode = args
+    slip = y[MOTOR_SPEED] - y[OUTPUT_SPEED]
+    s = slip_direction(mode)
+    return jnp.where(s != 0.0, s * slip, 1.0)
+
+
+def _capacity_margin(sign, t, y, args):
+    drivetrain, segment, mode = args
+    torque = locked_torque(drivetrain, y[MOTOR_SPEED], segment.drum_held)
+    capacity = drivetrain.static_capacity(segment.engagement_force(t))
+    return jnp.where(mode == LOCKED, capacity - sign * torque, 1.0)
+
+
+def forward_breakaway_guard(t, y, args, **kwargs):
+    """Static capacity minus the locked torque: 0 when the motor side breaks away forwards."""
+    return _capacity_margin(1.0, t, y, args)
+
+
+def backward_breakaway_guard(t, y, args, **kwargs):
+    """Static capacity plus the locked torque: 0 when the load side drags the clutch backwards."""
+    return _capacity_margin(-1.0, t, y, args)
+
+
+GUARDS = (slip_guard, forward_breakaway_guard, backward_breakaway_guard)
+
+
+def transition_kind(previous, new):
+    """Event kind recorded when a scheduled boundary changes the mode (NO_EVENT if none)."""
+    slipping_before = (previous == SLIP_FORWARD) | (previous == SLIP_BACKWARD)
+    kind = jnp.where(new == LOCKED, LOCK,
+           jnp.where(new == OPEN, DISENGAGE,
+           jnp.where(previous == LOCKED, UNLOCK,
+           jnp.where(previous == OPEN, ENGAGE, REVERSAL))))
+    changed = (previous != new) & ((previous == LOCKED) | (previous == OPEN) | slipping_before)
+    return jnp.where(changed, kind, NO_EVENT)

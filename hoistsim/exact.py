@@ -1,0 +1,407 @@
+"""Closed-form reference solution of the two-shaft hoist model.
+
+Between scheduled boundaries (force-table times, brake release) the engagement
+force is linear in time, and in every clutch mode the equations are linear with
+constant coefficients: the motor side is a first-order lag driven by a linear
+torque, the output side a polynomial.  Every state and every integral (load
+position, clutch energy, motor work) is therefore a short sum of terms
+``coef * u**k * exp(-mu*u)`` in the local time ``u``.  Mode switches inside a
+segment are the first roots of such sums, refined to machine precision, so the
+result is a reference for the numerical hybrid solver, not another
+approximation of it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+from scipy.special import gammainc
+
+from .model import (LOCKED, OPEN, SLIP_BACKWARD, SLIP_FORWARD, Drivetrain, ForceSchedule, Machine,
+                    force_at)
+
+EPS = float(np.finfo(float).eps)
+GRID_POINTS = 4096  # samples per piece when scanning a guard for its first root
+NOISE = 1e3 * EPS  # below NOISE * (sum of |terms|) a guard value is rounding, not sign
+KEYS = ("motor_speed", "output_speed", "load_position", "clutch_energy", "motor_work")
+
+
+class ExpPoly:
+    """A sum of terms ``coef * u**k * exp(-mu*u)``, keyed by ``(k, mu)``."""
+
+    __slots__ = ("terms",)
+
+    def __init__(self, terms=None):
+        self.terms = {key: float(c) for key, c in (terms or {}).items() if c != 0.0}
+
+    @classmethod
+    def poly(cls, *coefs):
+        return cls({(k, 0.0): c for k, c in enumerate(coefs)})
+
+    @classmethod
+    def exp(cls, coef, mu):
+        return cls({(0, float(mu)): coef})
+
+    def __add__(self, other):
+        other = other if isinstance(other, ExpPoly) else ExpPoly.poly(other)
+        terms = dict(self.terms)
+        for key, c in other.terms.items():
+            terms[key] = terms.get(key, 0.0) + c
+        return ExpPoly(terms)
+
+    __radd__ = __add__
+
+    def __neg__(self):
+        return ExpPoly({key: -c for key, c in self.terms.items()})
+
+    def __sub__(self, other):
+        return self + (-other)
+
+    def __rsub__(self, other):
+        return (-self) + other
+
+    def __mul__(self, other):
+        if not isinstance(other, ExpPoly):
+            return ExpPoly({key: c * other for key, c in self.terms.items()})
+        terms = {}
+        for (k1, m1), c1 in self.terms.items():
+            for (k2, m2), c2 in other.terms.items():
+                key = (k1 + k2, m1 + m2)
+                terms[key] = terms.get(key, 0.0) + c1 * c2
+        return ExpPoly(terms)
+
+    __rmul__ = __mul__
+
+    def _parts(self, u):
+        u = np.asarray(u, dtype=float)
+        return [c * u**k * np.exp(-mu * u) for (k, mu), c in self.terms.items()] or [0.0 * u]
+
+    def __call__(self, u):
+        return sum(self._parts(u))
+
+    def magnitude(self, u):
+        """Sum of the terms' absolute values: the scale of the rounding in a value."""
+        return sum(np.abs(p) for p in self._parts(u))
+
+    def derivative(self):
+        terms = {}
+        for (k, mu), c in self.terms.items():
+            if k > 0:
+                terms[(k - 1, mu)] = terms.get((k - 1, mu), 0.0) + c * k
+            if mu != 0.0:
+                terms[(k, mu)] = terms.get((k, mu), 0.0) - c * mu
+        return ExpPoly(terms)
+
+    def integral(self, u):
+        """Definite integral from 0 to u, term by term.
+
+        The incomplete-gamma form keeps full relative accuracy when mu*u is tiny,
+        where the textbook antiderivative would cancel catastrophically.
+        """
+        u = np.asarray(u, dtype=float)
+        total = 0.0 * u
+        for (k, mu), c in self.terms.items():
+            if mu == 0.0:
+                total = total + c * u ** (k + 1) / (k + 1)
+            else:
+                total = total + c * math.factorial(k) / mu ** (k + 1) * gammainc(k + 1, mu * u)
+        return total
+
+
+def first_crossing(guard: ExpPoly, u_end: float):
+    """First u in [0, u_end] where ``guard`` goes from positive to <= 0, or None.
+
+    The guard may start exactly on its switching surface (a restart after an
+    event).  Values within rounding noise carry no sign, so the start is judged
+    by the first probe, on a geometric ladder, whose value stands clear of the
+    noise: negative there means the guard leaves the admissible side at once
+    (root 0), positive means the search starts from that probe, so the surface
+    the piece started on is never found again.
+    """
+    if u_end <= 0.0:
+        return None
+    g0 = float(guard(0.0))
+    lo = 0.0
+    if abs(g0) <= NOISE * float(guard.magnitude(0.0)):
+        probes = u_end * 2.0 ** -np.arange(80, -1, -1.0)
+        values, noise = guard(probes), NOISE * guard.magnitude(probes)
+        clear = np.nonzero(np.abs(values) > noise)[0]
+        if clear.size == 0:
+            return None  # the guard stays on the surface: nothing to switch
+        if values[clear[0]] < 0.0:
+            return 0.0
+        lo = float(probes[clear[0]])
+    elif g0 < 0.0:
+        return 0.0
+    if lo >= u_end:
+        return None
+    grid = np.linspace(lo, u_end, GRID_POINTS)
+    values = guard(grid)
+    slope = guard.derivative()
+    slopes = slope(grid)
+    # Cells where the guard ends non-positive, or where it has a local minimum
+    # (a dip below zero and back inside one cell shows up only there).
+    ends_low = values[1:] <= 0.0
+    has_min = (slopes[:-1] < 0.0) & (slopes[1:] >= 0.0)
+    for i in np.nonzero(ends_low | has_min)[0]:
+        if ends_low[i]:
+            return _refine(guard, grid[i], grid[i + 1])
+        u_min = _refine(slope, grid[i], grid[i + 1]) if slopes[i + 1] > 0.0 else grid[i + 1]
+        if guard(u_min) <= 0.0:
+            return _refine(guard, grid[i], u_min)
+    return None
+
+
+def _refine(f, a, b):
+    if float(f(b)) == 0.0:
+        return float(b)
+    return float(brentq(lambda u: float(f(u)), a, b, xtol=1e-15, rtol=4 * EPS, maxiter=200))
+
+
+@dataclass(frozen=True)
+class ExactEvent:
+    time: float
+    kind: str  # "lock", "unlock", "reversal", "brake_release", "engage", "disengage"
+    mode: int  # mode after the event
+
+
+@dataclass
+class _Piece:
+    """One stretch of constant mode: closed forms in u = t - start."""
+
+    start: float
+    end: float
+    mode: int
+    motor: ExpPoly
+    output: ExpPoly
+    load_rate: ExpPoly  # dx/du
+    slip_power: ExpPoly  # T_k * |wa - wb|
+    motor_power: ExpPoly  # C(wa) * wa
+    origin: tuple  # (x, E, Wm) at u = 0
+    guards: tuple  # ((guard, mode after it fires, kind), ...)
+
+    def values(self, u):
+        x0, energy0, work0 = self.origin
+        return (self.motor(u), self.output(u), x0 + self.load_rate.integral(u),
+                energy0 + self.slip_power.integral(u), work0 + self.motor_power.integral(u))
+
+
+class _Hoist:
+    """The drivetrain as plain floats, with the closed forms of each mode."""
+
+    def __init__(self, drivetrain: Drivetrain):
+        d = drivetrain
+        self.Ja, self.Jb = float(d.motor_inertia), float(d.output_inertia)
+        self.C0, self.w0 = float(d.stall_torque), float(d.no_load_speed)
+        self.TL, self.c = float(d.load_torque), float(d.clutch_constant)
+        self.fs, self.fk = float(d.static_friction), float(d.kinetic_friction)
+        self.rope = float(d.rope_radius) / float(d.ratio)  # load speed per output speed
+        self.beta = self.C0 / self.w0  # motor torque lost per rad/s
+
+    def motor_torque(self, w):
+        return self.C0 - self.beta * w
+
+    def locked_torque(self, w, held):
+        """Torque the clutch must carry to keep both shafts together."""
+        if held:
+            return self.motor_torque(w)  # the drum does not move; the motor pushes on it
+        # (J_b C + J_a T_L) / (J_a + J_b): each side's torque weighted by the other's inertia
+        share = self.Jb / (self.Ja + self.Jb)
+        return share * self.motor_torque(w) + (1.0 - share) * self.TL
+
+    def lag(self, inertia, a, b, w_init):
+        """Solution of inertia * w' = a + b u - beta * w with w(0) = w_init."""
+        p1 = b / self.beta
+        p0 = (a - inertia * p1) / self.beta
+        return ExpPoly.poly(p0, p1) + ExpPoly.exp(w_init - p0, self.beta / inertia)
+
+    def piece(self, mode, start, force, slope, wa, wb, held, origin):
+        """Closed forms from (wa, wb) at ``start``; force(u) = force + slope*u."""
+        if mode == LOCKED:
+            if held:  # locked to a held drum: both shafts are at rest
+                motor = output = ExpPoly.poly(0.0)
+            else:
+                motor = output = self.lag(self.Ja + self.Jb, self.C0 - self.TL, 0.0, wa)
+            torque = self.locked_torque(motor, held)
+            capacity = ExpPoly.poly(self.fs * self.c * force, self.fs * self.c * slope)
+            guards = ((capacity - torque, SLIP_FORWARD, "unlock"),
+                      (capacity + torque, SLIP_BACKWARD, "unlock"))
+            slip_power = ExpPoly()
+        else:
+            s = {SLIP_FORWARD: 1.0, SLIP_BACKWARD: -1.0, OPEN: 0.0}[mode]
+            k0, k1 = s * self.fk * self.c * force, s * self.fk * self.c * slope  # s T_k(u)
+            motor = self.lag(self.Ja, self.C0 - k0, -k1, wa)
+            if held:
+                output = ExpPoly.poly(wb)
+            else:  # J_b wb' = s T_k(u) - T_L integrates to a quadratic
+                output = ExpPoly.poly(wb, (k0 - self.TL) / self.Jb, k1 / (2.0 * self.Jb))
+            slip_power = ExpPoly.poly(k0, k1) * (motor - output)  # s T_k (wa - wb) >= 0
+            guards = () if mode == OPEN else ((s * (motor - output), None, "slip_zero"),)
+        return _Piece(start, start, mode, motor, output, output * self.rope, slip_power,
+                      self.motor_torque(motor) * motor, origin, guards)
+
+    def static_mode(self, w, force, held):
+        """Mode at zero slip: locked if the static capacity holds the locked torque."""
+        torque = self.locked_torque(w, held)
+        if abs(torque) <= self.fs * self.c * force:
+            return LOCKED
+        return SLIP_FORWARD if torque > 0.0 else SLIP_BACKWARD
+
+    def decide(self, wa, wb, force_start, force_end, held):
+        """Mode at a scheduled boundary, from the coming segment's force and brake."""
+        if force_start == 0.0 and force_end == 0.0:
+            return OPEN
+        if wa != wb:  # exact test: after a lock both speeds are the same float
+            return SLIP_FORWARD if wa > wb else SLIP_BACKWARD
+        return self.static_mode(wa, force_start, held)
+
+
+def _segment_force(times, forces, a, b):
+    """Value at a (right-continuous) and slope of the table on (a, b), which holds no knot."""
+    j = int(np.searchsorted(times, 0.5 * (a + b), side="right")) - 1
+    slope = 0.0
+    if 0 <= j < times.size - 1:
+        slope = float((forces[j + 1] - forces[j]) / (times[j + 1] - times[j]))
+    return float(force_at(times, forces, a, np)), slope
+
+
+def _transition_kind(previous, new):
+    if new == LOCKED:
+        return "lock"
+    if new == OPEN:
+        return "disengage"
+    if previous == LOCKED:
+        return "unlock"
+    if previous == OPEN:
+        return "engage"
+    return "reversal"
+
+
+class ExactSolution:
+    """Piecewise closed-form trajectory; evaluate() is right-continuous at switches."""
+
+    def __init__(self, pieces, events, final, duration, initial_mode):
+        self._pieces = pieces
+        self._starts = np.array([p.start for p in pieces])
+        self.events = events
+        self.final = final
+        self.duration = duration
+        self.slip_energy = final["clutch_energy"]
+        locks = [e.time for e in events if e.mode == LOCKED]
+        self.lockup_time = 0.0 if initial_mode == LOCKED else (locks[0] if locks else math.nan)
+
+    def evaluate(self, t):
+        t = np.asarray(t, dtype=float)
+        flat = np.atleast_1d(t).ravel()
+        slack = 1e-12 * max(1.0, self.duration)
+        if np.any(flat < -slack) or np.any(flat > self.duration + slack):
+            raise ValueError("times must lie in [0, duration]")
+        flat = np.clip(flat, 0.0, self.duration)
+        out = {key: np.empty(flat.shape) for key in KEYS}
+        out["mode"] = np.empty(flat.shape, dtype=int)
+        index = np.clip(np.searchsorted(self._starts, flat, side="right") - 1, 0, None)
+        for i in np.unique(index):
+            mask = index == i
+            piece = self._pieces[i]
+            for key, value in zip(KEYS, piece.values(flat[mask] - piece.start)):
+                out[key][mask] = value
+            out["mode"][mask] = piece.mode
+        end = flat >= self.duration  # the state after any event at the very end
+        for key in out:
+            out[key][end] = self.final[key]
+        return {key: value.reshape(t.shape) for key, value in out.items()}
+
+
+def solve_exact(drivetrain, force_times, force_forces, duration, *, initial_motor_speed=0.0,
+                initial_output_speed=0.0, brake_release=None, max_events=10_000) -> ExactSolution:
+    hoist = _Hoist(drivetrain)
+    times = np.asarray(force_times, dtype=float).ravel()
+    forces = np.asarray(force_forces, dtype=float).ravel()
+    duration = float(duration)
+    if times.size == 0 or times.shape != forces.shape or np.any(np.diff(times) < 0.0):
+        raise ValueError("force table needs matching, non-decreasing times and forces")
+    if not (np.isfinite(duration) and duration > 0.0):
+        raise ValueError("duration must be positive")
+    release = None if brake_release is None else max(float(brake_release), 0.0)
+
+    def held_from(t):  # held on the segment that starts at t
+        return release is not None and t < release
+
+    wa, wb = float(initial_motor_speed), float(initial_output_speed)
+    if held_from(0.0) and wb != 0.0:
+        raise ValueError("the output shaft must be at rest while the brake holds it")
+    cuts = {0.0, duration} | {float(t) for t in times if 0.0 < t < duration}
+    if release is not None and release < duration:
+        cuts.add(release)
+    cuts = sorted(cuts)
+
+    x = energy = work = 0.0
+    mode = initial_mode = None
+    pieces, events = [], []
+
+    def record(time, kind, new_mode):
+        events.append(ExactEvent(float(time), kind, int(new_mode)))
+        if len(events) > max_events:
+            raise RuntimeError(f"chattering: more than {max_events} events by t = {time!r} s")
+
+    for a, b in zip(cuts[:-1], cuts[1:]):
+        force0, slope = _segment_force(times, forces, a, b)
+        held = held_from(a)
+        new_mode = hoist.decide(wa, wb, force0, force0 + slope * (b - a), held)
+        if release is not None and a == release:
+            record(a, "brake_release", new_mode)
+        if mode is None:
+            initial_mode = new_mode
+        elif new_mode != mode:
+            record(a, _transition_kind(mode, new_mode), new_mode)
+        mode = new_mode
+
+        t = a
+        while True:
+            u_force = force0 + slope * (t - a)
+            piece = hoist.piece(mode, t, u_force, slope, wa, wb, held, (x, energy, work))
+            u_end = b - t
+            hit = None
+            for guard, after, kind in piece.guards:
+                u = first_crossing(guard, u_end)
+                if u is not None and (hit is None or u < hit[0]):
+                    hit = (u, after, kind)
+            u = u_end if hit is None else hit[0]
+            t_next = b if u == u_end else t + u
+            wa, wb, x, energy, work = (float(v) for v in piece.values(u))
+            piece.end = t_next
+            if t_next > t:
+                pieces.append(piece)
+            t = t_next
+            if hit is None:
+                break
+            _, after, kind = hit
+            if kind == "slip_zero":
+                # Slip closes: both shafts take the common speed that conserves momentum.
+                w = 0.0 if held else (hoist.Ja * wa + hoist.Jb * wb) / (hoist.Ja + hoist.Jb)
+                wa = wb = w
+                after = hoist.static_mode(w, force0 + slope * (t - a), held)
+                kind = "lock" if after == LOCKED else "reversal"
+            else:
+                wb = wa  # unlock starts from exactly zero slip
+            mode = after
+            record(t, kind, mode)
+
+    final = dict(zip(KEYS, (wa, wb, x, energy, work)))
+    final["mode"] = int(mode)
+    return ExactSolution(pieces, events, final, duration, initial_mode)
+
+
+def exact_from_scenario(scenario) -> ExactSolution:
+    drivetrain = Machine.from_scenario(scenario).reduced()
+    schedule = ForceSchedule.from_scenario(scenario)
+    brake = getattr(scenario, "brake", None)
+    return solve_exact(
+        drivetrain, schedule.times, schedule.forces, scenario.simulation.duration,
+        initial_motor_speed=scenario.initial.motor_speed,
+        initial_output_speed=scenario.initial.drum_speed * float(drivetrain.ratio),
+        brake_release=brake.release_time if brake else None,
+    )

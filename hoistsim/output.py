@@ -1,0 +1,176 @@
+"""HDF5 output, written atomically: a file is complete or absent.
+
+Layout (the contract's names; see README):
+
+    /runs/<i>/     one group per run; datasets share the dimension scale `time`,
+                   so ``xarray.open_dataset(path, group="runs/0", engine="h5netcdf")``
+                   reads it with time as the coordinate
+    /runs/<i>/events   compound table (time, kind, torque_margin, mode_after)
+    /summary       one row per run
+    /scenario      the scenario text, with provenance attributes
+"""
+
+from __future__ import annotations
+
+import contextlib
+import datetime as _dt
+import json
+import os
+import platform
+import tempfile
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+from .series import DESCRIPTIONS
+
+_TEXT = h5py.string_dtype()
+
+
+@contextlib.contextmanager
+def atomic_path(path):
+    """Yield a temporary path beside ``path``; move it into place only if the block succeeds.
+
+    A failure, an exception or a killed process leaves any existing file at
+    ``path`` untouched (at worst a stray hidden temporary file remains).
+    """
+    target = Path(path)
+    directory = target.parent if str(target.parent) else Path(".")
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".partial", dir=directory)
+    os.close(fd)
+    try:
+        yield Path(tmp)
+        with open(tmp, "rb+") as handle:  # make the bytes durable before they take the name
+            os.fsync(handle.fileno())
+        os.replace(tmp, target)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+def provenance() -> dict[str, str]:
+    from importlib.metadata import PackageNotFoundError, version
+
+    info = {
+        "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "python_version": platform.python_version(),
+    }
+    for package in ("hoistsim", "jax", "diffrax", "numpy", "h5py"):
+        try:
+            info[f"{package}_version"] = version(package)
+        except PackageNotFoundError:
+            info[f"{package}_version"] = "unknown"
+    return info
+
+
+def write_runs(path, runs, *, command: str = "") -> None:
+    """Write runs (in sweep order) to ``path`` atomically."""
+    if not runs:
+        raise ValueError("no runs to write")
+    with atomic_path(path) as tmp:
+        with h5py.File(tmp, "w") as f:
+            f.attrs["format"] = "hoistsim-runs"
+            f.attrs["format_version"] = 1
+            for index, run in enumerate(runs):
+                _write_run(f.create_group(f"runs/{index}"), run)
+            _write_summary(f, runs)
+            _write_scenario(f, runs[0], command)
+
+
+def _write_run(group: h5py.Group, run) -> None:
+    scenario = run.scenario
+    sim = scenario.simulation
+    summary = run.summary
+    group.attrs["name"] = run.name
+    group.attrs["label"] = run.label or run.name
+    group.attrs["parameters"] = json.dumps(scenario.resolved(), sort_keys=True)
+    group.attrs["solver"] = sim.solver
+    group.attrs["rtol"] = sim.rtol
+    group.attrs["atol"] = sim.atol
+    for key, value in summary.items():
+        if key != "label":
+            group.attrs[key] = value
+    for key, value in run.energy_balance.items():
+        group.attrs[f"energy_{key}"] = value
+    for key, value in run.stats.items():
+        group.attrs[f"solver_{key}"] = value
+
+    time = group.create_dataset("time", data=run.time)
+    time.attrs["units"] = "s"
+    time.attrs["long_name"] = DESCRIPTIONS["time"]
+    time.make_scale("time")
+    for name, values in run.series.items():
+        data = group.create_dataset(name, data=values)
+        data.attrs["units"] = run.units[name]
+        if name in DESCRIPTIONS:
+            data.attrs["long_name"] = DESCRIPTIONS[name]
+        data.dims[0].attach_scale(time)
+    _write_events(group, run.events)
+
+
+def _write_events(group: h5py.Group, events: dict) -> None:
+    count = len(events["time"])
+    table = np.zeros(count, dtype=[("time", "f8"), ("kind", _TEXT), ("torque_margin", "f8"),
+                                   ("mode_after", _TEXT)])
+    for field in table.dtype.names:
+        table[field] = events[field]
+    data = group.create_dataset("events", data=table)
+    data.attrs["units"] = "time: s, torque_margin: N*m"
+    data.attrs["long_name"] = ("mode switches and scheduled events; torque_margin is the static "
+                               "capacity minus the torque a locked clutch would carry")
+    index = group.create_dataset("event", data=np.arange(count))
+    index.attrs["units"] = "1"
+    index.make_scale("event")
+    data.dims[0].attach_scale(index)
+
+
+_SUMMARY_UNITS = {
+    "lockup_time": "s", "slip_duration": "s", "slip_energy": "J", "peak_clutch_torque": "N*m",
+    "peak_slip_speed": "rad/s", "lowest_load_position": "m", "final_motor_speed": "rad/s",
+    "final_drum_speed": "rad/s", "final_load_position": "m", "load_lifted": "1", "lock_events": "1",
+    "unlock_events": "1", "energy_residual": "J", "energy_relative_residual": "1",
+}
+
+
+def _write_summary(f: h5py.File, runs) -> None:
+    rows = [run.summary for run in runs]
+    fields = [("label", _TEXT)] + [(k, "f8" if isinstance(v, float) else "i8")
+                                   for k, v in rows[0].items() if k != "label"]
+    table = np.zeros(len(rows), dtype=fields)
+    for i, (row, run) in enumerate(zip(rows, runs)):
+        for key, _ in fields:
+            table[i][key] = (run.label or run.name) if key == "label" else row[key]
+    data = f.create_dataset("summary", data=table)
+    data.attrs["units"] = ", ".join(f"{k}: {u}" for k, u in _SUMMARY_UNITS.items())
+    index = f.create_dataset("run", data=np.arange(len(rows)))
+    index.attrs["units"] = "1"
+    index.make_scale("run")
+    data.dims[0].attach_scale(index)
+
+
+def _write_scenario(f: h5py.File, run, command: str) -> None:
+    scenario = run.scenario
+    data = f.create_dataset("scenario", data=scenario.text, dtype=_TEXT)
+    data.attrs["units"] = "1"
+    data.attrs["source"] = scenario.source
+    data.attrs["command"] = command
+    data.attrs["solver"] = scenario.simulation.solver
+    data.attrs["rtol"] = scenario.simulation.rtol
+    data.attrs["atol"] = scenario.simulation.atol
+    for key, value in provenance().items():
+        data.attrs[key] = value
+
+
+def read_runs(path) -> list[dict]:
+    """Read the runs of a file back as dicts of numpy arrays (for plots and tables)."""
+    runs = []
+    with h5py.File(path, "r") as f:
+        for key in sorted(f["runs"], key=int):
+            group = f["runs"][key]
+            run = {name: group[name][()] for name in group if name not in ("events", "event")}
+            run["events"] = group["events"][()]
+            run["attrs"] = {k: v for k, v in group.attrs.items()}
+            runs.append(run)
+    return runs

@@ -1,0 +1,114 @@
+"""A finished run: its time series, events, summary and energy balance."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .model import Drivetrain
+from .scenario import Scenario
+
+
+@dataclass
+class RunResult:
+    """One simulated start-up.
+
+    ``time`` and every array in ``series`` have one entry per output row (the
+    output grid plus the event times); ``units`` gives each one's unit.
+    """
+
+    scenario: Scenario
+    label: str
+    drivetrain: Drivetrain
+    time: np.ndarray
+    series: dict[str, np.ndarray]
+    units: dict[str, str]
+    events: dict[str, np.ndarray]
+    stats: dict = field(default_factory=dict)
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self.time if name == "time" else self.series[name]
+
+    @property
+    def name(self) -> str:
+        return self.scenario.name
+
+    # ------------------------------------------------------------------ summary
+
+    @property
+    def lockup_time(self) -> float:
+        """First time the clutch is locked (s): 0 if it never slips, NaN if it never locks."""
+        locked = np.flatnonzero(self.series["clutch_locked"] == 1)
+        return float(self.time[locked[0]]) if locked.size else math.nan
+
+    @property
+    def slip_energy(self) -> float:
+        """Energy dissipated in the clutch over the run (J)."""
+        return float(self.series["clutch_energy"][-1])
+
+    @property
+    def energy_balance(self) -> dict[str, float]:
+        """Motor work against kinetic + potential energy + clutch losses (J).
+
+        ``residual`` is what does not balance; ``relative_residual`` divides it
+        by the motor work (or the largest term, if that is larger).
+        """
+        dt = self.drivetrain
+        ws = self.series["motor_speed"]
+        wb = self.series["drum_speed"] * dt.ratio
+        kinetic = dt.kinetic_energy(ws[-1], wb[-1]) - dt.kinetic_energy(ws[0], wb[0])
+        potential = dt.load_weight * self.series["load_position"][-1]
+        clutch = self.series["clutch_energy"][-1]
+        work = self.series["motor_work"][-1]
+        residual = work - (kinetic + potential + clutch)
+        scale = max(abs(work), abs(kinetic), abs(potential), abs(clutch), 1e-300)
+        return {
+            "motor_work": float(work),
+            "kinetic_energy_change": float(kinetic),
+            "potential_energy_change": float(potential),
+            "clutch_energy": float(clutch),
+            "residual": float(residual),
+            "relative_residual": float(abs(residual) / scale),
+        }
+
+    @property
+    def summary(self) -> dict:
+        """The numbers a designer compares runs by."""
+        s = self.series
+        slipping = (s["clutch_mode"] == 1) | (s["clutch_mode"] == 2)
+        dt_rows = np.diff(self.time)
+        kinds = list(self.events["kind"])
+        lifted = s["load_position"][-1] > 0
+        return {
+            "label": self.label,
+            "lockup_time": self.lockup_time,
+            "slip_duration": float(np.sum(dt_rows[slipping[:-1]])),
+            "slip_energy": self.slip_energy,
+            "peak_clutch_torque": float(np.max(np.abs(s["clutch_torque"]))),
+            "peak_slip_speed": float(np.max(np.abs(s["slip_speed"]))),
+            "lowest_load_position": float(np.min(s["load_position"])),
+            "final_motor_speed": float(s["motor_speed"][-1]),
+            "final_drum_speed": float(s["drum_speed"][-1]),
+            "final_load_position": float(s["load_position"][-1]),
+            "load_lifted": bool(lifted),
+            "lock_events": kinds.count("lock"),
+            "unlock_events": kinds.count("unlock"),
+            "energy_residual": self.energy_balance["residual"],
+            "energy_relative_residual": self.energy_balance["relative_residual"],
+        }
+
+    def to_hdf5(self, path) -> None:
+        """Write this run alone to an HDF5 file (atomically)."""
+        from .output import write_runs
+
+        write_runs(path, [self])
+
+    def to_xarray(self):
+        """The time series as an xarray.Dataset with ``time`` as coordinate (needs xarray)."""
+        import xarray as xr
+
+        data = {name: ("time", values, {"units": self.units[name]}) for name, values in self.series.items()}
+        return xr.Dataset(data, coords={"time": ("time", self.time, {"units": "s"})},
+                          attrs={"name": self.name, "label": self.label})
