@@ -7,7 +7,13 @@ from __future__ import annotations
 
 import os
 
-import jax
+# Equinox's runtime checks run as host callbacks, and XLA will not keep a
+# program with host callbacks in the persistent cache.  With "nan" a failed
+# check poisons the result instead; hoistsim checks each run's status and
+# values explicitly.  Must be set before equinox is first imported.
+os.environ.setdefault("EQX_ON_ERROR", "nan")
+
+import jax  # noqa: E402
 
 jax.config.update("jax_enable_x64", True)
 

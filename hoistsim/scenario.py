@@ -1,8 +1,9 @@
 """Scenario files: YAML -> a validated scenario in SI units.
 
 Every problem with a scenario is raised as :class:`ScenarioError`, which names
-the dotted key, the file and (where the YAML parser knows it) the line.  The
-command line prints that one line and exits with status 2.
+the dotted key, the file and (where the YAML parser knows it) the line:
+``FILE:LINE: dotted.key: message``.  The command line prints that one line and
+exits with status 2.  Values are parsed and converted to SI in :mod:`.units`.
 """
 
 from __future__ import annotations
@@ -13,18 +14,11 @@ import io
 import itertools
 import json
 import math
+import re
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
-from pydantic import (
-    BaseModel,
-    BeforeValidator,
-    ConfigDict,
-    Field,
-    PrivateAttr,
-    ValidationError,
-    model_validator,
-)
+from pydantic import BaseModel, BeforeValidator, ConfigDict, PrivateAttr, ValidationError, model_validator
 from ruamel.yaml import YAML
 from ruamel.yaml.comments import CommentedMap, CommentedSeq
 from ruamel.yaml.error import MarkedYAMLError
@@ -49,29 +43,36 @@ class ScenarioError(ValueError):
         if self.source:
             where = f"{self.source}:{self.line}: " if self.line else f"{self.source}: "
         key = f"{self.key}: " if self.key else ""
-        return f"{where}{key}{self.message}"
+        return " ".join(f"{where}{key}{self.message}".splitlines())  # always one line
 
 
-def _quantity(dimension: u.Dimension):
+# --------------------------------------------------------------------------------------
+# values: each converts the user's text to SI and checks its physical limits
+
+
+def _quantity(dimension: u.Dimension, hint: str = "", **limits: float):
     def convert(value: Any) -> float:
-        try:
-            return u.to_si(value, dimension)
-        except u.UnitError as exc:
-            raise ValueError(str(exc)) from None
+        return u.check_range(u.to_si(value, dimension), value, dimension, hint=hint, **limits)
 
-    return BeforeValidator(convert)
+    return Annotated[float, BeforeValidator(convert)]
 
 
-Torque = Annotated[float, _quantity(u.TORQUE)]
-AngularSpeed = Annotated[float, _quantity(u.ANGULAR_SPEED)]
-Inertia = Annotated[float, _quantity(u.INERTIA)]
-Mass = Annotated[float, _quantity(u.MASS)]
-Length = Annotated[float, _quantity(u.LENGTH)]
-Angle = Annotated[float, _quantity(u.ANGLE)]
-Force = Annotated[float, _quantity(u.FORCE)]
-Time = Annotated[float, _quantity(u.TIME)]
-Acceleration = Annotated[float, _quantity(u.ACCELERATION)]
-Number = Annotated[float, _quantity(u.DIMENSIONLESS)]
+def _count(what: str, minimum: int = 1):
+    return Annotated[int, BeforeValidator(lambda value: u.count(value, what, minimum))]
+
+
+def _text(value: Any) -> str:
+    if not isinstance(value, str):
+        raise ValueError(f"must be text, got {value!r} (put it in quotes)")
+    if not value.strip():
+        raise ValueError("must not be empty")
+    return value
+
+
+Text = Annotated[str, BeforeValidator(_text)]
+Positive = {"gt": 0.0}
+NonNegative = {"ge": 0.0}
+BELOW_RIGHT_ANGLE = {"gt": 0.0, "lt": math.pi / 2}
 
 
 class ForceTable(BaseModel):
@@ -92,43 +93,15 @@ class ForceTable(BaseModel):
 def _force_table(value: Any) -> ForceTable:
     if isinstance(value, ForceTable):
         return value
-    if isinstance(value, (list, tuple)):
-        if not value:
-            raise ValueError("the force table is empty")
-        times, forces = [], []
-        for i, row in enumerate(value):
-            if not isinstance(row, (list, tuple)) or len(row) != 2:
-                raise ValueError(f"row {i} must be a pair [time, force], got {row!r}")
-            try:
-                t = u.to_si(row[0], u.TIME)
-                f = u.to_si(row[1], u.FORCE)
-            except u.UnitError as exc:
-                raise ValueError(f"row {i}: {exc}") from None
-            if not (math.isfinite(t) and math.isfinite(f)):
-                raise ValueError(f"row {i} is not finite: {row!r}")
-            if t < 0:
-                raise ValueError(f"row {i}: time {t:g} s is before the start of the run")
-            if f < 0:
-                raise ValueError(f"row {i}: a clutch cannot be pushed apart (force {f:g} N < 0)")
-            if times and t < times[-1]:
-                raise ValueError(f"row {i}: time goes backwards ({t:g} s after {times[-1]:g} s)")
-            if len(times) >= 2 and t == times[-1] == times[-2]:
-                raise ValueError(f"row {i}: a time may appear at most twice (a step), {t:g} s appears three times")
-            times.append(t)
-            forces.append(f)
-        return ForceTable(times=tuple(times), forces=tuple(forces))
-    try:
-        f = u.to_si(value, u.FORCE)
-    except u.UnitError as exc:
-        raise ValueError(f"{exc}, or a table [[time, force], ...]") from None
-    if not math.isfinite(f):
-        raise ValueError(f"force must be finite, got {value!r}")
-    if f < 0:
-        raise ValueError(f"a clutch cannot be pushed apart (force {f:g} N < 0)")
-    return ForceTable(times=(0.0,), forces=(f,))
+    times, forces = u.force_table(value)
+    return ForceTable(times=times, forces=forces)
 
 
 EngagementForce = Annotated[ForceTable, BeforeValidator(_force_table)]
+
+
+# --------------------------------------------------------------------------------------
+# the schema: one model per section
 
 
 class Section(BaseModel):
@@ -136,11 +109,11 @@ class Section(BaseModel):
 
 
 class MotorSpec(Section):
-    stall_torque: Torque = Field(gt=0, description="C0, torque at standstill (N*m)")
-    no_load_speed: AngularSpeed = Field(gt=0, description="omega0, speed of zero torque (rad/s)")
-    inertia: Inertia | None = Field(default=None, gt=0)
-    rotor_mass: Mass | None = Field(default=None, gt=0)
-    radius_of_gyration: Length | None = Field(default=None, gt=0)
+    stall_torque: _quantity(u.TORQUE, **Positive)  # C0, torque at standstill
+    no_load_speed: _quantity(u.ANGULAR_SPEED, **Positive)  # omega0, where the torque reaches 0
+    inertia: _quantity(u.INERTIA, **Positive) | None = None
+    rotor_mass: _quantity(u.MASS, **Positive) | None = None
+    radius_of_gyration: _quantity(u.LENGTH, **Positive) | None = None
 
     @model_validator(mode="after")
     def _one_inertia(self):
@@ -161,98 +134,89 @@ class MotorSpec(Section):
 
 
 class ClutchSpec(Section):
-    inner_radius: Length = Field(gt=0)
-    outer_radius: Length = Field(gt=0)
-    half_angle: Angle = Field(gt=0, lt=math.pi / 2, description="cone half-angle beta (rad)")
-    static_friction: Number = Field(gt=0)
-    kinetic_friction: Number = Field(ge=0)
-    surfaces: int = Field(default=1, ge=1, strict=True)
+    inner_radius: _quantity(u.LENGTH, **Positive)
+    outer_radius: _quantity(u.LENGTH, **Positive)
+    half_angle: _quantity(u.ANGLE, " (the cone half-angle beta = 90 deg - delta)", **BELOW_RIGHT_ANGLE)
+    static_friction: _quantity(u.DIMENSIONLESS, **Positive)
+    kinetic_friction: _quantity(u.DIMENSIONLESS, **NonNegative)
+    surfaces: _count("friction surfaces") = 1
     engagement_force: EngagementForce
     mean_radius: Literal["uniform_wear", "uniform_pressure"] = "uniform_wear"
-    driving_inertia: Inertia = Field(default=0.0, ge=0, description="clutch half on the motor shaft")
-    driven_inertia: Inertia = Field(default=0.0, ge=0, description="clutch half on the pinion shaft")
+    driving_inertia: _quantity(u.INERTIA, **NonNegative) = 0.0  # clutch half on the motor shaft
+    driven_inertia: _quantity(u.INERTIA, **NonNegative) = 0.0  # clutch half on the pinion shaft
 
     @model_validator(mode="after")
     def _consistent(self):
         if self.kinetic_friction > self.static_friction:
-            raise ScenarioError(
-                "clutch.kinetic_friction",
-                f"kinetic friction {self.kinetic_friction:g} exceeds static friction {self.static_friction:g}",
-            )
+            raise ScenarioError("clutch.kinetic_friction", f"must not exceed static_friction "
+                                f"({self.static_friction:g}), got {self.kinetic_friction:g}")
         if self.inner_radius >= self.outer_radius:
-            raise ScenarioError(
-                "clutch.inner_radius",
-                f"inner radius {self.inner_radius:g} m must be smaller than outer radius {self.outer_radius:g} m",
-            )
+            raise ScenarioError("clutch.inner_radius", f"must be less than outer_radius "
+                                f"({self.outer_radius:g} m), got {self.inner_radius:g} m")
         return self
 
 
 class GearSpec(Section):
-    pinion_teeth: int = Field(ge=1, strict=True)
-    wheel_teeth: int = Field(ge=1, strict=True)
-    module: Length = Field(gt=0)
-    pressure_angle: Angle = Field(default=math.radians(20.0), gt=0, lt=math.pi / 2)
-    pinion_inertia: Inertia = Field(default=0.0, ge=0)
-    wheel_inertia: Inertia = Field(default=0.0, ge=0)
+    pinion_teeth: _count("teeth")
+    wheel_teeth: _count("teeth")
+    module: _quantity(u.LENGTH, **Positive)
+    pressure_angle: _quantity(u.ANGLE, **BELOW_RIGHT_ANGLE) = math.radians(20.0)
+    pinion_inertia: _quantity(u.INERTIA, **NonNegative) = 0.0
+    wheel_inertia: _quantity(u.INERTIA, **NonNegative) = 0.0
 
 
 class DrumSpec(Section):
-    diameter: Length = Field(gt=0)
-    inertia: Inertia = Field(gt=0)
+    diameter: _quantity(u.LENGTH, **Positive)
+    inertia: _quantity(u.INERTIA, **Positive)
 
 
 class LoadSpec(Section):
-    mass: Mass = Field(ge=0)
+    mass: _quantity(u.MASS, **NonNegative)
 
 
 class InitialSpec(Section):
-    motor_speed: AngularSpeed = 0.0
-    drum_speed: AngularSpeed = 0.0
+    motor_speed: _quantity(u.ANGULAR_SPEED) = 0.0
+    drum_speed: _quantity(u.ANGULAR_SPEED) = 0.0
 
 
 class BrakeSpec(Section):
-    release_time: Time = Field(ge=0, description="the holding brake frees the drum at this time (s)")
+    release_time: _quantity(u.TIME, **NonNegative)  # the holding brake frees the drum at this time
 
 
 class BearingsSpec(Section):
-    gear_offset: Length = Field(gt=0, description="a: bearing A to the gear, away from B")
-    rope_offset: Length = Field(gt=0, description="bearing A to the rope, towards B")
-    span: Length = Field(gt=0, description="bearing A to bearing B")
+    gear_offset: _quantity(u.LENGTH, **Positive)  # a: bearing A to the gear, away from B
+    rope_offset: _quantity(u.LENGTH, **Positive)  # bearing A to the rope, towards B
+    span: _quantity(u.LENGTH, **Positive)  # bearing A to bearing B
 
 
 class SimulationSpec(Section):
-    duration: Time = Field(gt=0)
-    output_interval: Time = Field(gt=0)
-    rtol: Number = Field(default=1e-8, gt=0, lt=1)
-    atol: Number = Field(default=1e-10, gt=0)
+    duration: _quantity(u.TIME, **Positive)
+    output_interval: _quantity(u.TIME, **Positive)
+    rtol: _quantity(u.DIMENSIONLESS, gt=0.0, lt=1.0) = 1e-8
+    atol: _quantity(u.DIMENSIONLESS, **Positive) = 1e-10
     solver: Literal[SOLVERS] = "tsit5"  # type: ignore[valid-type]
-    max_switches: int = Field(default=200, ge=1, strict=True,
-                              description="mode switches allowed before a run is declared chattering")
+    max_switches: _count("mode switches") = 200  # before a run is declared chattering
 
     @model_validator(mode="after")
     def _grid(self):
         if self.output_interval > self.duration:
-            raise ScenarioError(
-                "simulation.output_interval",
-                f"{self.output_interval:g} s is longer than the duration {self.duration:g} s",
-            )
+            raise ScenarioError("simulation.output_interval", f"must not exceed the duration "
+                                f"({self.duration:g} s), got {self.output_interval:g} s")
         if self.duration / self.output_interval > 2_000_000:
-            raise ScenarioError(
-                "simulation.output_interval",
-                f"{self.duration / self.output_interval:.3g} output rows; at most 2e6 are allowed",
-            )
+            raise ScenarioError("simulation.output_interval", f"gives {self.duration / self.output_interval:.3g} "
+                                "output rows; at most 2e6 are allowed")
         return self
 
 
 class Scenario(Section):
-    name: str = Field(min_length=1)
+    name: Text
     description: str = ""
     motor: MotorSpec
     clutch: ClutchSpec
     gears: GearSpec
     drum: DrumSpec
     load: LoadSpec
-    gravity: Acceleration = Field(default=9.81, ge=0)
+    gravity: _quantity(u.ACCELERATION, **NonNegative) = 9.81
     initial: InitialSpec = InitialSpec()
     brake: BrakeSpec | None = None
     bearings: BearingsSpec | None = None
@@ -266,10 +230,8 @@ class Scenario(Section):
     @model_validator(mode="after")
     def _brake_holds_still_drum(self):
         if self.brake is not None and self.initial.drum_speed != 0.0:
-            raise ScenarioError(
-                "initial.drum_speed",
-                "must be 0 when a holding brake (brake:) keeps the drum still at the start",
-            )
+            raise ScenarioError("initial.drum_speed",
+                                "must be 0 when a holding brake (brake:) keeps the drum still at the start")
         return self
 
     @property
@@ -296,37 +258,77 @@ class Scenario(Section):
 
 
 def _yaml() -> YAML:
-    yaml = YAML(typ="rt")  # round-trip: keeps line numbers; rejects duplicate keys
+    yaml = YAML(typ="rt")  # round-trip: keeps line numbers; YAML 1.2, so 1e-8 is a number
     yaml.allow_duplicate_keys = False
     return yaml
+
+
+_YAML_PROBLEMS = {  # ruamel's wording -> what to fix
+    "while parsing a flow sequence": "a '[' list is not closed",
+    "while parsing a flow mapping": "a '{' mapping is not closed",
+    "while scanning a quoted scalar": "a quoted string is not closed",
+    "that cannot start any token": "a tab or other character that cannot start a value; indent with spaces",
+    "mapping values are not allowed here": "unexpected ':' (check the indentation, or quote a value that holds ': ')",
+    "expected <block end>": "the indentation is inconsistent",
+    "found another document": "a scenario is a single YAML document (remove the '---')",
+}
 
 
 def _read_yaml(text: str, source: str) -> CommentedMap:
     try:
         data = _yaml().load(io.StringIO(text))
     except MarkedYAMLError as exc:
-        mark = exc.problem_mark or exc.context_mark
+        problem, context = (exc.problem or "").strip(), (exc.context or "").strip()
+        mark = exc.problem_mark
+        if context.startswith(("while parsing a flow", "while scanning a quoted")) and exc.context_mark:
+            mark = exc.context_mark  # where the unclosed thing was opened
         line = mark.line + 1 if mark is not None else None
-        problem = (exc.problem or exc.context or "malformed YAML").strip()
-        key = ""
-        if "duplicate key" in problem or "found duplicate key" in str(exc):
-            problem = "duplicate key " + _duplicate_name(str(exc))
-        raise ScenarioError(key, f"malformed YAML: {problem}", source=source, line=line) from None
+        message = next((fix for cue, fix in _YAML_PROBLEMS.items() if cue in problem or cue in context),
+                       problem or context or "cannot parse")
+        if "duplicate key" in problem:
+            first = _first_definition(text, line)
+            message = "duplicate key" + (f" (first given at line {first})" if first else "")
+        raise ScenarioError(_key_at(text, line), f"malformed YAML: {message}", source=source, line=line) from None
     except Exception as exc:  # ruamel's other errors (e.g. reader errors on binary data)
         raise ScenarioError("", f"malformed YAML: {str(exc).splitlines()[0]}", source=source) from None
     if data is None:
-        raise ScenarioError("", "the scenario is empty", source=source)
+        raise ScenarioError("", "the scenario is empty; it needs name:, motor:, clutch:, gears:, drum:, load: "
+                            "and simulation:", source=source)
     if not isinstance(data, dict):
         raise ScenarioError("", "a scenario must be a mapping of sections (name:, motor:, clutch:, ...)",
                             source=source, line=1)
     return data
 
 
-def _duplicate_name(message: str) -> str:
-    for line in message.splitlines():
-        if "duplicate key" in line:
-            return line.split("duplicate key", 1)[1].strip().rstrip(".")
-    return ""
+_KEY_LINE = re.compile(r"^([ \t]*)([A-Za-z_][\w.-]*)[ \t]*:(?:\s|$)")
+
+
+def _key_at(text: str, line: int | None) -> str:
+    """The dotted key written on a line (by indentation), for errors the YAML parser has no path for."""
+    lines = text.splitlines()
+    if line is None or not 1 <= line <= len(lines) or not (m := _KEY_LINE.match(lines[line - 1])):
+        return ""
+    path, indent = [m.group(2)], len(m.group(1))
+    for above in reversed(lines[: line - 1]):
+        m = _KEY_LINE.match(above)
+        if m and len(m.group(1)) < indent:
+            path.insert(0, m.group(2))
+            indent = len(m.group(1))
+    return ".".join(path)
+
+
+def _first_definition(text: str, line: int | None) -> int | None:
+    """For a duplicate key on ``line``: the line of the same key earlier in the same mapping."""
+    lines = text.splitlines()
+    if line is None or not (m := _KEY_LINE.match(lines[line - 1])):
+        return None
+    for i in range(line - 2, -1, -1):
+        other = _KEY_LINE.match(lines[i])
+        if other and len(other.group(1)) < len(m.group(1)):
+            return None  # left the mapping
+        if other and other.groups() == m.groups():
+            return i + 1
+    return None
 
 
 def _line_of(node: Any, path: tuple) -> int | None:
@@ -334,27 +336,27 @@ def _line_of(node: Any, path: tuple) -> int | None:
     line = None
     for part in path:
         if isinstance(node, CommentedMap) and part in node:
-            pos = node.lc.key(part) if hasattr(node, "lc") else None
-            line = pos[0] + 1 if pos else line
-            node = node[part]
-        elif isinstance(node, CommentedSeq) and isinstance(part, int) and part < len(node):
+            pos = node.lc.key(part)
+        elif isinstance(node, CommentedSeq) and isinstance(part, int) and 0 <= part < len(node):
             pos = node.lc.item(part)
-            line = pos[0] + 1 if pos else line
-            node = node[part]
         else:
-            if isinstance(node, (CommentedMap, CommentedSeq)) and line is None and node.lc.line is not None:
-                line = node.lc.line + 1
             break
+        line = pos[0] + 1 if pos else line
+        node = node[part]
     return line
 
 
 def _to_plain(node: Any) -> Any:
+    """ruamel's round-trip types -> plain dict, list, str, int, float, bool."""
     if isinstance(node, dict):
-        return {str(k): _to_plain(v) for k, v in node.items()}
+        return {k if isinstance(k, str) else str(k): _to_plain(v) for k, v in node.items()}
     if isinstance(node, (list, tuple)):
         return [_to_plain(v) for v in node]
-    if hasattr(node, "__float__") and type(node).__name__.startswith("Scalar"):
-        return float(node)
+    if isinstance(node, bool) or type(node).__name__ == "ScalarBoolean":
+        return bool(node)
+    for kind in (int, float, str):
+        if isinstance(node, kind):
+            return kind(node)
     return node
 
 
@@ -362,7 +364,7 @@ def _to_plain(node: Any) -> Any:
 # keys: known paths, near matches, overrides
 
 
-def _model_of(section: type[BaseModel], name: str) -> type[BaseModel] | None:
+def _model_of(section: type[BaseModel], name: str) -> type[Section] | None:
     field = section.model_fields.get(name)
     if field is None:
         return None
@@ -372,19 +374,56 @@ def _model_of(section: type[BaseModel], name: str) -> type[BaseModel] | None:
     return None
 
 
+def _all_keys(model: type[BaseModel] = Scenario, prefix: str = "") -> list[str]:
+    keys = []
+    for name in model.model_fields:
+        sub = _model_of(model, name)
+        keys += _all_keys(sub, f"{prefix}{name}.") if sub else [] if name == "sweep" else [prefix + name]
+    return keys
+
+
+def _suggest(word: str, choices: list[str], prefix: str = "") -> str:
+    near = difflib.get_close_matches(word, choices, n=1, cutoff=0.6)
+    if near:
+        return f" (did you mean {prefix + '.' if prefix else ''}{near[0]}?)"
+    elsewhere = [k for k in _all_keys() if k.rsplit(".", 1)[-1] == word]
+    if elsewhere:
+        return f" here (did you mean {elsewhere[0]}?)"
+    return f"; known keys{' in ' + prefix if prefix else ''}: {', '.join(choices)}"
+
+
+def _check_tree(data: dict, model: type[BaseModel], path: tuple, tree: Any, source: str) -> None:
+    """Unknown keys and sections that are not mappings, before any value is looked at."""
+    for key, value in data.items():
+        where = dict(key=".".join((*path, key)), source=source, line=_line_of(tree, (*path, key)))
+        if key not in model.model_fields:
+            known = list(model.model_fields)
+            raise ScenarioError(message="unknown key" + _suggest(key, known, ".".join(path)), **where)
+        sub = _model_of(model, key)
+        if key == "sweep" and model is Scenario and value is not None and not isinstance(value, dict):
+            raise ScenarioError(message="must map keys to lists of values, like "
+                                "'clutch.engagement_force: [1000 N, 2000 N]'", **where)
+        if sub is None:
+            continue
+        if value is None:
+            raise ScenarioError(message=f"the section is empty; give its keys ({', '.join(sub.model_fields)})"
+                                + ("" if key in ("name", "motor", "clutch", "gears", "drum", "load", "simulation")
+                                   else f" or remove {key}:"), **where)
+        if not isinstance(value, dict):
+            raise ScenarioError(message=f"must be a section with its keys indented below it, got {value!r}",
+                                **where)
+        _check_tree(value, sub, (*path, key), tree, source)
+
+
 def _check_key(dotted: str, origin: str) -> None:
     """Raise unless ``dotted`` names a scalar (or table) key of the schema."""
     model: type[BaseModel] = Scenario
     parts = dotted.split(".")
     for i, part in enumerate(parts):
-        if part not in model.model_fields or part == "sweep":
+        if part not in model.model_fields or (part == "sweep" and model is Scenario):
             known = [k for k in model.model_fields if k != "sweep"]
-            prefix = ".".join(parts[:i])
-            raise ScenarioError(
-                ".".join(parts[: i + 1]),
-                f"unknown key{_suggest(part, known, prefix)}",
-                source=origin,
-            )
+            raise ScenarioError(".".join(parts[: i + 1]), "unknown key" + _suggest(part, known, ".".join(parts[:i])),
+                                source=origin)
         sub = _model_of(model, part)
         if i == len(parts) - 1:
             if sub is not None:
@@ -396,27 +435,19 @@ def _check_key(dotted: str, origin: str) -> None:
         model = sub
 
 
-def _suggest(word: str, choices: list[str], prefix: str = "") -> str:
-    near = difflib.get_close_matches(word, choices, n=1, cutoff=0.6)
-    if near:
-        full = f"{prefix}.{near[0]}" if prefix else near[0]
-        return f" (did you mean {full}?)"
-    where = f" in {prefix}" if prefix else ""
-    return f"; known keys{where}: {', '.join(choices)}"
-
-
 def parse_override(assignment: str) -> tuple[str, Any]:
     """``"clutch.engagement_force=2500 N"`` -> (key, value); the value is read as YAML."""
-    if "=" not in assignment:
-        raise ScenarioError("--set", f"expected KEY=VALUE, got {assignment!r}")
-    key, text = assignment.split("=", 1)
+    key, equals, text = assignment.partition("=")
     key = key.strip()
+    if not equals or not key:
+        raise ScenarioError("", f"expected KEY=VALUE, like clutch.engagement_force='2500 N', got {assignment!r}",
+                            source="--set")
     try:
         value = _to_plain(_yaml().load(io.StringIO(text))) if text.strip() else None
     except MarkedYAMLError:
         value = text.strip()
     if value is None:
-        raise ScenarioError(key, f"--set needs a value, got {assignment!r}")
+        raise ScenarioError(key, f"needs a value, like {key}=<value>", source="--set")
     return key, value
 
 
@@ -441,8 +472,12 @@ def load_scenario(source: str | Path, overrides: list[str] | dict[str, Any] | No
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise ScenarioError("", "no such scenario file", source=str(source)) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ScenarioError("", f"cannot read the scenario: {exc}", source=str(source)) from None
+    except IsADirectoryError:
+        raise ScenarioError("", "is a folder, not a scenario file", source=str(source)) from None
+    except UnicodeDecodeError:
+        raise ScenarioError("", "not a text (UTF-8) file", source=str(source)) from None
+    except OSError as exc:
+        raise ScenarioError("", f"cannot read the scenario: {exc.strerror or exc}", source=str(source)) from None
     return scenario_from_text(text, source=str(source), overrides=overrides)
 
 
@@ -459,76 +494,73 @@ def scenario_from_text(text: str, source: str = "<scenario>",
     if pairs:
         text = text.rstrip("\n") + "\n# overrides from the command line:\n" + "".join(
             f"#   --set {k}={json.dumps(v)}\n" for k, v in pairs)
-    return _validate(raw, tree, text, source, overridden={k for k, _ in pairs})
-
-
-def scenario_from_dict(data: dict, name: str = "<dict>") -> Scenario:
-    """Validate a scenario given as Python data (tests, notebooks)."""
-    import ruamel.yaml
-
-    buffer = io.StringIO()
-    ruamel.yaml.YAML().dump(data, buffer)
-    return scenario_from_text(buffer.getvalue(), source=name)
-
-
-def _validate(raw: dict, tree: Any, text: str, source: str, overridden: set[str] = frozenset()) -> Scenario:
-    try:
-        scenario = Scenario.model_validate(raw)
-    except ValidationError as exc:
-        err = exc.errors()[0]
-        loc = tuple(p for p in err["loc"] if not (isinstance(p, str) and p.startswith(("function-", "tagged-union"))))
-        # pydantic adds the union branch name to locations; keep the user's path only
-        loc = tuple(p for p in loc if p not in ("float", "list[tuple[float,float]]", "ForceTable"))
-        raise _error_from(err, loc, tree, source, overridden) from None
-    except ScenarioError as exc:
-        exc.source = "--set" if exc.key in overridden else source
-        exc.line = None if exc.key in overridden else _line_of(tree, tuple(exc.key.split(".")))
-        raise exc from None
-    if scenario.sweep:
-        for key, values in scenario.sweep.items():
-            try:
-                _check_key(key, source)
-            except ScenarioError as exc:
-                exc.key = f"sweep.{exc.key}"
-                exc.line = _line_of(tree, ("sweep", key))
-                raise
-            if not isinstance(values, list) or not values:
-                raise ScenarioError(f"sweep.{key}", "needs a non-empty list of values",
-                                    source=source, line=_line_of(tree, ("sweep", key)))
+    _check_tree(raw, Scenario, (), tree, source)
+    scenario = _validate(raw, tree, source, overridden={k for k, _ in pairs})
+    for key, values in (scenario.sweep or {}).items():
+        _check_sweep(raw, key, values, tree, source)
     scenario._raw = raw
     scenario._text = text
     scenario._source = source
     return scenario
 
 
-def _error_from(err: dict, loc: tuple, tree: Any, source: str, overridden: set[str]) -> ScenarioError:
-    key = ".".join(str(p) for p in loc)
-    kind = err["type"]
-    if kind == "extra_forbidden":
-        parent = loc[:-1]
-        model: type[BaseModel] = Scenario
-        for part in parent:
-            model = _model_of(model, str(part)) or model
-        known = list(model.model_fields)
-        message = "unknown key" + _suggest(str(loc[-1]), known, ".".join(map(str, parent)))
+def scenario_from_dict(data: dict, name: str = "<dict>") -> Scenario:
+    """Validate a scenario given as Python data (tests, notebooks)."""
+    buffer = io.StringIO()
+    YAML().dump(data, buffer)
+    return scenario_from_text(buffer.getvalue(), source=name)
+
+
+def _validate(raw: dict, tree: Any, source: str, overridden: set[str] = frozenset()) -> Scenario:
+    try:
+        return Scenario.model_validate(raw)
+    except ValidationError as exc:
+        raise _error_from(exc.errors()[0], tree, source, overridden) from None
+
+
+def _error_from(err: dict, tree: Any, source: str, overridden: set[str]) -> ScenarioError:
+    loc = tuple(err["loc"])
+    kind, cause = err["type"], (err.get("ctx") or {}).get("error")
+    if isinstance(cause, ScenarioError):  # a check across keys names its own key
+        loc, message = tuple(cause.key.split(".")), cause.message
     elif kind == "missing":
-        message = "required section is missing" if len(loc) == 1 and loc[0] in Scenario.model_fields and \
-            _model_of(Scenario, loc[0]) is not None else "required value is missing"
-    elif kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
-        bound = err["ctx"]
-        message = f"{err['msg'].lower()}, got {err['input']!r}"
-        del bound
+        message = "required value is missing"
+        if len(loc) == 1 and _model_of(Scenario, str(loc[0])) is not None:
+            message = "required section is missing"
+    elif kind == "literal_error":
+        message = f"{err['msg'].replace('Input should be', 'must be')}, got {err['input']!r}"
     elif kind == "finite_number":
         message = f"must be a finite number, got {err['input']!r}"
     else:
         message = err["msg"].removeprefix("Value error, ")
-        if kind in ("int_type", "int_from_float", "int_parsing"):
-            message = f"must be a whole number, got {err['input']!r}"
-        elif kind == "literal_error":
-            message = f"{message.replace('Input should be', 'must be')}, got {err['input']!r}"
-    origin = "--set" if key in overridden else source
-    line = None if key in overridden else _line_of(tree, loc)
-    return ScenarioError(key, message, source=origin, line=line)
+    key = ".".join(str(p) for p in loc)
+    if key in overridden:
+        return ScenarioError(key, message, source="--set")
+    row = (cause.row,) if isinstance(cause, u.TableError) else ()
+    return ScenarioError(key, message, source=source, line=_line_of(tree, (*loc, *row)))
+
+
+def _check_sweep(raw: dict, key: str, values: list, tree: Any, source: str) -> None:
+    """A sweep names known keys, and each of its values is one the key accepts."""
+    line = _line_of(tree, ("sweep", key))
+    try:
+        _check_key(key, source)
+    except ScenarioError as exc:
+        raise ScenarioError(f"sweep.{exc.key}", exc.message, source=source, line=line) from None
+    if not values:
+        raise ScenarioError(f"sweep.{key}", "needs a non-empty list of values, like [1000 N, 2000 N]",
+                            source=source, line=line)
+    for i, value in enumerate(values):
+        one = copy.deepcopy(raw)
+        one.pop("sweep")
+        _assign(one, key, value)
+        try:
+            Scenario.model_validate(one)
+        except ValidationError as exc:
+            inner = _error_from(exc.errors()[0], None, source, set())
+            detail = inner.message if inner.key == key else f"{inner.key}: {inner.message}"
+            raise ScenarioError(f"sweep.{key}", f"value {i + 1} ({_format_value(value)}): {detail}",
+                                source=source, line=_line_of(tree, ("sweep", key, i)) or line) from None
 
 
 # --------------------------------------------------------------------------------------
@@ -548,11 +580,11 @@ def sweep_values(scenario: Scenario) -> list[tuple[str, Scenario]]:
             _assign(raw, key, value)
         label = ", ".join(f"{k}={_format_value(v)}" for k, v in zip(keys, combo))
         try:
-            run = _validate(raw, None, scenario.text, scenario.source)
+            run = _validate(raw, None, scenario.source)
         except ScenarioError as exc:
             exc.message = f"{exc.message} (in sweep run {label})"
-            exc.line = None
             raise
+        run._raw, run._text, run._source = raw, scenario.text, scenario.source
         runs.append((label, run))
     return runs
 

@@ -3,12 +3,21 @@
 A bare number is already SI (angles in radians, speeds in rad/s).  Strings are
 parsed by pint and converted once, at load time, to the SI unit of the quantity
 the key expects; a string of the wrong dimension is an error that says what was
-expected and what was given.
+expected and what was given.  NaN and infinities are never accepted.
+
+pint treats the radian as dimensionless, so "25 deg" would pass for a friction
+coefficient and "5 Hz" for an angular speed.  Here the radian counts as a
+dimension of its own whenever a unit is written: an angle needs an angle unit,
+an angular speed needs an angle per time ("rpm", "rad/s"), a pure number none.
+
+Also here: whole-number counts and the engagement-force table, the other values
+a scenario holds.  Every problem is a :class:`UnitError` (a ``ValueError``).
 """
 
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -19,89 +28,197 @@ import pint
 def registry() -> pint.UnitRegistry:
     # pint's registry is costly to build; one per process is enough.
     ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    ureg.define("@alias revolution = rev")  # "3 rev/s"
     return ureg
 
 
 @dataclass(frozen=True)
 class Dimension:
-    """What a scenario key measures: a readable name and its SI unit."""
+    """What a scenario key measures: a readable name, its SI unit, an example."""
 
     name: str
     si_unit: str
+    example: str
+    radians: int = 0  # power of the angle in the unit ("rpm" is rad/s: 1)
+    shown_in: str = ""  # unit for limits in messages, when not the SI one
 
 
-TORQUE = Dimension("torque", "N*m")
-ANGULAR_SPEED = Dimension("angular speed", "rad/s")
-INERTIA = Dimension("moment of inertia", "kg*m^2")
-MASS = Dimension("mass", "kg")
-LENGTH = Dimension("length", "m")
-ANGLE = Dimension("angle", "rad")
-FORCE = Dimension("force", "N")
-TIME = Dimension("time", "s")
-ACCELERATION = Dimension("acceleration", "m/s^2")
-DIMENSIONLESS = Dimension("pure number", "")
+TORQUE = Dimension("torque", "N*m", "'500 N*m'")
+ANGULAR_SPEED = Dimension("angular speed", "rad/s", "'300 rpm'", radians=1, shown_in="rpm")
+INERTIA = Dimension("moment of inertia", "kg*m^2", "'40 kg*m^2'")
+MASS = Dimension("mass", "kg", "'500 kg'")
+LENGTH = Dimension("length", "m", "'20 cm'")
+ANGLE = Dimension("angle", "rad", "'25 deg'", radians=1, shown_in="deg")
+FORCE = Dimension("force", "N", "'200 daN'")
+TIME = Dimension("time", "s", "'0.5 s'")
+ACCELERATION = Dimension("acceleration", "m/s^2", "'9.81 m/s^2'")
+DIMENSIONLESS = Dimension("pure number", "", "0.3")
+
+# dimensionality (as pint prints it, radian power) -> what an engineer calls it
+_KNOWN = {
+    ("[mass] * [length] ** 2 / [time] ** 2", 0): "torque (or energy)",
+    ("[mass] * [length] / [time] ** 2", 0): "force",
+    ("[mass] * [length] ** 2", 0): "moment of inertia",
+    ("[mass]", 0): "mass",
+    ("[length]", 0): "length",
+    ("[length] ** 2", 0): "area",
+    ("[length] ** 3", 0): "volume",
+    ("[time]", 0): "time",
+    ("1 / [time]", 0): "frequency",
+    ("1 / [time]", 1): "angular speed",
+    ("[length] / [time]", 0): "speed",
+    ("[length] / [time] ** 2", 0): "acceleration",
+    ("[mass] / [length] / [time] ** 2", 0): "pressure",
+    ("[mass] * [length] ** 2 / [time] ** 3", 0): "power",
+    ("[temperature]", 0): "temperature",
+    ("dimensionless", 0): "pure number",
+    ("dimensionless", 1): "angle",
+}
 
 
 class UnitError(ValueError):
-    """A value that is not a quantity of the expected dimension."""
+    """A value that is not a quantity of the expected kind, or not an allowed one."""
+
+
+def _a(noun: str) -> str:
+    return f"an {noun}" if noun[:1] in "aeiou" else f"a {noun}"
+
+
+def _shown(value: object) -> str:
+    """The value as the user wrote it."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return f"{value:g}"
+    return repr(value)
 
 
 def to_si(value: object, dimension: Dimension) -> float:
-    """Convert a scenario value to a float in the SI unit of ``dimension``.
+    """Convert a scenario value to a finite float in the SI unit of ``dimension``.
 
     Accepts ints, floats and strings with units.  Booleans, lists and other
     types are rejected: they are never a physical quantity.
     """
-    if isinstance(value, bool) or value is None:
-        raise UnitError(f"expected a {dimension.name}, got {value!r}")
+    expected = f"expected {_a(dimension.name)} (like {dimension.example})"
+    if value is None:
+        raise UnitError(f"no value given; {expected}")
+    if isinstance(value, bool):
+        raise UnitError(f"{expected}, got the yes/no value {_shown(value)}")
     if isinstance(value, (int, float)):
-        return float(value)
+        return _finite(float(value), value)
     if not isinstance(value, str):
-        raise UnitError(f"expected a {dimension.name}, got {type(value).__name__} {value!r}")
-    ureg = registry()
+        kind = {list: "a list", dict: "a mapping"}.get(type(value), type(value).__name__)
+        raise UnitError(f"{expected}, got {kind}: {value!r}")
     text = value.strip()
+    if not re.search(r"\d|nan|inf", text, re.IGNORECASE):
+        raise UnitError(f"{expected}, got {value!r} (no number in it)")
+    ureg = registry()
     try:
         quantity = ureg.Quantity(text)
-    except Exception as exc:  # pint raises several unrelated types for bad text
-        raise UnitError(f"cannot read {value!r} as a {dimension.name} ({_first_line(exc)})") from None
-    if not isinstance(quantity, ureg.Quantity):  # a plain number written as a string
-        quantity = ureg.Quantity(float(quantity), "")
+    except pint.UndefinedUnitError as exc:
+        names = ", ".join(repr(n) for n in exc.args) or "a name"
+        raise UnitError(f"{expected}, got {value!r}: unknown unit {names}") from None
+    except Exception:  # pint raises several unrelated types for bad text
+        raise UnitError(f"{expected}, cannot read {value!r}") from None
+    if str(quantity.units) == "dimensionless":  # a plain number in a string: SI
+        return _finite(float(quantity.magnitude), value)
+    radians = int(ureg.get_root_units(quantity.units)[1]._units.get("radian", 0))
     target = ureg.Unit(dimension.si_unit) if dimension.si_unit else ureg.dimensionless
-    if quantity.dimensionality != target.dimensionality:
-        raise UnitError(
-            f"expected a {dimension.name} (like {_example(dimension)}), got {value!r} "
-            f"which is a {_describe(quantity.dimensionality)}"
-        )
-    return float(quantity.to(target).magnitude)
+    if quantity.dimensionality != target.dimensionality or radians != dimension.radians:
+        hint = ""
+        if quantity.dimensionality == target.dimensionality and dimension.radians:
+            hint = f"; write it with an angle unit, like {dimension.example}"
+        raise UnitError(f"{expected}, got {value!r} which is {_a(_describe(quantity.dimensionality, radians))}{hint}")
+    return _finite(float(quantity.to(target).magnitude), value)
 
 
-def is_finite(x: float) -> bool:
-    return math.isfinite(x)
+def _finite(x: float, value: object) -> float:
+    if not math.isfinite(x):
+        raise UnitError(f"must be a finite number, got {_shown(value)}")
+    return x
 
 
-def _first_line(exc: Exception) -> str:
-    text = str(exc).strip().splitlines()
-    return text[0] if text else type(exc).__name__
+def _describe(dimensionality, radians: int) -> str:
+    text = str(dimensionality) or "dimensionless"
+    return _KNOWN.get((text, radians), text + (" * [angle]" if radians else ""))
 
 
-def _describe(dimensionality) -> str:
-    text = str(dimensionality)
-    return "pure number" if text in ("", "dimensionless") else text
+def show(x: float, dimension: Dimension) -> str:
+    """An SI value in words for messages: ``1.5708`` (angle) -> ``'90 deg'``."""
+    unit = dimension.shown_in or dimension.si_unit
+    if unit and unit != dimension.si_unit:
+        x = registry().Quantity(x, dimension.si_unit).to(unit).magnitude
+    return f"{x:.6g} {unit}".strip()
 
 
-_EXAMPLES = {
-    "torque": "'500 N*m'",
-    "angular speed": "'300 rpm'",
-    "moment of inertia": "'40 kg*m^2'",
-    "mass": "'500 kg'",
-    "length": "'20 cm'",
-    "angle": "'25 deg'",
-    "force": "'200 daN'",
-    "time": "'0.5 s'",
-    "acceleration": "'9.81 m/s^2'",
-    "pure number": "0.3",
-}
+def check_range(x: float, value: object, dimension: Dimension, *, gt: float | None = None,
+                ge: float | None = None, lt: float | None = None, hint: str = "") -> float:
+    """Check an SI value against its physical limits; the message names them in the user's terms."""
+    problem = None
+    if gt is not None and not x > gt:
+        problem = "must be positive" if gt == 0 else f"must be more than {show(gt, dimension)}"
+    elif ge is not None and not x >= ge:
+        problem = "must not be negative" if ge == 0 else f"must be at least {show(ge, dimension)}"
+    elif lt is not None and not x < lt:
+        problem = f"must be less than {show(lt, dimension)}"
+    if problem is None:
+        return x
+    got = _shown(value) if isinstance(value, str) else show(x, u_si := Dimension("", dimension.si_unit, ""))
+    if not isinstance(value, str) and dimension.shown_in:
+        got += f" (= {show(x, dimension)})"
+    raise UnitError(f"{problem}{hint}, got {got}")
 
 
-def _example(dimension: Dimension) -> str:
-    return _EXAMPLES.get(dimension.name, dimension.si_unit)
+def count(value: object, what: str, minimum: int = 1) -> int:
+    """A whole number (teeth, friction surfaces): ``17`` or ``17.0``, never ``17.5`` or ``true``."""
+    whole = None
+    if isinstance(value, int) and not isinstance(value, bool):
+        whole = value
+    elif isinstance(value, float) and value.is_integer():
+        whole = int(value)
+    if whole is None:
+        raise UnitError(f"must be a whole number of {what}, got {_shown(value)}")
+    if whole < minimum:
+        raise UnitError(f"must be at least {minimum}, got {whole}")
+    return whole
+
+
+class TableError(UnitError):
+    """A bad row of a table; ``row`` is its index from 0."""
+
+    def __init__(self, row: int, message: str):
+        super().__init__(f"row {row + 1}: {message}")
+        self.row = row
+
+
+def force_table(value: object) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """Engagement force: a constant, or rows ``[time, force]``; a time may repeat once (a step).
+
+    Returns the times (s) and forces (N); a constant holds from t = 0.
+    """
+    if not isinstance(value, (list, tuple)):
+        try:
+            force = to_si(value, FORCE)
+        except UnitError as exc:
+            raise UnitError(f"{exc}; or a table [[time, force], ...]") from None
+        check_range(force, value, FORCE, ge=0, hint=" (a clutch cannot be pushed apart)")
+        return (0.0,), (force,)
+    if not value:
+        raise UnitError("the table is empty; give rows [time, force], like [[0 s, 0 N], [0.5 s, 3000 N]]")
+    times: list[float] = []
+    forces: list[float] = []
+    for i, row in enumerate(value):
+        if not isinstance(row, (list, tuple)) or len(row) != 2:
+            raise TableError(i, f"must be a pair [time, force], like [0.5 s, 3000 N], got {row!r}")
+        try:
+            t = check_range(to_si(row[0], TIME), row[0], TIME, ge=0, hint=" (the run starts at 0 s)")
+            f = check_range(to_si(row[1], FORCE), row[1], FORCE, ge=0, hint=" (a clutch cannot be pushed apart)")
+        except UnitError as exc:
+            raise TableError(i, str(exc)) from None
+        if times and t < times[-1]:
+            raise TableError(i, f"time goes backwards ({t:g} s after {times[-1]:g} s)")
+        if len(times) >= 2 and t == times[-1] == times[-2]:
+            raise TableError(i, f"a time may appear at most twice (a step); {t:g} s appears three times")
+        times.append(t)
+        forces.append(f)
+    return tuple(times), tuple(forces)

@@ -1,0 +1,85 @@
+"""The command line on shipped scenarios: run, --set, check, plot."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import h5py
+import pytest
+from click.testing import CliRunner
+from conftest import ROOT, SCENARIOS
+
+from hoistsim.cli import main
+
+
+def test_cold_run_from_a_fresh_process(tmp_path):
+    """`hoistsim run` as a user types it: exit 0, a table on stdout, the file in place."""
+    out = tmp_path / "exercise6.h5"
+    env = dict(os.environ, HOISTSIM_CACHE_DIR=str(tmp_path / "cache"))
+    proc = subprocess.run(
+        [sys.executable, "-m", "hoistsim.cli", "run", str(SCENARIOS / "exercise6_direct_start.yaml"), "-o", str(out)],
+        capture_output=True, text=True, env=env, cwd=ROOT,
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert "exercise6-direct-start" in proc.stdout and f"wrote {out}" in proc.stdout
+    with h5py.File(out, "r") as f:
+        assert f["runs/0"].attrs["lockup_time"] == 0.0  # 3201 N holds the stall torque: no slip
+
+
+def test_set_overrides_a_key_and_is_recorded(tmp_path):
+    out = tmp_path / "slip.h5"
+    result = CliRunner().invoke(main, ["run", str(SCENARIOS / "exercise6_direct_start.yaml"), "-o", str(out),
+                                       "--set", "clutch.engagement_force=200 daN", "--set", "simulation.duration=1 s"])
+    assert result.exit_code == 0, result.output
+    with h5py.File(out, "r") as f:
+        group = f["runs/0"]
+        assert group["engagement_force"][0] == pytest.approx(2000.0)
+        assert group["time"][-1] == 1.0
+        text = f["scenario"][()]
+        text = text.decode() if isinstance(text, bytes) else text
+        assert "--set clutch.engagement_force" in text
+
+
+def test_sweep_section_gives_one_run_per_value(tmp_path):
+    base = (SCENARIOS / "exercise6_direct_start.yaml").read_text()
+    path = tmp_path / "sweep.yaml"
+    path.write_text(base.replace("duration: 3 s", "duration: 0.5 s")
+                    + "sweep:\n  clutch.engagement_force: [1000 N, 2000 N, 3201 N]\n")
+    out = tmp_path / "sweep.h5"
+    result = CliRunner().invoke(main, ["run", str(path), "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    with h5py.File(out, "r") as f:
+        assert len(f["runs"]) == 3 and f["summary"].shape == (3,)
+        assert f["runs/1"].attrs["label"] == "clutch.engagement_force=2000 N"
+
+
+def test_check_prints_the_reduced_model():
+    result = CliRunner().invoke(main, ["check", str(SCENARIOS / "exercise6_direct_start.yaml")])
+    assert result.exit_code == 0
+    assert "J_b" in result.output and "2.141" in result.output and "valid" in result.output
+
+
+@pytest.mark.parametrize("suffix", [".png", ".svg"])
+def test_plot_writes_a_figure(tmp_path, suffix):
+    out = tmp_path / "run.h5"
+    result = CliRunner().invoke(main, ["run", str(SCENARIOS / "engage_at_speed_with_brake.yaml"), "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    fig = tmp_path / f"fig{suffix}"
+    result = CliRunner().invoke(main, ["plot", str(out), "-o", str(fig)])
+    assert result.exit_code == 0, result.output
+    assert fig.stat().st_size > 10_000
+
+
+def test_chattering_is_a_one_line_error(tmp_path):
+    base = (SCENARIOS / "exercise6_direct_start.yaml").read_text()
+    table = ", ".join(f"[{k * 0.05} s, {9000 if k % 2 == 0 else 300} N]" for k in range(24))
+    path = tmp_path / "chatter.yaml"
+    path.write_text(base.replace("engagement_force: 3201 N", f"engagement_force: [{table}]")
+                    .replace("mass: 500 kg", "mass: 300 kg").replace("solver: tsit5", "solver: tsit5\n  max_switches: 4"))
+    out = tmp_path / "never.h5"
+    result = CliRunner().invoke(main, ["run", str(path), "-o", str(out)])
+    assert result.exit_code == 1
+    assert "chatters" in result.output and len(result.output.strip().splitlines()) == 1
+    assert not out.exists()
