@@ -134,6 +134,35 @@ def _check(scenario_path, overrides):
 
 
 @main.command()
+@click.argument("scenario", type=click.Path(dir_okay=False))
+@click.option("--json", "as_json", is_flag=True, help="Print the answers as a JSON object (SI units).")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a scenario key.")
+@debug_option
+def statics(scenario, as_json, overrides, debug):
+    """The exercise's static answers for SCENARIO's machine: clutch force, heaviest load, bearing loads."""
+    _guarded(_statics)(scenario, as_json, overrides, debug=debug)
+
+
+def _statics(scenario_path, as_json, overrides):
+    import json
+
+    from .report import fmt, table
+    from .scenario import load_scenario
+    from .statics import answers
+
+    scenario = load_scenario(scenario_path, overrides=list(overrides))
+    rows = answers(scenario)
+    if as_json:
+        click.echo(json.dumps({a.key: a.value for a in rows}, indent=2))
+        return
+    click.echo(f"{scenario.name}: static answers (uniform-wear clutch radius unless the scenario says otherwise)")
+    click.echo(table(["symbol", "quantity", "value", "unit"],
+                     [[a.symbol, a.quantity, fmt(a.value, 5), a.unit] for a in rows], align="llrl"))
+    if scenario.bearings is None:
+        click.echo("(add a bearings: section for the bearing reactions)")
+
+
+@main.command()
 @click.argument("results", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", "output", required=True, type=click.Path(dir_okay=False),
               help="Figure file: .png, .svg or .pdf.")

@@ -16,14 +16,16 @@ import json
 import math
 import re
 from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import Any, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, PrivateAttr, ValidationError, model_validator
+from pydantic import BaseModel, ConfigDict, PrivateAttr, ValidationError, model_validator
 from ruamel.yaml import YAML
 from ruamel.yaml.comments import CommentedMap, CommentedSeq
 from ruamel.yaml.error import MarkedYAMLError
 
 from . import units as u
+from .units import EngagementForce, FreeText, Text
+from .units import ForceTable as ForceTable  # noqa: F401  (part of this module's interface)
 
 SOLVERS = ("tsit5", "dopri5", "dopri8", "bosh3", "heun", "kvaerno3", "kvaerno5")
 
@@ -47,60 +49,6 @@ class ScenarioError(ValueError):
 
 
 # --------------------------------------------------------------------------------------
-# values: each converts the user's text to SI and checks its physical limits
-
-
-def _quantity(dimension: u.Dimension, hint: str = "", **limits: float):
-    def convert(value: Any) -> float:
-        return u.check_range(u.to_si(value, dimension), value, dimension, hint=hint, **limits)
-
-    return Annotated[float, BeforeValidator(convert)]
-
-
-def _count(what: str, minimum: int = 1):
-    return Annotated[int, BeforeValidator(lambda value: u.count(value, what, minimum))]
-
-
-def _text(value: Any) -> str:
-    if not isinstance(value, str):
-        raise ValueError(f"must be text, got {value!r} (put it in quotes)")
-    if not value.strip():
-        raise ValueError("must not be empty")
-    return value
-
-
-Text = Annotated[str, BeforeValidator(_text)]
-Positive = {"gt": 0.0}
-NonNegative = {"ge": 0.0}
-BELOW_RIGHT_ANGLE = {"gt": 0.0, "lt": math.pi / 2}
-
-
-class ForceTable(BaseModel):
-    """Engagement force against time, piecewise linear; a repeated time is a step.
-
-    Before the first time the first force holds, after the last the last.
-    """
-
-    model_config = ConfigDict(frozen=True)
-    times: tuple[float, ...]
-    forces: tuple[float, ...]
-
-    @property
-    def is_constant(self) -> bool:
-        return len(set(self.forces)) == 1
-
-
-def _force_table(value: Any) -> ForceTable:
-    if isinstance(value, ForceTable):
-        return value
-    times, forces = u.force_table(value)
-    return ForceTable(times=times, forces=forces)
-
-
-EngagementForce = Annotated[ForceTable, BeforeValidator(_force_table)]
-
-
-# --------------------------------------------------------------------------------------
 # the schema: one model per section
 
 
@@ -109,11 +57,11 @@ class Section(BaseModel):
 
 
 class MotorSpec(Section):
-    stall_torque: _quantity(u.TORQUE, **Positive)  # C0, torque at standstill
-    no_load_speed: _quantity(u.ANGULAR_SPEED, **Positive)  # omega0, where the torque reaches 0
-    inertia: _quantity(u.INERTIA, **Positive) | None = None
-    rotor_mass: _quantity(u.MASS, **Positive) | None = None
-    radius_of_gyration: _quantity(u.LENGTH, **Positive) | None = None
+    stall_torque: u.quantity(u.TORQUE, gt=0.0)  # C0, torque at standstill
+    no_load_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0)  # omega0, where the torque reaches 0
+    inertia: u.quantity(u.INERTIA, gt=0.0) | None = None
+    rotor_mass: u.quantity(u.MASS, gt=0.0) | None = None
+    radius_of_gyration: u.quantity(u.LENGTH, gt=0.0) | None = None
 
     @model_validator(mode="after")
     def _one_inertia(self):
@@ -134,16 +82,16 @@ class MotorSpec(Section):
 
 
 class ClutchSpec(Section):
-    inner_radius: _quantity(u.LENGTH, **Positive)
-    outer_radius: _quantity(u.LENGTH, **Positive)
-    half_angle: _quantity(u.ANGLE, " (the cone half-angle beta = 90 deg - delta)", **BELOW_RIGHT_ANGLE)
-    static_friction: _quantity(u.DIMENSIONLESS, **Positive)
-    kinetic_friction: _quantity(u.DIMENSIONLESS, **NonNegative)
-    surfaces: _count("friction surfaces") = 1
+    inner_radius: u.quantity(u.LENGTH, gt=0.0)
+    outer_radius: u.quantity(u.LENGTH, gt=0.0)
+    half_angle: u.quantity(u.ANGLE, " (the cone half-angle beta = 90 deg - delta)", gt=0.0, lt=math.pi / 2)
+    static_friction: u.quantity(u.DIMENSIONLESS, gt=0.0)
+    kinetic_friction: u.quantity(u.DIMENSIONLESS, ge=0.0)
+    surfaces: u.whole("friction surfaces") = 1
     engagement_force: EngagementForce
     mean_radius: Literal["uniform_wear", "uniform_pressure"] = "uniform_wear"
-    driving_inertia: _quantity(u.INERTIA, **NonNegative) = 0.0  # clutch half on the motor shaft
-    driven_inertia: _quantity(u.INERTIA, **NonNegative) = 0.0  # clutch half on the pinion shaft
+    driving_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0  # clutch half on the motor shaft
+    driven_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0  # clutch half on the pinion shaft
 
     @model_validator(mode="after")
     def _consistent(self):
@@ -157,45 +105,45 @@ class ClutchSpec(Section):
 
 
 class GearSpec(Section):
-    pinion_teeth: _count("teeth")
-    wheel_teeth: _count("teeth")
-    module: _quantity(u.LENGTH, **Positive)
-    pressure_angle: _quantity(u.ANGLE, **BELOW_RIGHT_ANGLE) = math.radians(20.0)
-    pinion_inertia: _quantity(u.INERTIA, **NonNegative) = 0.0
-    wheel_inertia: _quantity(u.INERTIA, **NonNegative) = 0.0
+    pinion_teeth: u.whole("teeth")
+    wheel_teeth: u.whole("teeth")
+    module: u.quantity(u.LENGTH, gt=0.0)
+    pressure_angle: u.quantity(u.ANGLE, gt=0.0, lt=math.pi / 2) = math.radians(20.0)
+    pinion_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0
+    wheel_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0
 
 
 class DrumSpec(Section):
-    diameter: _quantity(u.LENGTH, **Positive)
-    inertia: _quantity(u.INERTIA, **Positive)
+    diameter: u.quantity(u.LENGTH, gt=0.0)
+    inertia: u.quantity(u.INERTIA, gt=0.0)
 
 
 class LoadSpec(Section):
-    mass: _quantity(u.MASS, **NonNegative)
+    mass: u.quantity(u.MASS, ge=0.0)
 
 
 class InitialSpec(Section):
-    motor_speed: _quantity(u.ANGULAR_SPEED) = 0.0
-    drum_speed: _quantity(u.ANGULAR_SPEED) = 0.0
+    motor_speed: u.quantity(u.ANGULAR_SPEED) = 0.0
+    drum_speed: u.quantity(u.ANGULAR_SPEED) = 0.0
 
 
 class BrakeSpec(Section):
-    release_time: _quantity(u.TIME, **NonNegative)  # the holding brake frees the drum at this time
+    release_time: u.quantity(u.TIME, ge=0.0)  # the holding brake frees the drum at this time
 
 
 class BearingsSpec(Section):
-    gear_offset: _quantity(u.LENGTH, **Positive)  # a: bearing A to the gear, away from B
-    rope_offset: _quantity(u.LENGTH, **Positive)  # bearing A to the rope, towards B
-    span: _quantity(u.LENGTH, **Positive)  # bearing A to bearing B
+    gear_offset: u.quantity(u.LENGTH, gt=0.0)  # a: bearing A to the gear, away from B
+    rope_offset: u.quantity(u.LENGTH, gt=0.0)  # bearing A to the rope, towards B
+    span: u.quantity(u.LENGTH, gt=0.0)  # bearing A to bearing B
 
 
 class SimulationSpec(Section):
-    duration: _quantity(u.TIME, **Positive)
-    output_interval: _quantity(u.TIME, **Positive)
-    rtol: _quantity(u.DIMENSIONLESS, gt=0.0, lt=1.0) = 1e-8
-    atol: _quantity(u.DIMENSIONLESS, **Positive) = 1e-10
+    duration: u.quantity(u.TIME, gt=0.0)
+    output_interval: u.quantity(u.TIME, gt=0.0)
+    rtol: u.quantity(u.DIMENSIONLESS, gt=0.0, lt=1.0) = 1e-8
+    atol: u.quantity(u.DIMENSIONLESS, gt=0.0) = 1e-10
     solver: Literal[SOLVERS] = "tsit5"  # type: ignore[valid-type]
-    max_switches: _count("mode switches") = 200  # before a run is declared chattering
+    max_switches: u.whole("mode switches") = 200  # before a run is declared chattering
 
     @model_validator(mode="after")
     def _grid(self):
@@ -210,22 +158,23 @@ class SimulationSpec(Section):
 
 class Scenario(Section):
     name: Text
-    description: str = ""
+    description: FreeText = ""
     motor: MotorSpec
     clutch: ClutchSpec
     gears: GearSpec
     drum: DrumSpec
     load: LoadSpec
-    gravity: _quantity(u.ACCELERATION, **NonNegative) = 9.81
+    gravity: u.quantity(u.ACCELERATION, ge=0.0) = 9.81
     initial: InitialSpec = InitialSpec()
     brake: BrakeSpec | None = None
     bearings: BearingsSpec | None = None
     simulation: SimulationSpec
-    sweep: dict[str, list[Any]] | None = None
+    sweep: dict[str, Any] | None = None  # checked by _check_sweep
 
     _raw: dict = PrivateAttr(default_factory=dict)
     _text: str = PrivateAttr(default="")
     _source: str = PrivateAttr(default="<scenario>")
+    _overridden: set = PrivateAttr(default_factory=set)
 
     @model_validator(mode="after")
     def _brake_holds_still_drum(self):
@@ -301,6 +250,7 @@ def _read_yaml(text: str, source: str) -> CommentedMap:
 
 
 _KEY_LINE = re.compile(r"^([ \t]*)([A-Za-z_][\w.-]*)[ \t]*:(?:\s|$)")
+_SECTION_LINE = re.compile(r"^[ \t]*[A-Za-z_][\w.-]*[ \t]*:[ \t]*(#.*)?$")
 
 
 def _key_at(text: str, line: int | None) -> str:
@@ -311,7 +261,7 @@ def _key_at(text: str, line: int | None) -> str:
     path, indent = [m.group(2)], len(m.group(1))
     for above in reversed(lines[: line - 1]):
         m = _KEY_LINE.match(above)
-        if m and len(m.group(1)) < indent:
+        if m and len(m.group(1)) < indent and _SECTION_LINE.match(above):  # "motor:", nothing after
             path.insert(0, m.group(2))
             indent = len(m.group(1))
     return ".".join(path)
@@ -320,7 +270,7 @@ def _key_at(text: str, line: int | None) -> str:
 def _first_definition(text: str, line: int | None) -> int | None:
     """For a duplicate key on ``line``: the line of the same key earlier in the same mapping."""
     lines = text.splitlines()
-    if line is None or not (m := _KEY_LINE.match(lines[line - 1])):
+    if line is None or not 1 <= line <= len(lines) or not (m := _KEY_LINE.match(lines[line - 1])):
         return None
     for i in range(line - 2, -1, -1):
         other = _KEY_LINE.match(lines[i])
@@ -335,7 +285,10 @@ def _line_of(node: Any, path: tuple) -> int | None:
     """Best line (1-based) for a location: the deepest node the path reaches."""
     line = None
     for part in path:
-        if isinstance(node, CommentedMap) and part in node:
+        if isinstance(node, CommentedMap):
+            part = next((k for k in node if str(k) == str(part)), None)  # keys may be numbers in YAML
+            if part is None:
+                break
             pos = node.lc.key(part)
         elif isinstance(node, CommentedSeq) and isinstance(part, int) and 0 <= part < len(node):
             pos = node.lc.item(part)
@@ -346,14 +299,21 @@ def _line_of(node: Any, path: tuple) -> int | None:
     return line
 
 
-def _to_plain(node: Any) -> Any:
+def _to_plain(node: Any, budget: list[int] | None = None) -> Any:
     """ruamel's round-trip types -> plain dict, list, str, int, float, bool."""
+    budget = [100_000] if budget is None else budget  # values left: aliases can nest exponentially
+    budget[0] -= 1
+    if budget[0] < 0:
+        raise ScenarioError("", "malformed YAML: more than 100000 values (aliases that expand without end?)")
     if isinstance(node, dict):
-        return {k if isinstance(k, str) else str(k): _to_plain(v) for k, v in node.items()}
+        return {k if isinstance(k, str) else str(k): _to_plain(v, budget) for k, v in node.items()}
     if isinstance(node, (list, tuple)):
-        return [_to_plain(v) for v in node]
+        return [_to_plain(v, budget) for v in node]
     if isinstance(node, bool) or type(node).__name__ == "ScalarBoolean":
         return bool(node)
+    if type(node).__name__ == "TaggedScalar":  # "!!str 3 kg", "!foo 3", a lone "="
+        tag = str(getattr(node.tag, "value", node.tag) or "")
+        return node.value if tag.startswith("tag:yaml.org,2002:") else f"{tag} {node.value}"
     for kind in (int, float, str):
         if isinstance(node, kind):
             return kind(node)
@@ -399,20 +359,22 @@ def _check_tree(data: dict, model: type[BaseModel], path: tuple, tree: Any, sour
         if key not in model.model_fields:
             known = list(model.model_fields)
             raise ScenarioError(message="unknown key" + _suggest(key, known, ".".join(path)), **where)
+        if key == "sweep" and model is Scenario and not isinstance(value, dict):
+            raise ScenarioError(message=f"must map keys to lists of values, {_SWEEP_EXAMPLE}", **where)
         sub = _model_of(model, key)
-        if key == "sweep" and model is Scenario and value is not None and not isinstance(value, dict):
-            raise ScenarioError(message="must map keys to lists of values, like "
-                                "'clutch.engagement_force: [1000 N, 2000 N]'", **where)
         if sub is None:
             continue
         if value is None:
+            optional = "" if model.model_fields[key].is_required() else f", or remove {key}:"
             raise ScenarioError(message=f"the section is empty; give its keys ({', '.join(sub.model_fields)})"
-                                + ("" if key in ("name", "motor", "clutch", "gears", "drum", "load", "simulation")
-                                   else f" or remove {key}:"), **where)
+                                f"{optional}", **where)
         if not isinstance(value, dict):
             raise ScenarioError(message=f"must be a section with its keys indented below it, got {value!r}",
                                 **where)
         _check_tree(value, sub, (*path, key), tree, source)
+
+
+_SWEEP_EXAMPLE = "like 'clutch.engagement_force: [1000 N, 2000 N]'"
 
 
 def _check_key(dotted: str, origin: str) -> None:
@@ -420,7 +382,10 @@ def _check_key(dotted: str, origin: str) -> None:
     model: type[BaseModel] = Scenario
     parts = dotted.split(".")
     for i, part in enumerate(parts):
-        if part not in model.model_fields or (part == "sweep" and model is Scenario):
+        if part == "sweep" and model is Scenario:
+            what = "given with --set; edit the file's sweep: section" if origin == "--set" else "swept"
+            raise ScenarioError("sweep", f"cannot be {what}", source=origin)
+        if part not in model.model_fields:
             known = [k for k in model.model_fields if k != "sweep"]
             raise ScenarioError(".".join(parts[: i + 1]), "unknown key" + _suggest(part, known, ".".join(parts[:i])),
                                 source=origin)
@@ -444,11 +409,16 @@ def parse_override(assignment: str) -> tuple[str, Any]:
                             source="--set")
     try:
         value = _to_plain(_yaml().load(io.StringIO(text))) if text.strip() else None
-    except MarkedYAMLError:
+    except Exception:  # not YAML: the text as written
         value = text.strip()
     if value is None:
         raise ScenarioError(key, f"needs a value, like {key}=<value>", source="--set")
     return key, value
+
+
+# setting one way of giving a value (--set, sweep) drops the other way the file used
+_ALTERNATIVES = {"motor.inertia": ("rotor_mass", "radius_of_gyration"),
+                 "motor.rotor_mass": ("inertia",), "motor.radius_of_gyration": ("inertia",)}
 
 
 def _assign(raw: dict, dotted: str, value: Any) -> None:
@@ -459,6 +429,8 @@ def _assign(raw: dict, dotted: str, value: Any) -> None:
             node[part] = {}
         node = node[part]
     node[parts[-1]] = value
+    for other in _ALTERNATIVES.get(dotted, ()):
+        node.pop(other, None)
 
 
 # --------------------------------------------------------------------------------------
@@ -484,7 +456,11 @@ def load_scenario(source: str | Path, overrides: list[str] | dict[str, Any] | No
 def scenario_from_text(text: str, source: str = "<scenario>",
                        overrides: list[str] | dict[str, Any] | None = None) -> Scenario:
     tree = _read_yaml(text, source)
-    raw = _to_plain(tree)
+    try:
+        raw = _to_plain(tree)
+    except ScenarioError as exc:
+        exc.source = source
+        raise
     pairs = list(overrides.items()) if isinstance(overrides, dict) else [
         parse_override(item) for item in (overrides or [])
     ]
@@ -493,10 +469,13 @@ def scenario_from_text(text: str, source: str = "<scenario>",
         _assign(raw, key, value)
     if pairs:
         text = text.rstrip("\n") + "\n# overrides from the command line:\n" + "".join(
-            f"#   --set {k}={json.dumps(v)}\n" for k, v in pairs)
+            f"#   --set {k}={json.dumps(v, default=str)}\n" for k, v in pairs)
     _check_tree(raw, Scenario, (), tree, source)
     scenario = _validate(raw, tree, source, overridden={k for k, _ in pairs})
+    scenario._overridden = {k for k, _ in pairs}
     for key, values in (scenario.sweep or {}).items():
+        if key in scenario._overridden:
+            raise ScenarioError(key, "is swept in the file (sweep:); --set cannot also set it", source="--set")
         _check_sweep(raw, key, values, tree, source)
     scenario._raw = raw
     scenario._text = text
@@ -547,8 +526,8 @@ def _check_sweep(raw: dict, key: str, values: list, tree: Any, source: str) -> N
         _check_key(key, source)
     except ScenarioError as exc:
         raise ScenarioError(f"sweep.{exc.key}", exc.message, source=source, line=line) from None
-    if not values:
-        raise ScenarioError(f"sweep.{key}", "needs a non-empty list of values, like [1000 N, 2000 N]",
+    if not isinstance(values, list) or not values:
+        raise ScenarioError(f"sweep.{key}", f"needs a non-empty list of values, {_SWEEP_EXAMPLE}",
                             source=source, line=line)
     for i, value in enumerate(values):
         one = copy.deepcopy(raw)
@@ -591,5 +570,5 @@ def sweep_values(scenario: Scenario) -> list[tuple[str, Scenario]]:
 
 def _format_value(value: Any) -> str:
     if isinstance(value, list):
-        return json.dumps(value, separators=(",", ":"))
+        return json.dumps(value, separators=(",", ":"), default=str)
     return str(value)

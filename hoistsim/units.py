@@ -10,8 +10,10 @@ coefficient and "5 Hz" for an angular speed.  Here the radian counts as a
 dimension of its own whenever a unit is written: an angle needs an angle unit,
 an angular speed needs an angle per time ("rpm", "rad/s"), a pure number none.
 
-Also here: whole-number counts and the engagement-force table, the other values
-a scenario holds.  Every problem is a :class:`UnitError` (a ``ValueError``).
+Also here: whole-number counts, text and the engagement-force table, the other
+values a scenario holds, and the pydantic field types built on them that the
+schema in :mod:`.scenario` uses.  Every problem is a :class:`UnitError` (a
+``ValueError``), which pydantic reports at the key's location.
 """
 
 from __future__ import annotations
@@ -20,8 +22,10 @@ import math
 import re
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Annotated, Any
 
 import pint
+from pydantic import BaseModel, BeforeValidator, ConfigDict
 
 
 @lru_cache(maxsize=1)
@@ -99,6 +103,13 @@ def to_si(value: object, dimension: Dimension) -> float:
     Accepts ints, floats and strings with units.  Booleans, lists and other
     types are rejected: they are never a physical quantity.
     """
+    try:
+        return _to_si(value, dimension)
+    except OverflowError:  # an integer too large for a float
+        raise UnitError(f"must be a finite number, got {_shown(value)[:40]}") from None
+
+
+def _to_si(value: object, dimension: Dimension) -> float:
     expected = f"expected {_a(dimension.name)} (like {dimension.example})"
     if value is None:
         raise UnitError(f"no value given; {expected}")
@@ -107,11 +118,14 @@ def to_si(value: object, dimension: Dimension) -> float:
     if isinstance(value, (int, float)):
         return _finite(float(value), value)
     if not isinstance(value, str):
-        kind = {list: "a list", dict: "a mapping"}.get(type(value), type(value).__name__)
-        raise UnitError(f"{expected}, got {kind}: {value!r}")
+        kind = {list: "a list", dict: "a mapping"}.get(type(value), f"a {type(value).__name__}")
+        shown = repr(value) if isinstance(value, (list, dict)) else str(value)
+        raise UnitError(f"{expected}, got {kind}: {shown}")
     text = value.strip()
     if not re.search(r"\d|nan|inf", text, re.IGNORECASE):
         raise UnitError(f"{expected}, got {value!r} (no number in it)")
+    if re.search(r"[\d)]\s*(\*\*|\^)", text):  # pint would compute 10**10**10 in full
+        raise UnitError(f"{expected}, got {value!r}: write powers of ten as 1e6, not with ^ or **")
     ureg = registry()
     try:
         quantity = ureg.Quantity(text)
@@ -163,9 +177,11 @@ def check_range(x: float, value: object, dimension: Dimension, *, gt: float | No
         problem = f"must be less than {show(lt, dimension)}"
     if problem is None:
         return x
-    got = _shown(value) if isinstance(value, str) else show(x, u_si := Dimension("", dimension.si_unit, ""))
-    if not isinstance(value, str) and dimension.shown_in:
-        got += f" (= {show(x, dimension)})"
+    if isinstance(value, str):
+        got = _shown(value)
+    else:  # a bare number is SI; say so, and in the usual unit where that differs
+        got = f"{x:.6g} {dimension.si_unit}".strip()
+        got += f" (= {show(x, dimension)})" if dimension.shown_in else ""
     raise UnitError(f"{problem}{hint}, got {got}")
 
 
@@ -222,3 +238,58 @@ def force_table(value: object) -> tuple[tuple[float, ...], tuple[float, ...]]:
         times.append(t)
         forces.append(f)
     return tuple(times), tuple(forces)
+
+
+# --------------------------------------------------------------------------------------
+# the value types of the scenario schema (pydantic fields)
+
+
+def quantity(dimension: Dimension, hint: str = "", **limits: float):
+    """A float field given as a number (SI) or text with units, checked against ``limits`` (gt, ge, lt)."""
+
+    def convert(value: Any) -> float:
+        return check_range(to_si(value, dimension), value, dimension, hint=hint, **limits)
+
+    return Annotated[float, BeforeValidator(convert)]
+
+
+def whole(what: str, minimum: int = 1):
+    """An int field that counts ``what`` ("teeth")."""
+    return Annotated[int, BeforeValidator(lambda value: count(value, what, minimum))]
+
+
+def _text(value: Any, required: bool = True) -> str:
+    if not isinstance(value, str) and not (value is None and not required):
+        raise UnitError(f"must be text, got {value!r} (put it in quotes)")
+    if required and not value.strip():
+        raise UnitError("must not be empty")
+    return value or ""
+
+
+Text = Annotated[str, BeforeValidator(_text)]
+FreeText = Annotated[str, BeforeValidator(lambda value: _text(value, required=False))]
+
+
+class ForceTable(BaseModel):
+    """Engagement force against time, piecewise linear; a repeated time is a step.
+
+    Before the first time the first force holds, after the last the last.
+    """
+
+    model_config = ConfigDict(frozen=True)
+    times: tuple[float, ...]
+    forces: tuple[float, ...]
+
+    @property
+    def is_constant(self) -> bool:
+        return len(set(self.forces)) == 1
+
+
+def _to_force_table(value: Any) -> ForceTable:
+    if isinstance(value, ForceTable):
+        return value
+    times, forces = force_table(value)
+    return ForceTable(times=times, forces=forces)
+
+
+EngagementForce = Annotated[ForceTable, BeforeValidator(_to_force_table)]

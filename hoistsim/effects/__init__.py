@@ -9,11 +9,13 @@ from __future__ import annotations
 
 from ._base import AbstractEffect as AbstractEffect
 from ._base import RowContext as RowContext
+from .bearings import DrumShaftLoads as DrumShaftLoads
 from .brake import HoldingBrake as HoldingBrake
 
 # YAML section -> effect class, in the order their outputs are written
 REGISTRY: dict[str, type[AbstractEffect]] = {
     HoldingBrake.section: HoldingBrake,
+    DrumShaftLoads.section: DrumShaftLoads,
 }
 
 

@@ -1,0 +1,382 @@
+"""Bad input through the command line: exit status 2, one line on stderr that names
+the dotted key (and the line, where the YAML parser knows it), no traceback, and
+nothing written.  Every case fails before any simulation; a guard makes sure."""
+
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from hoistsim import simulation
+from hoistsim.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+SHIPPED = (ROOT / "scenarios" / "exercise6_direct_start.yaml").read_text(encoding="utf-8")
+TABLE = "engagement_force: 3201 N"
+MOTOR_GEOMETRY = "  rotor_mass: 40 kg\n  radius_of_gyration: 15 cm\n"
+
+
+def core(text: str) -> str:
+    """The shipped scenario without its optional sections (they may come and go)."""
+    kept, skipping = [], False
+    for line in text.splitlines(keepends=True):
+        top = re.match(r"([A-Za-z_]\w*)[ \t]*:", line)
+        if top:
+            skipping = top.group(1) in ("initial", "brake", "bearings", "sweep")
+        if not skipping:
+            kept.append(line)
+    return "".join(kept)
+
+
+BASE = core(SHIPPED)  # mutated by the tests
+
+
+@dataclass(frozen=True)
+class Case:
+    id: str
+    old: str | None  # text of the base scenario to replace; None: append ``new``; "*": the whole file
+    new: str
+    key: str  # dotted key the message must name ("" where there is none)
+    at: str | None = None  # the message names the line holding this text (None: no line)
+    words: str = ""  # and contains these words
+
+    def text(self) -> str:
+        if self.old == "*":
+            return self.new
+        if self.old is None:
+            return BASE + self.new
+        assert self.old in BASE, f"{self.old!r} is not in the base scenario"
+        return BASE.replace(self.old, self.new, 1)
+
+
+def _line_of(text: str, fragment: str) -> int:
+    return text[: text.index(fragment)].count("\n") + 1
+
+
+CASES = [
+    # unknown and misspelt keys
+    Case("misspelt key", "static_friction: 0.3", "static_friciton: 0.3", "clutch.static_friciton",
+         "static_friciton", "did you mean clutch.static_friction?"),
+    Case("misspelt top-level key", None, "gravty: 9.8 m/s^2\n", "gravty", "gravty", "did you mean gravity?"),
+    Case("unknown section", None, "brakes:\n  release_time: 1 s\n", "brakes", "brakes:", "did you mean brake?"),
+    Case("misspelt key in an optional section", None, "brake:\n  release_tim: 1 s\n", "brake.release_tim",
+         "release_tim", "did you mean brake.release_time?"),
+    Case("key in the wrong section", "  mass: 500 kg", "  mass: 500 kg\n  no_load_speed: 20 rpm",
+         "load.no_load_speed", "no_load_speed: 20", "did you mean motor.no_load_speed?"),
+    Case("unknown key with no near match", None, "colour: red\n", "colour", "colour", "known keys"),
+    # wrong dimensions
+    Case("torque for a mass", "mass: 500 kg", "mass: 300 N*m", "load.mass", "  mass:",
+         "expected a mass (like '500 kg'), got '300 N*m' which is a torque"),
+    Case("mass for a torque", "stall_torque: 500 N*m", "stall_torque: 300 kg", "motor.stall_torque",
+         "stall_torque", "expected a torque (like '500 N*m'), got '300 kg' which is a mass"),
+    Case("angle for a friction coefficient", "static_friction: 0.3", "static_friction: 25 deg",
+         "clutch.static_friction", "static_friction", "which is an angle"),
+    Case("frequency for an angular speed", "no_load_speed: 300 rpm", "no_load_speed: 5 Hz",
+         "motor.no_load_speed", "no_load_speed", "frequency"),
+    Case("length for a force", TABLE, "engagement_force: 3 m", "clutch.engagement_force", "engagement_force",
+         "expected a force"),
+    Case("unknown unit", "module: 4 mm", "module: 4 mmm", "gears.module", "module:", "unknown unit 'mmm'"),
+    Case("text without a number", "mass: 500 kg", "mass: heavy", "load.mass", "  mass:", "no number"),
+    Case("a list for a scalar", "mass: 500 kg", "mass: [500 kg]", "load.mass", "  mass:", "got a list"),
+    # non-physical values
+    Case("negative mass", "mass: 500 kg", "mass: -5 kg", "load.mass", "  mass:", "must not be negative"),
+    Case("zero duration", "duration: 3 s", "duration: 0 s", "simulation.duration", "duration", "must be positive"),
+    Case("negative radius", "inner_radius: 20 cm", "inner_radius: -20 cm", "clutch.inner_radius", "inner_radius",
+         "must be positive"),
+    Case("zero module", "module: 4 mm", "module: 0 mm", "gears.module", "module:", "must be positive"),
+    Case("negative stall torque", "stall_torque: 500 N*m", "stall_torque: -500 N*m", "motor.stall_torque",
+         "stall_torque", "must be positive"),
+    Case("negative friction", "kinetic_friction: 0.1", "kinetic_friction: -0.1", "clutch.kinetic_friction",
+         "kinetic_friction", "must not be negative"),
+    Case("negative gravity", "gravity: 9.81 m/s^2", "gravity: -9.81 m/s^2", "gravity", "gravity", "negative"),
+    Case("rtol of one or more", "rtol: 1e-8", "rtol: 2", "simulation.rtol", "rtol", "must be less than 1"),
+    Case("zero atol", "atol: 1e-10", "atol: 0", "simulation.atol", "atol", "must be positive"),
+    Case("NaN in YAML", "mass: 500 kg", "mass: .nan", "load.mass", "  mass:", "finite"),
+    Case("NaN in YAML, capitals", "stall_torque: 500 N*m", "stall_torque: .NaN", "motor.stall_torque",
+         "stall_torque", "finite"),
+    Case("infinity in YAML", "duration: 3 s", "duration: .inf", "simulation.duration", "duration", "finite"),
+    Case("minus infinity in YAML", "static_friction: 0.3", "static_friction: -.inf", "clutch.static_friction",
+         "static_friction", "finite"),
+    Case("NaN with a unit", "mass: 500 kg", "mass: nan kg", "load.mass", "  mass:", "finite"),
+    Case("infinity with a unit", "no_load_speed: 300 rpm", "no_load_speed: inf rpm", "motor.no_load_speed",
+         "no_load_speed", "finite"),
+    Case("overflow to infinity", "mass: 500 kg", "mass: 1e400 kg", "load.mass", "  mass:", "finite"),
+    Case("integer too large for a float", "mass: 500 kg", "mass: 1" + "0" * 400, "load.mass", "  mass:", "finite"),
+    Case("power of ten written with ^", "mass: 500 kg", "mass: 10^3 kg", "load.mass", "  mass:", "1e6"),
+    Case("NaN friction as text", "static_friction: 0.3", "static_friction: nan", "clutch.static_friction",
+         "static_friction", "finite"),
+    Case("kinetic friction above static", "kinetic_friction: 0.1", "kinetic_friction: 0.4",
+         "clutch.kinetic_friction", "kinetic_friction", "must not exceed static_friction (0.3)"),
+    Case("inner radius not inside the outer", "inner_radius: 20 cm", "inner_radius: 24 cm", "clutch.inner_radius",
+         "inner_radius", "must be less than outer_radius"),
+    Case("half angle of 90 deg", "half_angle: 25 deg", "half_angle: 90 deg", "clutch.half_angle", "half_angle",
+         "must be less than 90 deg"),
+    Case("half angle above 90 deg", "half_angle: 25 deg", "half_angle: 115 deg", "clutch.half_angle", "half_angle",
+         "must be less than 90 deg"),
+    Case("half angle of 2 rad", "half_angle: 25 deg", "half_angle: 2", "clutch.half_angle", "half_angle",
+         "114.592 deg"),
+    Case("zero half angle", "half_angle: 25 deg", "half_angle: 0 deg", "clutch.half_angle", "half_angle",
+         "must be positive"),
+    Case("pressure angle of 90 deg", "pressure_angle: 20 deg", "pressure_angle: 90 deg", "gears.pressure_angle",
+         "pressure_angle", "must be less than 90 deg"),
+    Case("output interval longer than the run", "output_interval: 1 ms", "output_interval: 5 s",
+         "simulation.output_interval", "output_interval", "must not exceed the duration"),
+    Case("drum moving while the brake holds it", None, "brake:\n  release_time: 1 s\ninitial:\n  drum_speed: 3 rpm\n",
+         "initial.drum_speed", "drum_speed", "holding brake"),
+    # booleans, counts, text
+    Case("boolean for a number", "static_friction: 0.3", "static_friction: true", "clutch.static_friction",
+         "static_friction", "yes/no value true"),
+    Case("boolean for a torque", "stall_torque: 500 N*m", "stall_torque: false", "motor.stall_torque",
+         "stall_torque", "yes/no value false"),
+    Case("'yes' for a number", "static_friction: 0.3", "static_friction: yes", "clutch.static_friction",
+         "static_friction", "expected a pure number"),
+    Case("boolean for a tooth count", "pinion_teeth: 17", "pinion_teeth: true", "gears.pinion_teeth",
+         "pinion_teeth", "whole number"),
+    Case("fractional tooth count", "pinion_teeth: 17", "pinion_teeth: 17.5", "gears.pinion_teeth", "pinion_teeth",
+         "must be a whole number of teeth, got 17.5"),
+    Case("tooth count as text", "wheel_teeth: 90", "wheel_teeth: ninety", "gears.wheel_teeth", "wheel_teeth",
+         "whole number"),
+    Case("zero teeth", "wheel_teeth: 90", "wheel_teeth: 0", "gears.wheel_teeth", "wheel_teeth", "at least 1"),
+    Case("no friction surfaces", "surfaces: 1", "surfaces: 0", "clutch.surfaces", "surfaces", "at least 1"),
+    Case("unknown solver", "solver: tsit5", "solver: euler", "simulation.solver", "solver", "'tsit5'"),
+    Case("name that is not text", "name: exercise6-direct-start", "name: [a, b]", "name", "name:", "must be text"),
+    Case("empty name", "name: exercise6-direct-start", "name: ''", "name", "name:", "must not be empty"),
+    # missing sections and values
+    Case("missing section", "drum:\n  diameter: 40 cm\n  inertia: 40 kg*m^2\n", "", "drum", None,
+         "required section is missing"),
+    Case("missing name", "name: exercise6-direct-start\n", "", "name", None, "required value is missing"),
+    Case("missing value", "  diameter: 40 cm\n", "", "drum.diameter", "drum:", "required value is missing"),
+    Case("empty value", "mass: 500 kg", "mass:", "load.mass", "  mass:", "no value given"),
+    Case("empty section", "load:\n  mass: 500 kg\n", "load:\n", "load", "load:", "the section is empty"),
+    Case("value for a section", "load:\n  mass: 500 kg\n", "load: 500 kg\n", "load", "load:", "must be a section"),
+    Case("no motor inertia", MOTOR_GEOMETRY, "", "motor.inertia", "motor:", "rotor_mass and radius_of_gyration"),
+    Case("rotor mass without radius of gyration", MOTOR_GEOMETRY, "  rotor_mass: 40 kg\n",
+         "motor.radius_of_gyration", "motor:", "required"),
+    Case("two motor inertias", MOTOR_GEOMETRY, MOTOR_GEOMETRY + "  inertia: 0.9 kg*m^2\n", "motor.inertia",
+         "inertia: 0.9", "not both"),
+    # force tables
+    Case("force table going back in time", TABLE, "engagement_force: [[0 s, 0 N], [0.5 s, 0 N], [0.4 s, 3000 N]]",
+         "clutch.engagement_force", "engagement_force", "time goes backwards (0.4 s after 0.5 s)"),
+    Case("force table going back, block style", TABLE, "engagement_force:\n    - [0 s, 0 N]\n    - [1 s, 0 N]\n"
+         "    - [500 ms, 3 kN]", "clutch.engagement_force", "- [500 ms", "row 3: time goes backwards"),
+    Case("force table with a time three times", TABLE, "engagement_force: [[0 s, 0 N], [0 s, 1 N], [0 s, 2 N]]",
+         "clutch.engagement_force", "engagement_force", "at most twice"),
+    Case("force table with a negative force", TABLE, "engagement_force: [[0 s, 0 N], [1 s, -5 N]]",
+         "clutch.engagement_force", "engagement_force", "pushed apart"),
+    Case("force table before the start", TABLE, "engagement_force: [[-1 s, 0 N], [1 s, 5 N]]",
+         "clutch.engagement_force", "engagement_force", "row 1"),
+    Case("force table with a short row", TABLE, "engagement_force: [[0 s, 0 N], [1 s]]",
+         "clutch.engagement_force", "engagement_force", "row 2: must be a pair [time, force]"),
+    Case("force table with a mass", TABLE, "engagement_force: [[0 s, 0 N], [1 s, 300 kg]]",
+         "clutch.engagement_force", "engagement_force", "expected a force"),
+    Case("force table with times and forces swapped", TABLE, "engagement_force: [[0 N, 0 s]]",
+         "clutch.engagement_force", "engagement_force", "expected a time"),
+    Case("empty force table", TABLE, "engagement_force: []", "clutch.engagement_force", "engagement_force",
+         "the table is empty"),
+    Case("negative constant force", TABLE, "engagement_force: -3 kN", "clutch.engagement_force",
+         "engagement_force", "pushed apart"),
+    # malformed YAML
+    Case("unclosed list", "mass: 500 kg", "mass: [500 kg", "load.mass", "  mass:", "malformed YAML"),
+    Case("unclosed quote", "mass: 500 kg", 'mass: "500 kg', "load.mass", "  mass:", "not closed"),
+    Case("tab indentation", "  mass: 500 kg", "\tmass: 500 kg", "load.mass", "\tmass:", "malformed YAML"),
+    Case("duplicate key", "  mass: 500 kg", "  mass: 500 kg\n  mass: 600 kg", "load.mass", "mass: 600",
+         "duplicate key (first given at line"),
+    Case("duplicate section", None, "load:\n  mass: 300 kg\n", "load", "load:\n  mass: 300", "duplicate key"),
+    Case("colon in a value", "mass: 500 kg", "mass: 500 kg: 3", "load.mass", "  mass:", "unexpected ':'"),
+    Case("bad indentation", "  inertia: 40 kg*m^2", "    inertia: 40 kg*m^2", "drum.inertia", "    inertia",
+         "malformed YAML"),
+    Case("undefined alias", "mass: 500 kg", "mass: *heavy", "load.mass", "  mass:", "alias"),
+    Case("two documents", None, "---\nname: other\n", "", "---", "single YAML document"),
+    Case("a list, not a mapping", "*", "- motor\n- clutch\n", "", "- motor", "mapping of sections"),
+    Case("a bare scalar", "*", "hoist\n", "", "hoist", "mapping of sections"),
+    Case("aliases expanding without end", "*", "a: &a [x, x, x, x, x, x, x, x, x, x]\n" + "".join(
+        f"a{i}: &a{i} [{', '.join([f'*a{i - 1}' if i else '*a'] * 10)}]\n" for i in range(6)), "", None,
+        "more than 100000 values"),
+    Case("empty file", "*", "", "", None, "empty"),
+    Case("only comments", "*", "# nothing here\n", "", None, "empty"),
+    # sweeps
+    Case("unknown sweep key", None, "sweep:\n  clutch.engagment_force: [1000 N, 2000 N]\n",
+         "sweep.clutch.engagment_force", "clutch.engagment_force", "did you mean clutch.engagement_force?"),
+    Case("sweep of a section", None, "sweep:\n  clutch: [1, 2]\n", "sweep.clutch", "clutch: [", "is a section"),
+    Case("sweep with a bad value", None, "sweep:\n  clutch.engagement_force: [1000 N, 2000 kg]\n",
+         "sweep.clutch.engagement_force", "clutch.engagement_force: [", "value 2 (2000 kg): expected a force"),
+    Case("sweep value breaking another key", None, "sweep:\n  clutch.static_friction: [0.3, 0.05]\n",
+         "sweep.clutch.static_friction", "clutch.static_friction: [",
+         "value 2 (0.05): clutch.kinetic_friction: must not exceed static_friction"),
+    Case("sweep with no values", None, "sweep:\n  load.mass: []\n", "sweep.load.mass", "load.mass: [",
+         "non-empty list"),
+    Case("sweep without a list", None, "sweep:\n  load.mass: 100 kg\n", "sweep.load.mass", "load.mass: 100",
+         "non-empty list"),
+    Case("sweep that is not a mapping", None, "sweep: [1, 2]\n", "sweep", "sweep:", "must map keys"),
+]
+
+
+@pytest.fixture(autouse=True)
+def _never_simulate(monkeypatch):
+    """Bad input must fail before the (slow) simulation; if a case got that far, fail loudly."""
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("a bad scenario reached the simulation")
+
+    monkeypatch.setattr(simulation, "simulate", refuse)
+
+
+def _run_cli(args: list[str]):
+    result = CliRunner().invoke(main, args)
+    lines = result.stderr.splitlines()
+    return result, lines
+
+
+def _check_one_line_error(result, lines, key: str, line: int | None, words: str, source: str):
+    assert result.exit_code == 2, (result.exit_code, result.output, result.exception)
+    assert len(lines) == 1, lines
+    message = lines[0]
+    assert message.startswith("hoistsim: error: "), message
+    assert "Traceback" not in result.output
+    if key:
+        assert f" {key}: " in message, message
+    if line is not None:
+        assert f"{source}:{line}: " in message, message
+    else:
+        assert f"{source}: " in message, message
+    assert words in message, message
+    assert result.stdout == ""
+
+
+@pytest.mark.parametrize("case", CASES, ids=[c.id for c in CASES])
+def test_bad_scenario_fails_cleanly(case, tmp_path):
+    text = case.text()
+    scenario = tmp_path / "scenario.yaml"
+    scenario.write_text(text, encoding="utf-8")
+    output = tmp_path / "out.h5"
+    result, lines = _run_cli(["run", str(scenario), "-o", str(output)])
+    line = _line_of(text, case.at) if case.at is not None else None
+    _check_one_line_error(result, lines, case.key, line, case.words, str(scenario))
+    assert not output.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["scenario.yaml"]  # no temporary files either
+
+
+SET_CASES = [
+    # (id, --set arguments, key, words)
+    ("unknown key", ["laod.mass=3 kg"], "laod", "did you mean load?"),
+    ("misspelt key", ["clutch.static_frction=0.2"], "clutch.static_frction", "did you mean clutch.static_friction?"),
+    ("unknown leaf", ["load.weight=3 kN"], "load.weight", "unknown key"),
+    ("a section", ["clutch=3"], "clutch", "is a section"),
+    ("below a value", ["load.mass.value=3"], "load.mass", "is a value, not a section"),
+    ("the sweep", ["sweep.load.mass=[1 kg]"], "sweep", "cannot be given with --set"),
+    ("wrong dimension", ["clutch.engagement_force=2500 kg"], "clutch.engagement_force", "expected a force"),
+    ("boolean", ["clutch.static_friction=true"], "clutch.static_friction", "yes/no"),
+    ("NaN", ["load.mass=.nan"], "load.mass", "finite"),
+    ("NaN with a unit", ["load.mass=nan kg"], "load.mass", "finite"),
+    ("negative", ["drum.diameter=-40 cm"], "drum.diameter", "must be positive"),
+    ("fractional teeth", ["gears.wheel_teeth=89.5"], "gears.wheel_teeth", "whole number"),
+    ("half angle of 90 deg", ["clutch.half_angle=90 deg"], "clutch.half_angle", "less than 90 deg"),
+    ("kinetic above static", ["clutch.kinetic_friction=0.5"], "clutch.kinetic_friction", "static_friction"),
+    ("table going back", ["clutch.engagement_force=[[1 s, 0 N], [0 s, 5 N]]"], "clutch.engagement_force",
+     "time goes backwards"),
+    ("no value", ["load.mass="], "load.mass", "needs a value"),
+    ("no equals sign", ["load.mass"], "", "expected KEY=VALUE"),
+    ("the second of two", ["load.mass=600 kg", "load.mass=-1 kg"], "load.mass", "must not be negative"),
+]
+
+
+@pytest.mark.parametrize("args, key, words", [c[1:] for c in SET_CASES], ids=[c[0] for c in SET_CASES])
+def test_bad_set_fails_cleanly(args, key, words, tmp_path):
+    scenario = tmp_path / "scenario.yaml"
+    scenario.write_text(BASE, encoding="utf-8")
+    output = tmp_path / "out.h5"
+    sets = [item for arg in args for item in ("--set", arg)]
+    result, lines = _run_cli(["run", str(scenario), "-o", str(output), *sets])
+    _check_one_line_error(result, lines, key, None, words, "--set")
+    assert not output.exists()
+
+
+def test_swept_key_cannot_also_be_set(tmp_path):
+    scenario = tmp_path / "scenario.yaml"
+    scenario.write_text(BASE + "sweep:\n  load.mass: [100 kg, 200 kg]\n", encoding="utf-8")
+    result, lines = _run_cli(["run", str(scenario), "-o", str(tmp_path / "out.h5"), "--set", "load.mass=3 kg"])
+    _check_one_line_error(result, lines, "load.mass", None, "swept", "--set")
+
+
+def test_missing_scenario_file(tmp_path):
+    missing = tmp_path / "nope.yaml"
+    result, lines = _run_cli(["run", str(missing), "-o", str(tmp_path / "out.h5")])
+    _check_one_line_error(result, lines, "", None, "no such scenario file", str(missing))
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_scenario_that_is_not_text(tmp_path):
+    scenario = tmp_path / "scenario.yaml"
+    scenario.write_bytes(b"\xff\xfe\x00binary")
+    result, lines = _run_cli(["run", str(scenario), "-o", str(tmp_path / "out.h5")])
+    _check_one_line_error(result, lines, "", None, "UTF-8", str(scenario))
+
+
+EXISTING_OUTPUT_CASES = [c for c in CASES if c.id in (
+    "misspelt key", "torque for a mass", "NaN in YAML", "duplicate key", "sweep with a bad value", "empty file")]
+
+
+@pytest.mark.parametrize("case", EXISTING_OUTPUT_CASES, ids=[c.id for c in EXISTING_OUTPUT_CASES])
+def test_existing_output_is_left_untouched(case, tmp_path):
+    scenario = tmp_path / "scenario.yaml"
+    scenario.write_text(case.text(), encoding="utf-8")
+    output = tmp_path / "out.h5"
+    content = b"\x89HDF\r\n\x1a\n an earlier, good result " * 100
+    output.write_bytes(content)
+    os.utime(output, ns=(1_000_000_000, 1_000_000_000))
+    before = output.stat()
+    result, lines = _run_cli(["run", str(scenario), "-o", str(output)])
+    assert result.exit_code == 2 and len(lines) == 1 and lines[0].startswith("hoistsim: error: ")
+    assert output.read_bytes() == content
+    assert (output.stat().st_mtime_ns, output.stat().st_ino) == (before.st_mtime_ns, before.st_ino)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.h5", "scenario.yaml"]
+
+
+def test_existing_output_is_left_untouched_by_a_bad_set(tmp_path):
+    scenario = tmp_path / "scenario.yaml"
+    scenario.write_text(BASE, encoding="utf-8")
+    output = tmp_path / "out.h5"
+    output.write_bytes(b"earlier result")
+    result, _ = _run_cli(["run", str(scenario), "-o", str(output), "--set", "clutch.engagement_force=2500 kg"])
+    assert result.exit_code == 2
+    assert output.read_bytes() == b"earlier result"
+
+
+@pytest.mark.parametrize("command", [["check"], ["statics", "--json"]], ids=lambda c: c[0])
+@pytest.mark.parametrize("case", [c for c in CASES if c.id in ("misspelt key", "force table going back in time")],
+                         ids=lambda c: c.id)
+def test_other_commands_report_the_same_error(case, command, tmp_path):
+    scenario = tmp_path / "scenario.yaml"
+    scenario.write_text(case.text(), encoding="utf-8")
+    result, lines = _run_cli([*command, str(scenario)])
+    _check_one_line_error(result, lines, case.key, _line_of(case.text(), case.at), case.words, str(scenario))
+
+
+def test_debug_shows_the_exception(tmp_path):
+    scenario = tmp_path / "scenario.yaml"
+    scenario.write_text(BASE.replace("mass: 500 kg", "mass: -1 kg"), encoding="utf-8")
+    result = CliRunner().invoke(main, ["run", str(scenario), "-o", str(tmp_path / "o.h5"), "--debug"])
+    assert result.exit_code != 0 and type(result.exception).__name__ == "ScenarioError"
+    assert result.exception.key == "load.mass"
+
+
+def test_real_console_script_has_no_traceback(tmp_path):
+    """Once through a real process: what a user's terminal sees."""
+    scenario = tmp_path / "scenario.yaml"
+    scenario.write_text(BASE.replace("static_friction: 0.3", "static_friciton: 0.3"), encoding="utf-8")
+    output = tmp_path / "out.h5"
+    proc = subprocess.run([sys.executable, "-m", "hoistsim.cli", "run", str(scenario), "-o", str(output)],
+                          capture_output=True, text=True, timeout=60, cwd=tmp_path)
+    assert proc.returncode == 2, proc.stderr
+    assert proc.stdout == ""
+    line = _line_of(scenario.read_text(), "static_friciton")
+    assert proc.stderr == (f"hoistsim: error: {scenario}:{line}: clutch.static_friciton: unknown key "
+                           "(did you mean clutch.static_friction?)\n")
+    assert not output.exists()
