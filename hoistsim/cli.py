@@ -63,7 +63,27 @@ def _guarded(func):
 debug_option = click.option("--debug", is_flag=True, help="Show Python tracebacks on errors.")
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+class _OneLineErrors(click.Group):
+    """click's usage errors (a missing option, a folder given for a file) as one line, exit 2."""
+
+    def main(self, *args, **kwargs):
+        kwargs["standalone_mode"] = False
+        try:
+            status = super().main(*args, **kwargs)
+        except click.exceptions.NoArgsIsHelpError as exc:  # plain `hoistsim`: show the help
+            click.echo(exc.ctx.get_help())
+            sys.exit(0)
+        except click.ClickException as exc:
+            click.echo(f"hoistsim: error: {exc.format_message()} (see hoistsim --help)", err=True)
+            sys.exit(exc.exit_code)
+        except click.exceptions.Abort:
+            click.echo("hoistsim: interrupted", err=True)
+            sys.exit(130)
+        if isinstance(status, int):
+            sys.exit(status)
+
+
+@click.group(cls=_OneLineErrors, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="hoistsim")
 def main():
     """Start-up of a winch hoist: motor, cone clutch (stick-slip), gears, drum and load."""

@@ -14,38 +14,22 @@ import io
 import itertools
 import json
 import math
-import re
 from pathlib import Path
 from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, PrivateAttr, ValidationError, model_validator
 from ruamel.yaml import YAML
-from ruamel.yaml.comments import CommentedMap, CommentedSeq
-from ruamel.yaml.error import MarkedYAMLError
 
 from . import units as u
+from .errors import ScenarioError as ScenarioError
+from .yamlsource import line_of as _line_of
+from .yamlsource import read_yaml as _read_yaml
+from .yamlsource import to_plain as _to_plain
+from .yamlsource import yaml_reader as _yaml
 from .units import EngagementForce, FreeText, Text
 from .units import ForceTable as ForceTable  # noqa: F401  (part of this module's interface)
 
 SOLVERS = ("tsit5", "dopri5", "dopri8", "bosh3", "heun", "kvaerno3", "kvaerno5")
-
-
-class ScenarioError(ValueError):
-    """A bad scenario: names the key, and the file and line where known."""
-
-    def __init__(self, key: str, message: str, *, source: str | None = None, line: int | None = None):
-        self.key = key
-        self.message = message
-        self.source = source
-        self.line = line
-        super().__init__(self.__str__())
-
-    def __str__(self) -> str:
-        where = ""
-        if self.source:
-            where = f"{self.source}:{self.line}: " if self.line else f"{self.source}: "
-        key = f"{self.key}: " if self.key else ""
-        return " ".join(f"{where}{key}{self.message}".splitlines())  # always one line
 
 
 # --------------------------------------------------------------------------------------
@@ -200,124 +184,6 @@ class Scenario(Section):
     def resolved(self) -> dict:
         """The scenario in SI numbers, as JSON-friendly data."""
         return json.loads(self.model_dump_json(exclude={"sweep"}))
-
-
-# --------------------------------------------------------------------------------------
-# reading YAML with line numbers
-
-
-def _yaml() -> YAML:
-    yaml = YAML(typ="rt")  # round-trip: keeps line numbers; YAML 1.2, so 1e-8 is a number
-    yaml.allow_duplicate_keys = False
-    return yaml
-
-
-_YAML_PROBLEMS = {  # ruamel's wording -> what to fix
-    "while parsing a flow sequence": "a '[' list is not closed",
-    "while parsing a flow mapping": "a '{' mapping is not closed",
-    "while scanning a quoted scalar": "a quoted string is not closed",
-    "that cannot start any token": "a tab or other character that cannot start a value; indent with spaces",
-    "mapping values are not allowed here": "unexpected ':' (check the indentation, or quote a value that holds ': ')",
-    "expected <block end>": "the indentation is inconsistent",
-    "found another document": "a scenario is a single YAML document (remove the '---')",
-}
-
-
-def _read_yaml(text: str, source: str) -> CommentedMap:
-    try:
-        data = _yaml().load(io.StringIO(text))
-    except MarkedYAMLError as exc:
-        problem, context = (exc.problem or "").strip(), (exc.context or "").strip()
-        mark = exc.problem_mark
-        if context.startswith(("while parsing a flow", "while scanning a quoted")) and exc.context_mark:
-            mark = exc.context_mark  # where the unclosed thing was opened
-        line = mark.line + 1 if mark is not None else None
-        message = next((fix for cue, fix in _YAML_PROBLEMS.items() if cue in problem or cue in context),
-                       problem or context or "cannot parse")
-        if "duplicate key" in problem:
-            first = _first_definition(text, line)
-            message = "duplicate key" + (f" (first given at line {first})" if first else "")
-        raise ScenarioError(_key_at(text, line), f"malformed YAML: {message}", source=source, line=line) from None
-    except Exception as exc:  # ruamel's other errors (e.g. reader errors on binary data)
-        raise ScenarioError("", f"malformed YAML: {str(exc).splitlines()[0]}", source=source) from None
-    if data is None:
-        raise ScenarioError("", "the scenario is empty; it needs name:, motor:, clutch:, gears:, drum:, load: "
-                            "and simulation:", source=source)
-    if not isinstance(data, dict):
-        raise ScenarioError("", "a scenario must be a mapping of sections (name:, motor:, clutch:, ...)",
-                            source=source, line=1)
-    return data
-
-
-_KEY_LINE = re.compile(r"^([ \t]*)([A-Za-z_][\w.-]*)[ \t]*:(?:\s|$)")
-_SECTION_LINE = re.compile(r"^[ \t]*[A-Za-z_][\w.-]*[ \t]*:[ \t]*(#.*)?$")
-
-
-def _key_at(text: str, line: int | None) -> str:
-    """The dotted key written on a line (by indentation), for errors the YAML parser has no path for."""
-    lines = text.splitlines()
-    if line is None or not 1 <= line <= len(lines) or not (m := _KEY_LINE.match(lines[line - 1])):
-        return ""
-    path, indent = [m.group(2)], len(m.group(1))
-    for above in reversed(lines[: line - 1]):
-        m = _KEY_LINE.match(above)
-        if m and len(m.group(1)) < indent and _SECTION_LINE.match(above):  # "motor:", nothing after
-            path.insert(0, m.group(2))
-            indent = len(m.group(1))
-    return ".".join(path)
-
-
-def _first_definition(text: str, line: int | None) -> int | None:
-    """For a duplicate key on ``line``: the line of the same key earlier in the same mapping."""
-    lines = text.splitlines()
-    if line is None or not 1 <= line <= len(lines) or not (m := _KEY_LINE.match(lines[line - 1])):
-        return None
-    for i in range(line - 2, -1, -1):
-        other = _KEY_LINE.match(lines[i])
-        if other and len(other.group(1)) < len(m.group(1)):
-            return None  # left the mapping
-        if other and other.groups() == m.groups():
-            return i + 1
-    return None
-
-
-def _line_of(node: Any, path: tuple) -> int | None:
-    """Best line (1-based) for a location: the deepest node the path reaches."""
-    line = None
-    for part in path:
-        if isinstance(node, CommentedMap):
-            part = next((k for k in node if str(k) == str(part)), None)  # keys may be numbers in YAML
-            if part is None:
-                break
-            pos = node.lc.key(part)
-        elif isinstance(node, CommentedSeq) and isinstance(part, int) and 0 <= part < len(node):
-            pos = node.lc.item(part)
-        else:
-            break
-        line = pos[0] + 1 if pos else line
-        node = node[part]
-    return line
-
-
-def _to_plain(node: Any, budget: list[int] | None = None) -> Any:
-    """ruamel's round-trip types -> plain dict, list, str, int, float, bool."""
-    budget = [100_000] if budget is None else budget  # values left: aliases can nest exponentially
-    budget[0] -= 1
-    if budget[0] < 0:
-        raise ScenarioError("", "malformed YAML: more than 100000 values (aliases that expand without end?)")
-    if isinstance(node, dict):
-        return {k if isinstance(k, str) else str(k): _to_plain(v, budget) for k, v in node.items()}
-    if isinstance(node, (list, tuple)):
-        return [_to_plain(v, budget) for v in node]
-    if isinstance(node, bool) or type(node).__name__ == "ScalarBoolean":
-        return bool(node)
-    if type(node).__name__ == "TaggedScalar":  # "!!str 3 kg", "!foo 3", a lone "="
-        tag = str(getattr(node.tag, "value", node.tag) or "")
-        return node.value if tag.startswith("tag:yaml.org,2002:") else f"{tag} {node.value}"
-    for kind in (int, float, str):
-        if isinstance(node, kind):
-            return kind(node)
-    return node
 
 
 # --------------------------------------------------------------------------------------

@@ -83,3 +83,19 @@ def test_chattering_is_a_one_line_error(tmp_path):
     assert result.exit_code == 1
     assert "chatters" in result.output and len(result.output.strip().splitlines()) == 1
     assert not out.exists()
+
+
+@pytest.mark.parametrize("args", [
+    ["run", "DIR", "-o", "out.h5"],
+    ["run", "SCENARIO"],
+    ["run", "SCENARIO", "-o", "DIR"],
+    ["frobnicate"],
+])
+def test_usage_errors_are_one_line(tmp_path, args):
+    args = [str(tmp_path) if a == "DIR" else str(SCENARIOS / "exercise6_direct_start.yaml") if a == "SCENARIO"
+            else a for a in args]
+    proc = subprocess.run([sys.executable, "-m", "hoistsim.cli", *args], capture_output=True, text=True, cwd=tmp_path)
+    assert proc.returncode == 2
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("hoistsim: error:"), proc.stderr
+    assert not (tmp_path / "out.h5").exists()

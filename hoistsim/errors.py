@@ -1,0 +1,21 @@
+"""The error every bad scenario raises."""
+
+from __future__ import annotations
+
+
+class ScenarioError(ValueError):
+    """A bad scenario: names the key, and the file and line where known."""
+
+    def __init__(self, key: str, message: str, *, source: str | None = None, line: int | None = None):
+        self.key = key
+        self.message = message
+        self.source = source
+        self.line = line
+        super().__init__(self.__str__())
+
+    def __str__(self) -> str:
+        where = ""
+        if self.source:
+            where = f"{self.source}:{self.line}: " if self.line else f"{self.source}: "
+        key = f"{self.key}: " if self.key else ""
+        return " ".join(f"{where}{key}{self.message}".splitlines())  # always one line
