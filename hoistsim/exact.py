@@ -21,7 +21,7 @@ from scipy.optimize import brentq
 from scipy.special import gammainc
 
 from .model import (LOCKED, OPEN, SLIP_BACKWARD, SLIP_FORWARD, Drivetrain, ForceSchedule, Machine,
-                    force_at)
+                    force_at, initial_speeds)
 
 EPS = float(np.finfo(float).eps)
 GRID_POINTS = 4096  # samples per piece when scanning a guard for its first root
@@ -399,9 +399,10 @@ def exact_from_scenario(scenario) -> ExactSolution:
     drivetrain = Machine.from_scenario(scenario).reduced()
     schedule = ForceSchedule.from_scenario(scenario)
     brake = getattr(scenario, "brake", None)
+    motor_speed, output_speed = initial_speeds(scenario, drivetrain)
     return solve_exact(
         drivetrain, schedule.times, schedule.forces, scenario.simulation.duration,
-        initial_motor_speed=scenario.initial.motor_speed,
-        initial_output_speed=scenario.initial.drum_speed * float(drivetrain.ratio),
+        initial_motor_speed=motor_speed,
+        initial_output_speed=output_speed,
         brake_release=brake.release_time if brake else None,
     )

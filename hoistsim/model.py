@@ -105,6 +105,18 @@ class Drivetrain(eqx.Module):
         return 0.5 * self.motor_inertia * motor_speed**2 + 0.5 * self.output_inertia * output_speed**2
 
 
+def initial_speeds(scenario: Scenario, drivetrain: "Drivetrain") -> tuple[float, float]:
+    """Motor and pinion-shaft speeds at t = 0 (rad/s).
+
+    ``initial.steady_lift`` puts both at the speed where the motor torque equals
+    the load torque, omega0 (1 - T_L/C0): the hoist lifting at constant speed.
+    """
+    if scenario.initial.steady_lift:
+        speed = drivetrain.no_load_speed * (1.0 - drivetrain.load_torque / drivetrain.stall_torque)
+        return speed, speed
+    return scenario.initial.motor_speed, scenario.initial.drum_speed * drivetrain.ratio
+
+
 @dataclass(frozen=True)
 class ForceSchedule:
     """The engagement force table as arrays, with its kinks and steps as segment boundaries."""

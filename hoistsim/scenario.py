@@ -109,6 +109,17 @@ class LoadSpec(Section):
 class InitialSpec(Section):
     motor_speed: u.quantity(u.ANGULAR_SPEED) = 0.0
     drum_speed: u.quantity(u.ANGULAR_SPEED) = 0.0
+    # Start already lifting at the steady locked speed, where the motor torque
+    # equals the load torque: the constant-speed condition of the exercise.
+    steady_lift: bool = False
+
+    @model_validator(mode="after")
+    def _one_way_to_start(self):
+        if self.steady_lift and "motor_speed" in self.model_fields_set:
+            raise ScenarioError("initial.motor_speed", "give either steady_lift: true or the speeds, not both")
+        if self.steady_lift and "drum_speed" in self.model_fields_set:
+            raise ScenarioError("initial.drum_speed", "give either steady_lift: true or the speeds, not both")
+        return self
 
 
 class BrakeSpec(Section):
@@ -165,6 +176,8 @@ class Scenario(Section):
         if self.brake is not None and self.initial.drum_speed != 0.0:
             raise ScenarioError("initial.drum_speed",
                                 "must be 0 when a holding brake (brake:) keeps the drum still at the start")
+        if self.brake is not None and self.initial.steady_lift:
+            raise ScenarioError("initial.steady_lift", "a steady lift cannot start with the brake holding the drum")
         return self
 
     @property

@@ -11,7 +11,7 @@ import numpy as np
 from . import clutch_modes as cm
 from .effects import effects_for
 from .hybrid import OK, STATUS_TEXT, Plan, compiled_run
-from .model import MODE_NAMES, Machine
+from .model import MODE_NAMES, Machine, initial_speeds
 from .results import RunResult
 from .scenario import Scenario
 from .series import units_of
@@ -47,7 +47,7 @@ def build_plan(scenario: Scenario) -> tuple[Plan, np.ndarray]:
     table = scenario.clutch.engagement_force
     scheduled = [0.0, sim.duration, *table.times, *(b for e in effects for b in e.boundaries())]
     grid = output_grid(sim.duration, sim.output_interval)
-    initial = [scenario.initial.motor_speed, scenario.initial.drum_speed * drivetrain.ratio, 0.0, 0.0, 0.0]
+    initial = [*initial_speeds(scenario, drivetrain), 0.0, 0.0, 0.0]
     plan = Plan(
         drivetrain=_as_arrays(drivetrain),
         force_times=jnp.asarray(table.times, dtype=jnp.float64),

@@ -130,6 +130,10 @@ CASES = [
          "simulation.output_interval", "output_interval", "must not exceed the duration"),
     Case("drum moving while the brake holds it", None, "brake:\n  release_time: 1 s\ninitial:\n  drum_speed: 3 rpm\n",
          "initial.drum_speed", "drum_speed", "holding brake"),
+    Case("steady lift and a speed", None, "initial:\n  steady_lift: true\n  motor_speed: 100 rpm\n",
+         "initial.motor_speed", "motor_speed", "not both"),
+    Case("steady lift against the brake", None, "brake:\n  release_time: 1 s\ninitial:\n  steady_lift: true\n",
+         "initial.steady_lift", "steady_lift", "brake"),
     # booleans, counts, text
     Case("boolean for a number", "static_friction: 0.3", "static_friction: true", "clutch.static_friction",
          "static_friction", "yes/no value true"),

@@ -4,7 +4,6 @@ the energy balance, and limits that can be worked out by hand."""
 from __future__ import annotations
 
 import math
-from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -12,7 +11,7 @@ from scipy.integrate import solve_ivp
 
 from hoistsim import exact as exact_module
 from hoistsim.exact import ExactEvent, ExpPoly, first_crossing, solve_exact
-from hoistsim.model import LOCKED, OPEN, SLIP_BACKWARD, SLIP_FORWARD, Drivetrain, force_at
+from hoistsim.model import LOCKED, OPEN, SLIP_BACKWARD, SLIP_FORWARD, Drivetrain, Machine, force_at
 
 G = 9.81
 W0 = 300.0 * 2.0 * math.pi / 60.0  # 300 rpm
@@ -329,22 +328,27 @@ def test_exppoly_integral_is_accurate_for_tiny_arguments():
     assert e.integral(u) == pytest.approx(expected, rel=1e-14)
 
 
-def test_exact_from_scenario_plumbing(monkeypatch):
-    d = exercise6()
-    machine = SimpleNamespace(reduced=lambda: d)
-    fake_machine = SimpleNamespace(from_scenario=lambda s: machine)
-    schedule = SimpleNamespace(times=np.array([0.0, 0.3, 0.3]), forces=np.array([0.0, 0.0, 6000.0]))
-    fake_schedule = SimpleNamespace(from_scenario=lambda s: schedule)
-    monkeypatch.setattr(exact_module, "Machine", fake_machine)
-    monkeypatch.setattr(exact_module, "ForceSchedule", fake_schedule)
-    scenario = SimpleNamespace(simulation=SimpleNamespace(duration=1.5),
-                               initial=SimpleNamespace(motor_speed=3.0, drum_speed=0.5), brake=None)
-    sol = exact_module.exact_from_scenario(scenario)
-    direct = solve_exact(d, schedule.times, schedule.forces, 1.5, initial_motor_speed=3.0,
-                         initial_output_speed=0.5 * d.ratio)
+def test_exact_from_scenario_reads_the_scene():
+    from scenes import scene
+
+    s = scene(force=[["0 s", "0 N"], ["0.3 s", "0 N"], ["0.3 s", "6000 N"]], motor_speed="3 rad/s",
+              duration="1.5 s")
+    d = Machine.from_scenario(s).reduced()
+    sol = exact_module.exact_from_scenario(s)
+    direct = solve_exact(d, [0.0, 0.3, 0.3], [0.0, 0.0, 6000.0], 1.5, initial_motor_speed=3.0)
     assert sol.events == direct.events and sol.final == direct.final
-    assert sol.evaluate(np.array([0.0]))["output_speed"][0] == 0.5 * d.ratio
-    scenario.initial.drum_speed = 0.0
-    scenario.brake = SimpleNamespace(release_time=0.3)
-    kinds = [e.kind for e in exact_module.exact_from_scenario(scenario).events]
+    braked = scene(force=[["0 s", "0 N"], ["0.3 s", "0 N"], ["0.3 s", "6000 N"]], brake="0.3 s")
+    kinds = [e.kind for e in exact_module.exact_from_scenario(braked).events]
     assert kinds[:2] == ["brake_release", "engage"]
+
+
+def test_steady_lift_starts_at_constant_speed():
+    from scenes import EXERCISE6
+
+    from hoistsim import scenario_from_dict
+
+    data = dict(EXERCISE6, initial={"steady_lift": True})
+    sol = exact_module.exact_from_scenario(scenario_from_dict(data))
+    speeds = sol.evaluate(np.linspace(0.0, 2.0, 5))["motor_speed"]
+    np.testing.assert_allclose(speeds, speeds[0], rtol=1e-12)
+    assert sol.lockup_time == 0.0 and sol.events == []

@@ -79,16 +79,7 @@ def test_least_force_for_a_start_without_slip():
 
 def _steady_lift(mass_kg):
     """The question-2 scene lifting ``mass_kg`` at the steady locked speed, with bearings."""
-    probe = scene(force="200 daN", mass=f"{mass_kg} kg")
-    d = Machine.from_scenario(probe).reduced()
-    speed = d.no_load_speed * (1 - d.load_torque / d.stall_torque)  # C(omega) = T_L
-    s = scene(force="200 daN", mass=f"{mass_kg} kg", motor_speed=speed, duration="1 s")
-    data = s.raw
-    data["initial"]["drum_speed"] = speed / d.ratio
-    data["bearings"] = BEARINGS
-    from hoistsim import scenario_from_dict
-
-    return scenario_from_dict(data)
+    return load_scenario(EXERCISE_FILE, overrides={"load.mass": f"{mass_kg} kg", "simulation.duration": "1 s"})
 
 
 def test_question_2_load_lifted_at_constant_speed_with_static_bearing_loads():
