@@ -7,6 +7,7 @@ stderr; --debug shows the traceback.
 
 from __future__ import annotations
 
+import functools
 import sys
 import time
 from pathlib import Path
@@ -29,11 +30,12 @@ def _fail(message: str, status: int = BAD_INPUT):
 
 
 def _guarded(func):
-    """Turn known failures into one line on stderr and an exit status."""
+    """Turn known failures into one line on stderr and an exit status (``--debug``: raise)."""
 
-    def wrapper(*args, debug: bool = False, **kwargs):
+    @functools.wraps(func)
+    def wrapper(*, debug: bool = False, **kwargs):
         try:
-            return func(*args, **kwargs)
+            return func(**kwargs)
         except _Failure as exc:
             if debug:
                 raise
@@ -55,8 +57,6 @@ def _guarded(func):
                        "(run again with --debug for the traceback)", err=True)
             sys.exit(RUN_FAILED)
 
-    wrapper.__name__ = func.__name__
-    wrapper.__doc__ = func.__doc__
     return wrapper
 
 
@@ -96,14 +96,12 @@ def main():
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
               help='Override a scenario key, e.g. --set clutch.engagement_force="2500 N". Repeatable.')
 @debug_option
-def run(scenario, output, overrides, debug):
+@_guarded
+def run(scenario, output, overrides):
     """Simulate SCENARIO (every sweep value, when it has a sweep) and write OUTPUT."""
-    _guarded(_run)(scenario, output, overrides, debug=debug)
-
-
-def _run(scenario_path, output, overrides):
     from .scenario import load_scenario, sweep_values
 
+    scenario_path = scenario
     scenario = load_scenario(scenario_path, overrides=list(overrides))
     runs_to_do = sweep_values(scenario)
     target = Path(output)
@@ -138,15 +136,13 @@ def _run(scenario_path, output, overrides):
 @click.argument("scenario", type=click.Path(dir_okay=False))
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a scenario key.")
 @debug_option
-def check(scenario, overrides, debug):
+@_guarded
+def check(scenario, overrides):
     """Validate SCENARIO and print the reduced model, without simulating."""
-    _guarded(_check)(scenario, overrides, debug=debug)
-
-
-def _check(scenario_path, overrides):
     from .report import reduced_model_table
     from .scenario import load_scenario, sweep_values
 
+    scenario_path = scenario
     scenario = load_scenario(scenario_path, overrides=list(overrides))
     runs = sweep_values(scenario)
     click.echo(reduced_model_table(scenario))
@@ -158,19 +154,16 @@ def _check(scenario_path, overrides):
 @click.option("--json", "as_json", is_flag=True, help="Print the answers as a JSON object (SI units).")
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a scenario key.")
 @debug_option
-def statics(scenario, as_json, overrides, debug):
+@_guarded
+def statics(scenario, as_json, overrides):
     """The exercise's static answers for SCENARIO's machine: clutch force, heaviest load, bearing loads."""
-    _guarded(_statics)(scenario, as_json, overrides, debug=debug)
-
-
-def _statics(scenario_path, as_json, overrides):
     import json
 
     from .report import fmt, table
     from .scenario import load_scenario
     from .statics import answers
 
-    scenario = load_scenario(scenario_path, overrides=list(overrides))
+    scenario = load_scenario(scenario, overrides=list(overrides))
     rows = answers(scenario)
     if as_json:
         click.echo(json.dumps({a.key: a.value for a in rows}, indent=2))
@@ -187,12 +180,9 @@ def _statics(scenario_path, as_json, overrides):
 @click.option("-o", "--output", "output", required=True, type=click.Path(dir_okay=False),
               help="Figure file: .png, .svg or .pdf.")
 @debug_option
-def plot(results, output, debug):
+@_guarded
+def plot(results, output):
     """Plot speed and clutch-slip histories of every run in RESULTS (an HDF5 file)."""
-    _guarded(_plot)(results, output, debug=debug)
-
-
-def _plot(results, output):
     suffix = Path(output).suffix.lower()
     if suffix not in (".png", ".svg", ".pdf"):
         _fail(f"{output}: the figure must be .png, .svg or .pdf")

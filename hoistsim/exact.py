@@ -20,8 +20,17 @@ import numpy as np
 from scipy.optimize import brentq
 from scipy.special import gammainc
 
-from .model import (LOCKED, OPEN, SLIP_BACKWARD, SLIP_FORWARD, Drivetrain, ForceSchedule, Machine,
-                    force_at, initial_speeds)
+from .model import (
+    LOCKED,
+    OPEN,
+    SLIP_BACKWARD,
+    SLIP_FORWARD,
+    Drivetrain,
+    ForceSchedule,
+    Machine,
+    force_at,
+    initial_speeds,
+)
 
 EPS = float(np.finfo(float).eps)
 GRID_POINTS = 4096  # samples per piece when scanning a guard for its first root

@@ -17,17 +17,23 @@ import math
 from pathlib import Path
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, PrivateAttr, ValidationError, model_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    PrivateAttr,
+    ValidationError,
+    model_validator,
+)
 from ruamel.yaml import YAML
 
 from . import units as u
 from .errors import ScenarioError as ScenarioError
+from .units import EngagementForce, FreeText, Text
+from .units import ForceTable as ForceTable  # noqa: F401  (part of this module's interface)
 from .yamlsource import line_of as _line_of
 from .yamlsource import read_yaml as _read_yaml
 from .yamlsource import to_plain as _to_plain
 from .yamlsource import yaml_reader as _yaml
-from .units import EngagementForce, FreeText, Text
-from .units import ForceTable as ForceTable  # noqa: F401  (part of this module's interface)
 
 SOLVERS = ("tsit5", "dopri5", "dopri8", "bosh3", "heun", "kvaerno3", "kvaerno5")
 

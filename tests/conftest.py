@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import sys
 from pathlib import Path
 
@@ -11,3 +12,15 @@ sys.path.insert(0, str(Path(__file__).parent))
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENARIOS = ROOT / "scenarios"
+
+
+def core(text: str) -> str:
+    """A scenario text without its optional sections (they may come and go in the shipped files)."""
+    kept, skipping = [], False
+    for line in text.splitlines(keepends=True):
+        top = re.match(r"([A-Za-z_]\w*)[ \t]*:", line)
+        if top:
+            skipping = top.group(1) in ("initial", "brake", "bearings", "sweep")
+        if not skipping:
+            kept.append(line)
+    return "".join(kept)

@@ -5,7 +5,6 @@ nothing written.  Every case fails before any simulation; a guard makes sure."""
 from __future__ import annotations
 
 import os
-import re
 import subprocess
 import sys
 from dataclasses import dataclass
@@ -13,6 +12,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from conftest import core
 
 from hoistsim import simulation
 from hoistsim.cli import main
@@ -21,18 +21,6 @@ ROOT = Path(__file__).resolve().parents[1]
 SHIPPED = (ROOT / "scenarios" / "exercise6_direct_start.yaml").read_text(encoding="utf-8")
 TABLE = "engagement_force: 3201 N"
 MOTOR_GEOMETRY = "  rotor_mass: 40 kg\n  radius_of_gyration: 15 cm\n"
-
-
-def core(text: str) -> str:
-    """The shipped scenario without its optional sections (they may come and go)."""
-    kept, skipping = [], False
-    for line in text.splitlines(keepends=True):
-        top = re.match(r"([A-Za-z_]\w*)[ \t]*:", line)
-        if top:
-            skipping = top.group(1) in ("initial", "brake", "bearings", "sweep")
-        if not skipping:
-            kept.append(line)
-    return "".join(kept)
 
 
 BASE = core(SHIPPED)  # mutated by the tests

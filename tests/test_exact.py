@@ -11,7 +11,15 @@ from scipy.integrate import solve_ivp
 
 from hoistsim import exact as exact_module
 from hoistsim.exact import ExactEvent, ExpPoly, first_crossing, solve_exact
-from hoistsim.model import LOCKED, OPEN, SLIP_BACKWARD, SLIP_FORWARD, Drivetrain, Machine, force_at
+from hoistsim.model import (
+    LOCKED,
+    OPEN,
+    SLIP_BACKWARD,
+    SLIP_FORWARD,
+    Drivetrain,
+    Machine,
+    force_at,
+)
 
 G = 9.81
 W0 = 300.0 * 2.0 * math.pi / 60.0  # 300 rpm

@@ -4,10 +4,10 @@ name the dotted key with the file and line.  No simulation here: fast."""
 from __future__ import annotations
 
 import math
-import re
 from pathlib import Path
 
 import pytest
+from conftest import core
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -25,18 +25,6 @@ ROOT = Path(__file__).resolve().parents[1]
 BASE_PATH = ROOT / "scenarios" / "exercise6_direct_start.yaml"
 SHIPPED = BASE_PATH.read_text(encoding="utf-8")
 RPM = 2.0 * math.pi / 60.0
-
-
-def core(text: str) -> str:
-    """The shipped scenario without its optional sections (they may come and go)."""
-    kept, skipping = [], False
-    for line in text.splitlines(keepends=True):
-        top = re.match(r"([A-Za-z_]\w*)[ \t]*:", line)
-        if top:
-            skipping = top.group(1) in ("initial", "brake", "bearings", "sweep")
-        if not skipping:
-            kept.append(line)
-    return "".join(kept)
 
 
 BASE = core(SHIPPED)  # mutated by the tests
