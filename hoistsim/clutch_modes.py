@@ -23,9 +23,13 @@ MOTOR_SPEED, OUTPUT_SPEED, LOAD_POSITION, CLUTCH_ENERGY, MOTOR_WORK = range(5)
 STATE_SIZE = 5
 
 # Event kinds, stored as codes in the compiled loop and as strings in the output.
-EVENT_KINDS = ("lock", "unlock", "reversal", "engage", "disengage", "brake_release")
+# The last two are observations, not switches: instants where the slip speed
+# peaks or the load turns round at its lowest point.  They become output rows,
+# so peaks are exact rather than sampled, but not rows of the events table.
+EVENT_KINDS = ("lock", "unlock", "reversal", "engage", "disengage", "brake_release", "slip_peak", "load_lowest")
+SWITCH_KINDS = EVENT_KINDS[:6]
 NO_EVENT = -1
-LOCK, UNLOCK, REVERSAL, ENGAGE, DISENGAGE, BRAKE_RELEASE = range(6)
+LOCK, UNLOCK, REVERSAL, ENGAGE, DISENGAGE, BRAKE_RELEASE, SLIP_PEAK, LOAD_LOWEST = range(8)
 
 
 class Segment(eqx.Module):
@@ -100,7 +104,7 @@ def rates(drivetrain: Drivetrain, mode, force, motor_speed, output_speed, drum_h
 
 
 def vector_field(t, y, args):
-    drivetrain, segment, mode = args
+    drivetrain, segment, mode = args[:3]
     motor_speed, output_speed = y[MOTOR_SPEED], y[OUTPUT_SPEED]
     r = rates(drivetrain, mode, segment.engagement_force(t), motor_speed, output_speed, segment.drum_held)
     return jnp.stack([
@@ -113,21 +117,23 @@ def vector_field(t, y, args):
 
 
 # Guards: positive inside their mode, an event where they fall to zero.  Outside
-# their mode they are a constant 1 and never fire.  A guard that is exactly zero
+# their mode they are a constant 1 and never fire.  ``args`` is (drivetrain,
+# segment, mode, observing); ``observing`` switches the observation guards off
+# once their budget is spent.  A guard that is exactly zero
 # at a restart (slip right after an unlock) cannot fire: diffrax needs a strictly
 # positive value before a non-positive one.
 
 
 def slip_guard(t, y, args, **kwargs):
     """Slip speed in the direction of slip: reaches 0 when the two sides meet."""
-    drivetrain, segment, mode = args
+    drivetrain, segment, mode = args[:3]
     slip = y[MOTOR_SPEED] - y[OUTPUT_SPEED]
     s = slip_direction(mode)
     return jnp.where(s != 0.0, s * slip, 1.0)
 
 
 def _capacity_margin(sign, t, y, args):
-    drivetrain, segment, mode = args
+    drivetrain, segment, mode = args[:3]
     torque = locked_torque(drivetrain, y[MOTOR_SPEED], segment.drum_held)
     capacity = drivetrain.static_capacity(segment.engagement_force(t))
     return jnp.where(mode == LOCKED, capacity - sign * torque, 1.0)
@@ -143,7 +149,28 @@ def backward_breakaway_guard(t, y, args, **kwargs):
     return _capacity_margin(-1.0, t, y, args)
 
 
-GUARDS = (slip_guard, forward_breakaway_guard, backward_breakaway_guard)
+def slip_peak_guard(t, y, args, **kwargs):
+    """Rate of change of |slip| while not locked: falls through zero where the slip speed peaks."""
+    drivetrain, segment, mode = args[:3]
+    r = rates(drivetrain, mode, segment.engagement_force(t), y[MOTOR_SPEED], y[OUTPUT_SPEED], segment.drum_held)
+    slip = y[MOTOR_SPEED] - y[OUTPUT_SPEED]
+    growth = jnp.sign(slip) * (r.motor_acceleration - r.output_acceleration)
+    return jnp.where((mode != LOCKED) & args[3], growth, 1.0)
+
+
+def load_turnaround_guard(t, y, args, **kwargs):
+    """Minus the pinion speed: falls through zero where a load that ran back turns round (its lowest point).
+
+    Written as a fall from strictly positive, so a drum starting from rest (or
+    released by the brake) is not taken for a turnaround.
+    """
+    return jnp.where(args[3], -y[OUTPUT_SPEED], 1.0)
+
+
+# Switching guards come first: when two guards cross in one step, diffrax locates
+# the first in this order, and a switch must never be skipped for an observation.
+GUARDS = (slip_guard, forward_breakaway_guard, backward_breakaway_guard, slip_peak_guard, load_turnaround_guard)
+SWITCH_GUARDS = 3
 
 
 def transition_kind(previous, new):

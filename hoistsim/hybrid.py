@@ -76,6 +76,8 @@ class RawRun(eqx.Module):
     event_mode: jax.Array
     event_margin: jax.Array  # N*m: static capacity minus |locked torque| at the event
     event_count: jax.Array
+    final_state: jax.Array
+    extremes: dict  # lockup_time, slip_duration, peak_clutch_torque, peak_slip_speed, lowest_load_position
     switch_count: jax.Array
     status: jax.Array
     end_time: jax.Array
@@ -138,6 +140,28 @@ class _Carry(eqx.Module):
     log_state: jax.Array
     log_mode: jax.Array
     log_margin: jax.Array
+    observations: jax.Array
+    # running extremes of the run, for its summary (exact: every extremum is a row)
+    peak_torque: jax.Array
+    peak_slip: jax.Array
+    lowest_position: jax.Array
+    slip_time: jax.Array
+    lockup_time: jax.Array
+
+
+def _note(plan: Plan, segment: cm.Segment, c: _Carry, t, y, mode) -> _Carry:
+    """Fold the state at (t, y, mode) into the run's running extremes."""
+    r = cm.rates(plan.drivetrain, mode, segment.engagement_force(t), y[cm.MOTOR_SPEED], y[cm.OUTPUT_SPEED],
+                 segment.drum_held)
+    first_lock = jnp.isnan(c.lockup_time) & (mode == LOCKED)
+    return eqx.tree_at(
+        lambda k: (k.peak_torque, k.peak_slip, k.lowest_position, k.lockup_time),
+        c,
+        (jnp.maximum(c.peak_torque, jnp.abs(r.clutch_torque)),
+         jnp.maximum(c.peak_slip, jnp.abs(y[cm.MOTOR_SPEED] - y[cm.OUTPUT_SPEED])),
+         jnp.minimum(c.lowest_position, y[cm.LOAD_POSITION]),
+         jnp.where(first_lock, t, c.lockup_time)),
+    )
 
 
 def _record(c: _Carry, when, t, kind, y, mode, margin) -> _Carry:
@@ -176,9 +200,14 @@ def _scheduled_switches(plan: Plan, segment: cm.Segment, c: _Carry) -> _Carry:
 
 
 def _apply_event(plan: Plan, segment: cm.Segment, c: _Carry, t, y, mask, hit) -> _Carry:
-    """A guard fired at (t, y): lock, reverse or unlock, with the matching reset."""
+    """A guard fired at (t, y): lock, reverse or unlock with the matching reset, or an observation."""
     dt = plan.drivetrain
     slip_hit, forward_hit = mask[0], mask[1]
+    observed = mask[3] | mask[4]
+    c = _record(c, observed, t, jnp.where(mask[3], cm.SLIP_PEAK, cm.LOAD_LOWEST), y, c.mode,
+                _margin(plan, segment, t, y[cm.MOTOR_SPEED]))
+    c = eqx.tree_at(lambda k: k.observations, c, c.observations + observed)
+    hit = hit & ~observed
     # Sides that meet move on together: both take the speed that keeps their
     # angular momentum (or stay still when the brake holds the drum).
     common = (dt.motor_inertia * y[cm.MOTOR_SPEED] + dt.output_inertia * y[cm.OUTPUT_SPEED]) / (
@@ -200,6 +229,7 @@ def _apply_event(plan: Plan, segment: cm.Segment, c: _Carry, t, y, mask, hit) ->
 
 
 def _solve_segment(plan: Plan, segment: cm.Segment, c: _Carry, solver):
+    observing = c.observations < plan.max_switches
     event = diffrax.Event(
         cond_fn=list(cm.GUARDS),
         root_finder=CrossingBisection(),
@@ -213,7 +243,7 @@ def _solve_segment(plan: Plan, segment: cm.Segment, c: _Carry, solver):
         t1=segment.end,
         dt0=None,
         y0=c.y,
-        args=(plan.drivetrain, segment, c.mode),
+        args=(plan.drivetrain, segment, c.mode, observing),
         # Two save lists: after an event diffrax writes the final value right after
         # the last grid value it kept, so the end of the solve gets a list of its own.
         saveat=diffrax.SaveAt(subs=[diffrax.SubSaveAt(ts=save_times), diffrax.SubSaveAt(t1=True)]),
@@ -228,6 +258,7 @@ def _solve_segment(plan: Plan, segment: cm.Segment, c: _Carry, solver):
 def _step(plan: Plan, solver, c: _Carry) -> _Carry:
     segment = segment_from(plan, c.t)
     c = _scheduled_switches(plan, segment, c)
+    c = _note(plan, segment, c, c.t, c.y, c.mode)
     sol = _solve_segment(plan, segment, c, solver)
 
     (_, (t_end,)), (grid_values, (y_end,)) = sol.ts, sol.ys
@@ -236,14 +267,17 @@ def _step(plan: Plan, solver, c: _Carry) -> _Carry:
     rows = (plan.grid >= c.t) & (plan.grid < t_end)
     grid_state = jnp.where(rows[:, None], grid_values, c.grid_state)
     grid_mode = jnp.where(rows, c.mode, c.grid_mode)
+    slipping = (c.mode == cm.SLIP_FORWARD) | (c.mode == cm.SLIP_BACKWARD)
+    c = _note(plan, segment, c, t_end, y_end, c.mode)
     c = eqx.tree_at(
-        lambda k: (k.grid_state, k.grid_mode, k.steps, k.rejected, k.segments),
+        lambda k: (k.slip_time, k.grid_state, k.grid_mode, k.steps, k.rejected, k.segments),
         c,
-        (grid_state, grid_mode, c.steps + sol.stats["num_steps"],
+        (c.slip_time + jnp.where(slipping & ~failed, t_end - c.t, 0.0), grid_state, grid_mode, c.steps + sol.stats["num_steps"],
          c.rejected + sol.stats["num_rejected_steps"], c.segments + 1),
     )
     mask = [jnp.asarray(m) & hit for m in sol.event_mask]
     c = _apply_event(plan, segment, eqx.tree_at(lambda k: k.y, c, y_end), t_end, y_end, mask, hit)
+    c = _note(plan, segment, c, t_end, c.y, c.mode)
     status = jnp.where(failed, SOLVER_FAILED,
                        jnp.where(c.switches > plan.max_switches, CHATTERING, c.status))
     return eqx.tree_at(
@@ -276,6 +310,12 @@ def _run(plan: Plan, solver, max_segments: int, log_size: int) -> RawRun:
         log_state=jnp.full((log_size, cm.STATE_SIZE), nan),
         log_mode=jnp.full((log_size,), -1),
         log_margin=jnp.full((log_size,), nan),
+        observations=jnp.array(0),
+        peak_torque=jnp.zeros(()),
+        peak_slip=jnp.zeros(()),
+        lowest_position=jnp.zeros(()),
+        slip_time=jnp.zeros(()),
+        lockup_time=jnp.full((), nan),
     )
 
     def going(c: _Carry):
@@ -298,6 +338,14 @@ def _run(plan: Plan, solver, max_segments: int, log_size: int) -> RawRun:
         event_mode=c.log_mode,
         event_margin=c.log_margin,
         event_count=c.log_count,
+        final_state=c.y,
+        extremes={
+            "lockup_time": c.lockup_time,
+            "slip_duration": c.slip_time,
+            "peak_clutch_torque": c.peak_torque,
+            "peak_slip_speed": c.peak_slip,
+            "lowest_load_position": c.lowest_position,
+        },
         switch_count=c.switches,
         status=status,
         end_time=c.t,

@@ -66,8 +66,9 @@ def build_plan(scenario: Scenario) -> tuple[Plan, np.ndarray]:
 
 def loop_sizes(plan: Plan, max_switches: int) -> tuple[int, int]:
     """Static sizes of the loop: passes allowed and event rows kept."""
+    # each pass ends at a boundary, a switch or an observation (as many allowed as switches)
     boundaries = int(plan.boundaries.shape[0])
-    return boundaries + max_switches + 2, max_switches + 2 * boundaries + 4
+    return boundaries + 2 * max_switches + 2, 2 * max_switches + 2 * boundaries + 4
 
 
 def simulate(scenario: Scenario, label: str = "") -> RunResult:
@@ -89,7 +90,7 @@ def _failure_message(scenario: Scenario, raw, status: int) -> str:
     text = STATUS_TEXT[status]
     t = float(raw.end_time)
     if text == "chattering":
-        kinds = [cm.EVENT_KINDS[int(k)] for k in raw.event_kind[: int(raw.event_count)] if k >= 0]
+        kinds = [cm.EVENT_KINDS[int(k)] for k in raw.event_kind[: int(raw.event_count)] if 0 <= k < 6]
         tail = ", ".join(kinds[-4:])
         return (f"{name}: the clutch chatters: more than {scenario.simulation.max_switches} mode switches "
                 f"by t = {t:.6g} s (last: {tail}); raise simulation.max_switches if this is real")
@@ -112,12 +113,13 @@ def _result(scenario: Scenario, label: str, plan: Plan, grid: np.ndarray, raw, e
     times = times[order]
     keep = np.append(times[1:] != times[:-1], True)
     series = {name: values[order][keep] for name, values in series.items()}
-    kinds = [cm.EVENT_KINDS[int(k)] for k in raw.event_kind[:events]]
+    kinds = np.asarray([cm.EVENT_KINDS[int(k)] for k in raw.event_kind[:events]], dtype=object)
+    switches = np.isin(kinds, cm.SWITCH_KINDS)  # observations are rows, not events
     event_table = {
-        "time": np.asarray(raw.event_time[:events], dtype=float),
-        "kind": np.asarray(kinds, dtype=object),
-        "torque_margin": np.asarray(raw.event_margin[:events], dtype=float),
-        "mode_after": np.asarray([MODE_NAMES[int(m)] for m in raw.event_mode[:events]], dtype=object),
+        "time": np.asarray(raw.event_time[:events], dtype=float)[switches],
+        "kind": kinds[switches],
+        "torque_margin": np.asarray(raw.event_margin[:events], dtype=float)[switches],
+        "mode_after": np.asarray([MODE_NAMES[int(m)] for m in raw.event_mode[:events]], dtype=object)[switches],
     }
     return RunResult(
         scenario=scenario,
@@ -127,6 +129,7 @@ def _result(scenario: Scenario, label: str, plan: Plan, grid: np.ndarray, raw, e
         series=series,
         units=units_of(plan.effects),
         events=event_table,
+        extremes={k: float(v) for k, v in raw.extremes.items()},
         stats={
             "steps": int(raw.steps),
             "rejected_steps": int(raw.rejected_steps),

@@ -97,3 +97,34 @@ def test_default_tolerance_balances_energy():
     """At the default rtol (1e-8) the energy residual stays below 1e-6 relative."""
     s = scene(force=[["0 s", "0 N"], ["0.3 s", "6000 N"]], mass="400 kg", rtol=1e-8, atol=1e-10)
     assert simulate(s).energy_balance["relative_residual"] < 1e-6
+
+
+def _exact_series(run, exact, t):
+    """Slip, load position and clutch torque of the exact solution at times t."""
+    from hoistsim import clutch_modes as cm
+    from hoistsim.model import ForceSchedule
+
+    ref = exact.evaluate(t)
+    held = None if run.scenario.brake is None else t < run.scenario.brake.release_time
+    force = ForceSchedule.from_scenario(run.scenario)(t)
+    torque = np.asarray(cm.rates(run.drivetrain, ref["mode"], force, ref["motor_speed"], ref["output_speed"],
+                                 held).clutch_torque)
+    return ref["motor_speed"] - ref["output_speed"], ref["load_position"], torque, ref["mode"]
+
+
+def test_summary_extremes_match_exact(pair):
+    """Peaks and the lowest load position are exact, not sampled on the output grid."""
+    run, exact = pair
+    duration = run.scenario.simulation.duration
+    switches = np.array([e.time for e in exact.events])
+    # right before each switch too: the torque jumps there, and the peak may be its left limit
+    t = np.unique(np.concatenate([np.linspace(0.0, duration, 200_001), switches,
+                                  np.clip(switches - 1e-12, 0.0, None)]))
+    slip, position, torque, mode = _exact_series(run, exact, t)
+    s = run.summary
+    # a dense sampling can only fall short of the true extreme, and by little
+    assert s["peak_slip_speed"] == pytest.approx(np.max(np.abs(slip)), abs=1e-6)
+    assert s["lowest_load_position"] == pytest.approx(min(0.0, np.min(position)), abs=1e-8)
+    assert s["peak_clutch_torque"] == pytest.approx(np.max(np.abs(torque)), rel=1e-8)
+    slipping = (mode[:-1] == 1) | (mode[:-1] == 2)
+    assert s["slip_duration"] == pytest.approx(np.sum(np.diff(t)[slipping]), abs=1e-7)
