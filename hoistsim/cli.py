@@ -95,41 +95,70 @@ def main():
               help="HDF5 file to write (replaced atomically).")
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
               help='Override a scenario key, e.g. --set clutch.engagement_force="2500 N". Repeatable.')
+@click.option("--sweep", "sweeps", multiple=True, metavar="KEY=V1,V2,..|KEY=FROM:TO:COUNT",
+              help='Sweep a key (replaces the file\'s sweep:), e.g. --sweep "clutch.engagement_force=1 kN:9 kN:100". '
+                   "Twice: every combination.")
+@click.option("--summary-only", is_flag=True,
+              help="Keep only each run's summary, no time series: for very large sweeps.")
 @debug_option
 @_guarded
-def run(scenario, output, overrides):
+def run(scenario, output, overrides, sweeps, summary_only):
     """Simulate SCENARIO (every sweep value, when it has a sweep) and write OUTPUT."""
-    from .scenario import load_scenario, sweep_values
+    from .scenario import load_scenario
 
     scenario_path = scenario
-    scenario = load_scenario(scenario_path, overrides=list(overrides))
-    runs_to_do = sweep_values(scenario)
+    scenario = load_scenario(scenario_path, overrides=list(overrides), sweeps=list(sweeps))
     target = Path(output)
     if not target.parent.exists() and str(target.parent):
         _fail(f"{output}: the folder {target.parent} does not exist")
 
     from . import _jax
     from .output import write_runs
+    from .report import summary_table
     from .simulation import SimulationError, simulate
+    from .sweeps import sweep
 
     _jax.enable_compilation_cache()
+    command = "hoistsim run " + " ".join(
+        [scenario_path, "-o", output, *(f"--set {o}" for o in overrides), *(f"--sweep {w}" for w in sweeps)]
+        + (["--summary-only"] if summary_only else []))
     started = time.perf_counter()
-    results = []
-    for label, one in runs_to_do:
-        try:
-            results.append(simulate(one, label=label))
-        except SimulationError as exc:
-            _fail(str(exc), RUN_FAILED)
-    command = "hoistsim run " + " ".join([scenario_path, "-o", output, *(f"--set {o}" for o in overrides)])
     try:
-        write_runs(target, results, command=command)
+        if scenario.sweep or summary_only:
+            result = sweep(scenario, summary_only=summary_only, progress=_progress_printer())
+            summaries, write = result.summaries, functools.partial(result.to_hdf5, target, command=command)
+        else:  # one run: the plain compiled loop, kept in the persistent cache
+            one = simulate(scenario)
+            summaries, write = [one.summary], functools.partial(write_runs, target, [one], command=command)
+    except SimulationError as exc:
+        _fail(str(exc), RUN_FAILED)
+    try:
+        write()
     except OSError as exc:
         _fail(f"{output}: cannot write: {exc.strerror or exc}")
     elapsed = time.perf_counter() - started
-    from .report import run_table
+    click.echo(summary_table(summaries))
+    count = len(summaries)
+    click.echo(f"wrote {output} ({count} run{'s' if count != 1 else ''}"
+               f"{', summaries only' if summary_only else ''}, {elapsed:.2f} s)")
 
-    click.echo(run_table(results))
-    click.echo(f"wrote {output} ({len(results)} run{'s' if len(results) != 1 else ''}, {elapsed:.2f} s)")
+
+def _progress_printer():
+    """Progress of a long sweep on stderr, only when stderr is a terminal."""
+    if not sys.stderr.isatty():
+        return None
+    started = time.perf_counter()
+
+    def show(done: int, total: int) -> None:
+        elapsed = time.perf_counter() - started
+        left = elapsed / done * (total - done) if done else 0.0
+        end = "\n" if done == total else ""
+        click.echo(f"\r  {done}/{total} runs ({100 * done / total:.0f} %), {elapsed:.1f} s, ~{left:.0f} s left   ",
+                   err=True, nl=False)
+        if end:
+            click.echo("", err=True)
+
+    return show
 
 
 @main.command()

@@ -18,6 +18,7 @@ import jax
 import jax.numpy as jnp
 
 from . import clutch_modes as cm
+from ._pytree import pytree_dataclass
 from .model import LOCKED, OPEN, Drivetrain, force_at
 from .rootfind import CrossingBisection
 from .series import drum_held, row_outputs
@@ -47,7 +48,8 @@ MAX_STEPS_PER_SEGMENT = 200_000
 trace_count = 0
 
 
-class Plan(eqx.Module):
+@pytree_dataclass
+class Plan:
     """Everything one run needs, as arrays: the traced inputs of the compiled loop."""
 
     drivetrain: Drivetrain

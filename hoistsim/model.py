@@ -7,7 +7,7 @@ reduced by equal kinetic energy and forces by equal power (physics.md):
     J_b = J_clutch,driven + J_pinion + (J_wheel + I_drum + M R^2) / tau^2
     T_L = M g R / tau
 
-The numbers live in :class:`Drivetrain`, an equinox module, so the same object
+The numbers live in :class:`Drivetrain`, a pytree dataclass, so the same object
 is a set of traced inputs inside the compiled solver and a set of plain floats
 for the closed-form solution.
 """
@@ -16,9 +16,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import equinox as eqx
 import numpy as np
 
+from ._pytree import pytree_dataclass
 from .components import ConeClutch, Drum, GearPair, HangingLoad, LinearMotor
 from .scenario import Scenario
 
@@ -73,7 +73,8 @@ class Machine:
         )
 
 
-class Drivetrain(eqx.Module):
+@pytree_dataclass
+class Drivetrain:
     """The two-shaft reduced model (SI).  Fields may be floats or (traced) arrays."""
 
     motor_inertia: float  # J_a, kg*m^2

@@ -65,7 +65,7 @@ def provenance() -> dict[str, str]:
     return info
 
 
-def write_runs(path, runs, *, command: str = "") -> None:
+def write_runs(path, runs, *, command: str = "", parameters: dict | None = None) -> None:
     """Write runs (in sweep order) to ``path`` atomically."""
     if not runs:
         raise ValueError("no runs to write")
@@ -75,8 +75,22 @@ def write_runs(path, runs, *, command: str = "") -> None:
             f.attrs["format_version"] = 1
             for index, run in enumerate(runs):
                 _write_run(f.create_group(f"runs/{index}"), run)
-            _write_summary(f, runs)
-            _write_scenario(f, runs[0], command)
+            _write_summary(f, [run.summary for run in runs], parameters or {})
+            _write_scenario(f, runs[0].scenario, command)
+
+
+def write_sweep(path, result, *, command: str = "") -> None:
+    """Write a sweep: every run's time series, or (summary-only) the summary table alone."""
+    if result.runs is not None:
+        write_runs(path, result.runs, command=command, parameters=result.parameters)
+        return
+    with atomic_path(path) as tmp:
+        with h5py.File(tmp, "w") as f:
+            f.attrs["format"] = "hoistsim-runs"
+            f.attrs["format_version"] = 1
+            f.attrs["summary_only"] = True
+            _write_summary(f, result.summaries, result.parameters)
+            _write_scenario(f, result.scenario, command)
 
 
 def _write_run(group: h5py.Group, run) -> None:
@@ -134,24 +148,26 @@ _SUMMARY_UNITS = {
 }
 
 
-def _write_summary(f: h5py.File, runs) -> None:
-    rows = [run.summary for run in runs]
-    fields = [("label", _TEXT)] + [(k, "f8" if isinstance(v, float) else "i8")
-                                   for k, v in rows[0].items() if k != "label"]
+def _write_summary(f: h5py.File, rows: list[dict], parameters: dict) -> None:
+    """One row per run; swept keys become columns of their SI values (NaN for tables)."""
+    fields = [("label", _TEXT)] + [(k, "f8") for k in parameters] + [
+        (k, "f8" if isinstance(v, float) else "i8") for k, v in rows[0].items() if k != "label"]
     table = np.zeros(len(rows), dtype=fields)
-    for i, (row, run) in enumerate(zip(rows, runs)):
-        for key, _ in fields:
-            table[i][key] = (run.label or run.name) if key == "label" else row[key]
+    table["label"] = [row["label"] for row in rows]
+    for key, values in parameters.items():
+        table[key] = values
+    for key, kind in fields[1 + len(parameters):]:
+        table[key] = np.asarray([row[key] for row in rows], dtype=kind)
     data = f.create_dataset("summary", data=table)
     data.attrs["units"] = ", ".join(f"{k}: {u}" for k, u in _SUMMARY_UNITS.items())
+    data.attrs["swept_keys"] = json.dumps(list(parameters))
     index = f.create_dataset("run", data=np.arange(len(rows)))
     index.attrs["units"] = "1"
     index.make_scale("run")
     data.dims[0].attach_scale(index)
 
 
-def _write_scenario(f: h5py.File, run, command: str) -> None:
-    scenario = run.scenario
+def _write_scenario(f: h5py.File, scenario, command: str) -> None:
     data = f.create_dataset("scenario", data=scenario.text, dtype=_TEXT)
     data.attrs["units"] = "1"
     data.attrs["source"] = scenario.source

@@ -32,24 +32,36 @@ def fmt(value: float, digits: int = 4) -> str:
     return f"{value:.{digits}g}"
 
 
-def run_table(results) -> str:
-    headers = ["run", "lock-up [s]", "slip energy [J]", "peak torque [N*m]", "lowest load [m]",
-               "final load [m]", "motor [rpm]", "events", "energy residual"]
-    rows = []
-    for r in results:
-        s = r.summary
-        rows.append([
-            r.label or r.name,
-            fmt(s["lockup_time"]),
-            fmt(s["slip_energy"]),
-            fmt(s["peak_clutch_torque"]),
-            fmt(s["lowest_load_position"]),
-            fmt(s["final_load_position"]),
-            fmt(s["final_motor_speed"] * 30 / math.pi),
-            ", ".join(r.events["kind"]) or "-",
-            f"{s['energy_relative_residual']:.1e}",
-        ])
-    return table(headers, rows)
+SUMMARY_COLUMNS = [  # (summary key, header, scale)
+    ("lockup_time", "lock-up [s]", 1.0),
+    ("slip_duration", "slipping [s]", 1.0),
+    ("slip_energy", "clutch heat [kJ]", 1e-3),
+    ("peak_clutch_torque", "peak torque [N*m]", 1.0),
+    ("peak_slip_speed", "peak slip [rpm]", 30 / math.pi),
+    ("lowest_load_position", "lowest load [m]", 1.0),
+    ("final_load_position", "final load [m]", 1.0),
+    ("final_motor_speed", "final motor [rpm]", 30 / math.pi),
+    ("lock_events", "locks", 1),
+    ("unlock_events", "unlocks", 1),
+    ("energy_relative_residual", "energy residual", None),
+]
+
+
+def summary_table(summaries: list[dict], head: int = 12, tail: int = 6) -> str:
+    """Runs as rows, the summary as columns; long sweeps show their first and last runs."""
+    def row(s):
+        cells = [s["label"]]
+        for key, _, scale in SUMMARY_COLUMNS:
+            value = s[key]
+            cells.append(f"{value:.1e}" if scale is None else fmt(value * scale if scale != 1 else value))
+        return cells
+
+    shown = summaries if len(summaries) <= head + tail else summaries[:head] + [None] + summaries[-tail:]
+    rows = [row(s) if s is not None else ["..."] + [""] * len(SUMMARY_COLUMNS) for s in shown]
+    text = table(["run"] + [header for _, header, _ in SUMMARY_COLUMNS], rows)
+    if len(summaries) > head + tail:
+        text += f"\n({len(summaries)} runs; all of them: hoistsim compare OUT.h5 [--csv])"
+    return text
 
 
 def reduced_model_table(scenario) -> str:

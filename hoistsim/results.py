@@ -47,54 +47,22 @@ class RunResult:
         """Energy dissipated in the clutch over the run (J)."""
         return float(self.series["clutch_energy"][-1])
 
+    def _state(self, row: int) -> np.ndarray:
+        s = self.series
+        return np.array([s["motor_speed"][row], s["drum_speed"][row] * self.drivetrain.ratio,
+                         s["load_position"][row], s["clutch_energy"][row], s["motor_work"][row]])
+
     @property
     def energy_balance(self) -> dict[str, float]:
-        """Motor work against kinetic + potential energy + clutch losses (J).
-
-        ``residual`` is what does not balance; ``relative_residual`` divides it
-        by the motor work (or the largest term, if that is larger).
-        """
-        dt = self.drivetrain
-        ws = self.series["motor_speed"]
-        wb = self.series["drum_speed"] * dt.ratio
-        kinetic = dt.kinetic_energy(ws[-1], wb[-1]) - dt.kinetic_energy(ws[0], wb[0])
-        potential = dt.load_weight * self.series["load_position"][-1]
-        clutch = self.series["clutch_energy"][-1]
-        work = self.series["motor_work"][-1]
-        residual = work - (kinetic + potential + clutch)
-        scale = max(abs(work), abs(kinetic), abs(potential), abs(clutch), 1e-300)
-        return {
-            "motor_work": float(work),
-            "kinetic_energy_change": float(kinetic),
-            "potential_energy_change": float(potential),
-            "clutch_energy": float(clutch),
-            "residual": float(residual),
-            "relative_residual": float(abs(residual) / scale),
-        }
+        """Motor work against kinetic + potential energy + clutch losses (J)."""
+        return energy_balance(self.drivetrain, self._state(0), self._state(-1))
 
     @property
     def summary(self) -> dict:
-        """The numbers a designer compares runs by.
-
-        Peaks and the lowest load position are exact: the run stops at every slip
-        peak and load turnaround (and at every switch) to record them.
-        """
-        s = self.series
+        """The numbers a designer compares runs by (see :func:`summarize`)."""
         kinds = list(self.events["kind"])
-        balance = self.energy_balance
-        return {
-            "label": self.label,
-            **self.extremes,
-            "slip_energy": self.slip_energy,
-            "final_motor_speed": float(s["motor_speed"][-1]),
-            "final_drum_speed": float(s["drum_speed"][-1]),
-            "final_load_position": float(s["load_position"][-1]),
-            "load_lifted": bool(s["load_position"][-1] > 0),
-            "lock_events": kinds.count("lock"),
-            "unlock_events": kinds.count("unlock"),
-            "energy_residual": balance["residual"],
-            "energy_relative_residual": balance["relative_residual"],
-        }
+        return summarize(self.label or self.name, self.extremes, self.drivetrain, self._state(0), self._state(-1),
+                         kinds.count("lock"), kinds.count("unlock"))
 
     def to_hdf5(self, path) -> None:
         """Write this run alone to an HDF5 file (atomically)."""
@@ -109,3 +77,47 @@ class RunResult:
         data = {name: ("time", values, {"units": self.units[name]}) for name, values in self.series.items()}
         return xr.Dataset(data, coords={"time": ("time", self.time, {"units": "s"})},
                           attrs={"name": self.name, "label": self.label})
+
+
+def energy_balance(drivetrain: Drivetrain, first, last) -> dict[str, float]:
+    """Motor work against kinetic + potential energy + clutch losses (J), from two states.
+
+    States are (motor speed, pinion speed, load position, clutch energy, motor
+    work).  ``residual`` is what does not balance; ``relative_residual`` divides
+    it by the largest of the terms.
+    """
+    kinetic = drivetrain.kinetic_energy(last[0], last[1]) - drivetrain.kinetic_energy(first[0], first[1])
+    potential = drivetrain.load_weight * (last[2] - first[2])
+    clutch, work = last[3] - first[3], last[4] - first[4]
+    residual = work - (kinetic + potential + clutch)
+    scale = max(abs(work), abs(kinetic), abs(potential), abs(clutch), 1e-300)
+    return {
+        "motor_work": float(work),
+        "kinetic_energy_change": float(kinetic),
+        "potential_energy_change": float(potential),
+        "clutch_energy": float(clutch),
+        "residual": float(residual),
+        "relative_residual": float(abs(residual) / scale),
+    }
+
+
+def summarize(label: str, extremes: dict, drivetrain: Drivetrain, first, last, locks: int, unlocks: int) -> dict:
+    """The numbers a designer compares runs by, from a run's end states and running extremes.
+
+    Peaks and the lowest load position are exact: the run stops at every slip
+    peak and load turnaround (and at every switch) to record them.
+    """
+    balance = energy_balance(drivetrain, first, last)
+    return {
+        "label": label,
+        **{k: float(v) for k, v in extremes.items()},
+        "slip_energy": float(last[3]),
+        "final_motor_speed": float(last[0]),
+        "final_drum_speed": float(last[1] / drivetrain.ratio),
+        "final_load_position": float(last[2]),
+        "load_lifted": bool(last[2] > 0),
+        "lock_events": int(locks),
+        "unlock_events": int(unlocks),
+        "energy_residual": balance["residual"],
+        "energy_relative_residual": balance["relative_residual"],
+    }

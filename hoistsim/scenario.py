@@ -176,6 +176,9 @@ class Scenario(Section):
     _text: str = PrivateAttr(default="")
     _source: str = PrivateAttr(default="<scenario>")
     _overridden: set = PrivateAttr(default_factory=set)
+    _sweep_values: dict = PrivateAttr(default_factory=dict)  # key -> values, ranges expanded
+    _sweep_labels: dict = PrivateAttr(default_factory=dict)  # key -> each value as the user reads it
+    _sweep_runs: list = PrivateAttr(default_factory=list)  # validated runs of a one-key sweep
 
     @model_validator(mode="after")
     def _brake_holds_still_drum(self):
@@ -198,7 +201,7 @@ class Scenario(Section):
     @property
     def raw(self) -> dict:
         """The scenario as plain data (before unit conversion), overrides applied."""
-        return copy.deepcopy(self._raw)
+        return _copy_plain(self._raw)
 
     def resolved(self) -> dict:
         """The scenario in SI numbers, as JSON-friendly data."""
@@ -259,7 +262,8 @@ def _check_tree(data: dict, model: type[BaseModel], path: tuple, tree: Any, sour
         _check_tree(value, sub, (*path, key), tree, source)
 
 
-_SWEEP_EXAMPLE = "like 'clutch.engagement_force: [1000 N, 2000 N]'"
+_SWEEP_EXAMPLE = ("like 'clutch.engagement_force: [1000 N, 2000 N]' or "
+                  "'clutch.engagement_force: {from: 1000 N, to: 9000 N, count: 9}'")
 
 
 def _check_key(dotted: str, origin: str) -> None:
@@ -322,7 +326,8 @@ def _assign(raw: dict, dotted: str, value: Any) -> None:
 # loading
 
 
-def load_scenario(source: str | Path, overrides: list[str] | dict[str, Any] | None = None) -> Scenario:
+def load_scenario(source: str | Path, overrides: list[str] | dict[str, Any] | None = None,
+                  sweeps: list[str] | None = None) -> Scenario:
     """Read and validate a scenario file, with optional ``dotted.key=value`` overrides."""
     path = Path(source)
     try:
@@ -335,17 +340,23 @@ def load_scenario(source: str | Path, overrides: list[str] | dict[str, Any] | No
         raise ScenarioError("", "not a text (UTF-8) file", source=str(source)) from None
     except OSError as exc:
         raise ScenarioError("", f"cannot read the scenario: {exc.strerror or exc}", source=str(source)) from None
-    return scenario_from_text(text, source=str(source), overrides=overrides)
+    return scenario_from_text(text, source=str(source), overrides=overrides, sweeps=sweeps)
 
 
 def scenario_from_text(text: str, source: str = "<scenario>",
-                       overrides: list[str] | dict[str, Any] | None = None) -> Scenario:
+                       overrides: list[str] | dict[str, Any] | None = None,
+                       sweeps: list[str] | None = None) -> Scenario:
+    """Validate scenario text; ``overrides`` set keys, ``sweeps`` (KEY=SPEC) replace the file's sweep."""
     tree = _read_yaml(text, source)
     try:
         raw = _to_plain(tree)
     except ScenarioError as exc:
         exc.source = source
         raise
+    if sweeps:
+        raw["sweep"] = dict(parse_sweep(item) for item in sweeps)
+        text = text.rstrip("\n") + "\n# sweep from the command line (replaces any sweep: above):\n" + "".join(
+            f"#   --sweep {item}\n" for item in sweeps)
     pairs = list(overrides.items()) if isinstance(overrides, dict) else [
         parse_override(item) for item in (overrides or [])
     ]
@@ -361,7 +372,12 @@ def scenario_from_text(text: str, source: str = "<scenario>",
     for key, values in (scenario.sweep or {}).items():
         if key in scenario._overridden:
             raise ScenarioError(key, "is swept in the file (sweep:); --set cannot also set it", source="--set")
-        _check_sweep(raw, key, values, tree, source)
+        values, labels = _expand_range(key, values, source, _line_of(tree, ("sweep", key)))
+        runs = _check_sweep(raw, key, values, tree, source)
+        scenario._sweep_values[key] = values
+        scenario._sweep_labels[key] = labels
+        if len(scenario.sweep) == 1:
+            scenario._sweep_runs = runs
     scenario._raw = raw
     scenario._text = text
     scenario._source = source
@@ -404,8 +420,8 @@ def _error_from(err: dict, tree: Any, source: str, overridden: set[str]) -> Scen
     return ScenarioError(key, message, source=source, line=_line_of(tree, (*loc, *row)))
 
 
-def _check_sweep(raw: dict, key: str, values: list, tree: Any, source: str) -> None:
-    """A sweep names known keys, and each of its values is one the key accepts."""
+def _check_sweep(raw: dict, key: str, values: list, tree: Any, source: str) -> list:
+    """A sweep names known keys, and each of its values is one the key accepts: the validated runs."""
     line = _line_of(tree, ("sweep", key))
     try:
         _check_key(key, source)
@@ -414,17 +430,68 @@ def _check_sweep(raw: dict, key: str, values: list, tree: Any, source: str) -> N
     if not isinstance(values, list) or not values:
         raise ScenarioError(f"sweep.{key}", f"needs a non-empty list of values, {_SWEEP_EXAMPLE}",
                             source=source, line=line)
+    runs = []
     for i, value in enumerate(values):
-        one = copy.deepcopy(raw)
+        one = _copy_plain(raw)
         one.pop("sweep")
         _assign(one, key, value)
         try:
-            Scenario.model_validate(one)
+            runs.append(Scenario.model_validate(one))
+            runs[-1]._raw = one
         except ValidationError as exc:
             inner = _error_from(exc.errors()[0], None, source, set())
             detail = inner.message if inner.key == key else f"{inner.key}: {inner.message}"
             raise ScenarioError(f"sweep.{key}", f"value {i + 1} ({_format_value(value)}): {detail}",
                                 source=source, line=_line_of(tree, ("sweep", key, i)) or line) from None
+    return runs
+
+
+def _expand_range(key: str, spec: Any, source: str, line: int | None) -> tuple[Any, list[str]]:
+    """``{from: 1000 N, to: 9000 N, count: 9}`` -> the evenly spaced values and their labels."""
+    if not isinstance(spec, dict):
+        return spec, [_format_value(v) for v in spec] if isinstance(spec, list) else []
+    where = dict(source=source, line=line)
+    if set(spec) != {"from", "to", "count"}:
+        raise ScenarioError(f"sweep.{key}", f"a range needs exactly from:, to: and count:, got {sorted(spec)}",
+                            **where)
+    count = spec["count"]
+    if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= 1_000_000:
+        raise ScenarioError(f"sweep.{key}", f"count must be a whole number from 1 to 1000000, got {count!r}",
+                            **where)
+    try:
+        start, stop, unit = u.range_ends(spec["from"], spec["to"])
+    except u.UnitError as exc:
+        raise ScenarioError(f"sweep.{key}", f"range: {exc}", **where) from None
+    step = (stop - start) / (count - 1) if count > 1 else 0.0
+    values = [start + i * step for i in range(count - 1)] + [stop] if count > 1 else [start]
+    labels = [f"{v:.6g} {unit}".rstrip() for v in values]
+    if not unit:
+        return values, labels
+    # The ends stay as written (validated with their units, so a wrong dimension is
+    # caught); the values between are SI numbers, which skips parsing each one.
+    scale = u.si_factor(unit)
+    return [spec["from"], *(v * scale for v in values[1:-1]), spec["to"]][:count], labels
+
+
+def parse_sweep(assignment: str) -> tuple[str, Any]:
+    """``--sweep`` text -> (key, values): ``K=V1,V2,...``, ``K=[v1, v2]`` (YAML) or ``K=FROM:TO:COUNT``."""
+    if "=" not in assignment:
+        raise ScenarioError("--sweep", f"expected KEY=V1,V2,... or KEY=FROM:TO:COUNT, got {assignment!r}")
+    key, text = (part.strip() for part in assignment.split("=", 1))
+    _check_key(key, "--sweep")
+    if text.startswith("["):
+        values = parse_override(f"{key}={text}")[1]
+    elif text.count(":") == 2:
+        start, stop, count = (part.strip() for part in text.split(":"))
+        if not count.isdigit():
+            raise ScenarioError(key, f"the count in FROM:TO:COUNT must be a whole number, got {count!r}",
+                                source="--sweep")
+        return key, {"from": start, "to": stop, "count": int(count)}
+    else:
+        values = [parse_override(f"{key}={item}")[1] for item in text.split(",")]
+    if not isinstance(values, list):
+        values = [values]
+    return key, values
 
 
 # --------------------------------------------------------------------------------------
@@ -436,13 +503,20 @@ def sweep_values(scenario: Scenario) -> list[tuple[str, Scenario]]:
     if not scenario.sweep:
         return [("", scenario)]
     keys = list(scenario.sweep)
+    if len(keys) == 1 and scenario._sweep_runs:  # validated when the file was read
+        key = keys[0]
+        for run in scenario._sweep_runs:
+            run._text, run._source = scenario.text, scenario.source
+        return [(f"{key}={label}", run) for label, run in zip(scenario._sweep_labels[key], scenario._sweep_runs)]
     runs = []
-    for combo in itertools.product(*(scenario.sweep[k] for k in keys)):
+    indices = itertools.product(*(range(len(scenario._sweep_values[k])) for k in keys))
+    for combo_index in indices:
+        combo = [scenario._sweep_values[k][i] for k, i in zip(keys, combo_index)]
         raw = scenario.raw
         raw.pop("sweep", None)
         for key, value in zip(keys, combo):
             _assign(raw, key, value)
-        label = ", ".join(f"{k}={_format_value(v)}" for k, v in zip(keys, combo))
+        label = ", ".join(f"{k}={scenario._sweep_labels[k][i]}" for k, i in zip(keys, combo_index))
         try:
             run = _validate(raw, None, scenario.source)
         except ScenarioError as exc:
@@ -451,6 +525,15 @@ def sweep_values(scenario: Scenario) -> list[tuple[str, Scenario]]:
         run._raw, run._text, run._source = raw, scenario.text, scenario.source
         runs.append((label, run))
     return runs
+
+
+def _copy_plain(data: Any) -> Any:
+    """A copy of plain YAML data (dicts, lists, scalars): much faster than deepcopy."""
+    if isinstance(data, dict):
+        return {k: _copy_plain(v) for k, v in data.items()}
+    if isinstance(data, list):
+        return [_copy_plain(v) for v in data]
+    return data
 
 
 def _format_value(value: Any) -> str:

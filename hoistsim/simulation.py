@@ -5,7 +5,6 @@ from __future__ import annotations
 import time as _time
 
 import jax
-import jax.numpy as jnp
 import numpy as np
 
 from . import clutch_modes as cm
@@ -36,30 +35,35 @@ def _padded(grid: np.ndarray) -> np.ndarray:
 
 
 def _as_arrays(tree):
-    return jax.tree.map(lambda x: jnp.asarray(x, dtype=jnp.float64), tree)
+    # numpy leaves: cheap to build and to stack by the thousand; jit takes them as they are
+    return jax.tree.map(lambda x: np.asarray(x, dtype=np.float64), tree)
 
 
-def build_plan(scenario: Scenario) -> tuple[Plan, np.ndarray]:
-    """The traced inputs of a run, and its (unpadded) output grid."""
+def build_plan(scenario: Scenario, summary_only: bool = False) -> tuple[Plan, np.ndarray]:
+    """The traced inputs of a run, and its (unpadded) output grid.
+
+    ``summary_only`` keeps a single output row (the end): the summary comes from
+    the loop's running extremes, so a large sweep need not store time series.
+    """
     sim = scenario.simulation
     drivetrain = Machine.from_scenario(scenario).reduced()
     effects = effects_for(scenario)
     table = scenario.clutch.engagement_force
     scheduled = [0.0, sim.duration, *table.times, *(b for e in effects for b in e.boundaries())]
-    grid = output_grid(sim.duration, sim.output_interval)
+    grid = np.array([sim.duration]) if summary_only else output_grid(sim.duration, sim.output_interval)
     initial = [*initial_speeds(scenario, drivetrain), 0.0, 0.0, 0.0]
     plan = Plan(
         drivetrain=_as_arrays(drivetrain),
-        force_times=jnp.asarray(table.times, dtype=jnp.float64),
-        force_values=jnp.asarray(table.forces, dtype=jnp.float64),
+        force_times=np.asarray(table.times, dtype=np.float64),
+        force_values=np.asarray(table.forces, dtype=np.float64),
         effects=_as_arrays(effects),
-        boundaries=jnp.clip(jnp.asarray(scheduled, dtype=jnp.float64), 0.0, sim.duration),
-        initial_state=jnp.asarray(initial, dtype=jnp.float64),
-        duration=jnp.asarray(sim.duration, dtype=jnp.float64),
-        grid=jnp.asarray(_padded(grid)),
-        rtol=jnp.asarray(sim.rtol, dtype=jnp.float64),
-        atol=jnp.asarray(sim.atol, dtype=jnp.float64),
-        max_switches=jnp.asarray(sim.max_switches),
+        boundaries=np.clip(np.asarray(scheduled, dtype=np.float64), 0.0, sim.duration),
+        initial_state=np.asarray(initial, dtype=np.float64),
+        duration=np.asarray(sim.duration, dtype=np.float64),
+        grid=grid if summary_only else _padded(grid),
+        rtol=np.asarray(sim.rtol, dtype=np.float64),
+        atol=np.asarray(sim.atol, dtype=np.float64),
+        max_switches=np.asarray(sim.max_switches),
     )
     return plan, grid
 

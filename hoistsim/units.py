@@ -104,9 +104,16 @@ def to_si(value: object, dimension: Dimension) -> float:
     types are rejected: they are never a physical quantity.
     """
     try:
+        if isinstance(value, str):  # sweeps validate the same strings thousands of times
+            return _string_to_si(value, dimension)
         return _to_si(value, dimension)
     except OverflowError:  # an integer too large for a float
         raise UnitError(f"must be a finite number, got {_shown(value)[:40]}") from None
+
+
+@lru_cache(maxsize=4096)
+def _string_to_si(value: str, dimension: Dimension) -> float:
+    return _to_si(value, dimension)
 
 
 def _to_si(value: object, dimension: Dimension) -> float:
@@ -293,3 +300,24 @@ def _to_force_table(value: Any) -> ForceTable:
 
 
 EngagementForce = Annotated[ForceTable, BeforeValidator(_to_force_table)]
+
+
+def range_ends(start: object, stop: object) -> tuple[float, float, str]:
+    """The ends of a sweep range as magnitudes in the unit of ``start`` ('' for bare numbers)."""
+    if isinstance(start, (int, float)) and not isinstance(start, bool) and \
+            isinstance(stop, (int, float)) and not isinstance(stop, bool):
+        return float(start), float(stop), ""
+    ureg = registry()
+    try:
+        first, last = ureg.Quantity(str(start)), ureg.Quantity(str(stop))
+        last = last.to(first.units)
+    except Exception as exc:  # pint's parse and dimensionality errors
+        raise UnitError(f"cannot make a range from {start!r} to {stop!r} ({str(exc).splitlines()[0]})") from None
+    if not (math.isfinite(first.magnitude) and math.isfinite(last.magnitude)):
+        raise UnitError(f"the range ends must be finite, got {start!r} and {stop!r}")
+    return float(first.magnitude), float(last.magnitude), f"{first.units:~}"
+
+
+def si_factor(unit: str) -> float:
+    """What one ``unit`` is in SI base units (rpm -> rad/s, daN -> N, deg -> rad)."""
+    return float(registry().Quantity(1.0, unit).to_base_units().magnitude)

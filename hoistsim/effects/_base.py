@@ -7,6 +7,8 @@ from typing import ClassVar
 
 import equinox as eqx
 
+from .._pytree import pytree_dataclass
+
 
 class RowContext(eqx.Module):
     """The state of the machine at output rows (arrays, one entry per row), for effects' outputs."""
@@ -22,8 +24,11 @@ class RowContext(eqx.Module):
     drum_held: object  # bool
 
 
-class AbstractEffect(eqx.Module):
+class AbstractEffect:
     """An optional part of the machine, selected by its YAML section.
+
+    Subclasses declare their traced numbers as annotated fields; each becomes a
+    frozen dataclass and a JAX pytree when it is defined.
 
     Contributions (all optional; the defaults contribute nothing):
     - ``boundaries``: scheduled times at which the dynamics change; the
@@ -35,6 +40,10 @@ class AbstractEffect(eqx.Module):
 
     section: ClassVar[str]
     output_units: ClassVar[dict[str, str]] = {}
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        pytree_dataclass(cls)
 
     @classmethod
     @abc.abstractmethod
