@@ -10,5 +10,7 @@ from .scenario import scenario_from_dict as scenario_from_dict
 from .scenario import scenario_from_text as scenario_from_text
 from .simulation import SimulationError as SimulationError
 from .simulation import simulate as simulate
+from .sweeps import SweepResult as SweepResult
+from .sweeps import sweep as sweep
 
 __version__ = "0.1.0"

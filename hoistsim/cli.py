@@ -8,6 +8,7 @@ stderr; --debug shows the traceback.
 from __future__ import annotations
 
 import functools
+import os
 import sys
 import time
 from pathlib import Path
@@ -49,6 +50,9 @@ def _guarded(func):
         except KeyboardInterrupt:
             click.echo("hoistsim: interrupted; nothing was written", err=True)
             sys.exit(130)
+        except BrokenPipeError:  # output piped into `head` and the like: stop quietly
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+            sys.exit(1)
         except Exception as exc:  # an internal error: still one line unless --debug
             if debug:
                 raise
@@ -206,24 +210,56 @@ def statics(scenario, as_json, overrides):
 
 @main.command()
 @click.argument("results", type=click.Path(dir_okay=False))
+@click.option("--csv", "as_csv", is_flag=True, help="Every summary column as CSV on stdout (SI units).")
+@debug_option
+@_guarded
+def compare(results, as_csv):
+    """Compare the runs of RESULTS (an HDF5 file): one row per run, the summary as columns."""
+    from .output import read_summary
+    from .report import summary_table
+
+    rows = _read(read_summary, results)
+    if as_csv:
+        import csv
+
+        writer = csv.DictWriter(sys.stdout, fieldnames=list(rows[0]), lineterminator="\n")
+        writer.writeheader()
+        writer.writerows(rows)
+        return
+    click.echo(summary_table(rows, head=len(rows), tail=0))
+
+
+def _read(reader, path):
+    if not Path(path).is_file():
+        _fail(f"{path}: no such results file")
+    try:
+        return reader(path)
+    except (OSError, KeyError) as exc:
+        _fail(f"{path}: not a hoistsim results file ({exc})")
+
+
+@main.command()
+@click.argument("results", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", "output", required=True, type=click.Path(dir_okay=False),
               help="Figure file: .png, .svg or .pdf.")
 @debug_option
 @_guarded
 def plot(results, output):
-    """Plot speed and clutch-slip histories of every run in RESULTS (an HDF5 file)."""
+    """Plot speed and clutch-slip histories of every run in RESULTS (an HDF5 file).
+
+    A sweep also gets a second figure, OUTPUT's name + "_summary": lock-up time,
+    clutch heat, peak torque and lowest load position against the swept value.
+    A summary-only file gets that figure alone, as OUTPUT.
+    """
     suffix = Path(output).suffix.lower()
     if suffix not in (".png", ".svg", ".pdf"):
         _fail(f"{output}: the figure must be .png, .svg or .pdf")
-    if not Path(results).is_file():
-        _fail(f"{results}: no such results file")
+    if not Path(output).parent.exists() and str(Path(output).parent):
+        _fail(f"{output}: the folder {Path(output).parent} does not exist")
     from .plotting import plot_file
 
-    try:
-        plot_file(results, output)
-    except OSError as exc:
-        _fail(f"{results}: cannot read: {exc}")
-    click.echo(f"wrote {output}")
+    for written in _read(lambda path: plot_file(path, output), results):
+        click.echo(f"wrote {written}")
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -183,10 +183,28 @@ def read_runs(path) -> list[dict]:
     """Read the runs of a file back as dicts of numpy arrays (for plots and tables)."""
     runs = []
     with h5py.File(path, "r") as f:
-        for key in sorted(f["runs"], key=int):
+        for key in sorted(f.get("runs", {}), key=int):
             group = f["runs"][key]
             run = {name: group[name][()] for name in group if name not in ("events", "event")}
             run["events"] = group["events"][()]
             run["attrs"] = {k: v for k, v in group.attrs.items()}
             runs.append(run)
     return runs
+
+
+def read_summary(path) -> list[dict]:
+    """The /summary table of a results file as one dict per run (plain Python values)."""
+    with h5py.File(path, "r") as f:
+        table = f["summary"][()]
+    rows = []
+    for record in table:
+        row = {}
+        for name in table.dtype.names:
+            value = record[name]
+            if isinstance(value, bytes):
+                value = value.decode()
+            elif isinstance(value, np.generic):
+                value = value.item()
+            row[name] = value
+        rows.append(row)
+    return rows

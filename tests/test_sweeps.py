@@ -1,0 +1,132 @@
+"""Vectorised sweeps: same answers as single runs, no recompilation, exact summaries, files and tables."""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+
+import h5py
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from conftest import SCENARIOS
+from scenes import scene
+
+from hoistsim import exact_from_scenario, hybrid, load_scenario, simulate, sweep
+from hoistsim.cli import main
+from hoistsim.scenario import sweep_values
+
+SWEEP_FILE = SCENARIOS / "force_sweep_engage_at_speed.yaml"
+
+
+@pytest.fixture(scope="module")
+def full():
+    return sweep(load_scenario(SWEEP_FILE))
+
+
+def test_sweep_runs_equal_single_runs(full):
+    """vmap changes nothing: each run of the sweep is the run simulated alone."""
+    for (label, one), run in zip(sweep_values(full.scenario), full.runs):
+        alone = simulate(one, label=label)
+        assert run.label == label
+        np.testing.assert_allclose(run.time, alone.time, rtol=0, atol=1e-12)
+        for name in ("motor_speed", "drum_speed", "clutch_energy", "clutch_torque"):
+            np.testing.assert_allclose(run[name], alone[name], rtol=1e-12, atol=1e-9, err_msg=name)
+        assert list(run.events["kind"]) == list(alone.events["kind"])
+
+
+def test_summary_only_gives_the_same_summaries(full):
+    brief = sweep(full.scenario, summary_only=True)
+    assert brief.runs is None and brief.labels == full.labels
+    for a, b in zip(brief.summaries, full.summaries):
+        for key, value in a.items():
+            if isinstance(value, float) and math.isnan(value):
+                assert math.isnan(b[key]), key
+            elif isinstance(value, float):
+                assert value == pytest.approx(b[key], rel=1e-10, abs=1e-9), key
+            else:
+                assert value == b[key], key
+
+
+def test_summaries_match_the_exact_solution():
+    s = load_scenario(SWEEP_FILE, sweeps=["clutch.engagement_force=3 kN:12 kN:40"])
+    result = sweep(s, summary_only=True)
+    for (_, one), summary in zip(sweep_values(s), result.summaries):
+        exact = exact_from_scenario(one)
+        assert summary["slip_energy"] == pytest.approx(exact.slip_energy, rel=1e-7)
+        if math.isnan(exact.lockup_time):
+            assert math.isnan(summary["lockup_time"])
+        else:
+            assert summary["lockup_time"] == pytest.approx(exact.lockup_time, abs=1e-7)
+        assert summary["final_motor_speed"] == pytest.approx(exact.final["motor_speed"], abs=1e-5)
+        assert summary["lock_events"] == sum(e.kind == "lock" for e in exact.events)
+    assert any(math.isnan(r["lockup_time"]) for r in result.summaries)  # the weakest runs back
+    locks = [r["lockup_time"] for r in result.summaries if not math.isnan(r["lockup_time"])]
+    assert locks == sorted(locks, reverse=True)  # more force, earlier lock-up
+
+
+def test_new_sweep_values_do_not_recompile():
+    s = load_scenario(SWEEP_FILE, sweeps=["clutch.engagement_force=4 kN:8 kN:16"])
+    sweep(s, summary_only=True)
+    before = hybrid.trace_count
+    for spec in ("clutch.engagement_force=5 kN:11 kN:16", "load.mass=100 kg:900 kg:16"):
+        sweep(load_scenario(SWEEP_FILE, sweeps=[spec]), summary_only=True)
+    assert hybrid.trace_count == before
+
+
+def test_two_keys_give_a_grid_and_tables_of_different_length_share_a_call():
+    s = load_scenario(SWEEP_FILE, sweeps=["clutch.engagement_force=[5 kN, [[0 s, 0 N], [0.2 s, 8000 N]]]",
+                                          "load.mass=200 kg,400 kg"], overrides={"simulation.duration": "0.5 s"})
+    result = sweep(s)
+    assert len(result) == 4 and result.labels[1].endswith("load.mass=400 kg")
+    for (label, one), run in zip(sweep_values(s), result.runs):
+        assert run.slip_energy == pytest.approx(exact_from_scenario(one).slip_energy, rel=1e-6)
+    assert np.isnan(result.parameters["clutch.engagement_force"][2])  # a table has no single value
+
+
+def test_chunks_do_not_change_answers():
+    s = load_scenario(SWEEP_FILE, sweeps=["clutch.engagement_force=3 kN:12 kN:11"])
+    a = sweep(s, summary_only=True, chunk_size=4)  # 3 chunks, the last padded
+    b = sweep(s, summary_only=True)
+    assert [r["slip_energy"] for r in a.summaries] == [r["slip_energy"] for r in b.summaries]
+
+
+def test_cli_sweep_summary_only_compare_and_plot(tmp_path):
+    out = tmp_path / "big.h5"
+    result = CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(out), "--summary-only",
+                                       "--sweep", "clutch.engagement_force=3 kN:12 kN:64"])
+    assert result.exit_code == 0, result.output
+    assert "64 runs" in result.output and "..." in result.output  # a long table is shortened
+    with h5py.File(out, "r") as f:
+        assert "runs" not in f and f["summary"].shape == (64,)
+        assert f["summary"]["clutch.engagement_force"][-1] == pytest.approx(12000.0)
+    table = CliRunner().invoke(main, ["compare", str(out)])
+    assert table.exit_code == 0 and table.output.count("clutch.engagement_force=") == 64
+    rows = list(csv.DictReader(io.StringIO(CliRunner().invoke(main, ["compare", str(out), "--csv"]).output)))
+    assert len(rows) == 64 and float(rows[0]["clutch.engagement_force"]) == pytest.approx(3000.0)
+    figure = tmp_path / "big.png"
+    plotted = CliRunner().invoke(main, ["plot", str(out), "-o", str(figure)])
+    assert plotted.exit_code == 0, plotted.output
+    assert figure.stat().st_size > 10_000  # a summary-only file: the summary figure alone
+
+
+def test_plot_of_a_sweep_writes_histories_and_summary(tmp_path):
+    out = tmp_path / "sweep.h5"
+    assert CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(out),
+                                     "--set", "simulation.duration=0.5 s"]).exit_code == 0
+    result = CliRunner().invoke(main, ["plot", str(out), "-o", str(tmp_path / "f.svg")])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "f.svg").exists() and (tmp_path / "f_summary.svg").exists()
+
+
+def test_progress_only_on_a_terminal(tmp_path):
+    result = CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(tmp_path / "x.h5"), "--summary-only"])
+    assert result.exit_code == 0 and "runs (" not in result.output  # not a tty: no progress line
+
+
+def test_python_api_for_notebooks(tmp_path):
+    result = sweep(scene(force="5000 N", motor_speed="300 rpm", duration="0.5 s"))
+    assert len(result) == 1 and result.runs[0].summary["lock_events"] == 1
+    result.to_hdf5(tmp_path / "one.h5")
+    assert result.summary["slip_energy"].shape == (1,)
