@@ -8,7 +8,6 @@ exits with status 2.  Values are parsed and converted to SI in :mod:`.units`.
 
 from __future__ import annotations
 
-import copy
 import difflib
 import io
 import itertools

@@ -22,10 +22,18 @@ from . import clutch_modes as cm
 from .hybrid import OK, SOLVERS, Plan, _run
 from .results import RunResult, summarize
 from .scenario import Scenario, sweep_values
-from .simulation import SimulationError, _failure_message, _result, build_plan, loop_sizes
+from .simulation import (
+    SimulationError,
+    _failure_message,
+    _result,
+    build_plan,
+    loop_sizes,
+)
 
-# bytes of output a chunk may hold at most (time series of every run in it)
-CHUNK_BYTES = 256 * 2**20
+# Bytes of time series a chunk may hold.  Measured: with full output, small
+# chunks are fastest per run (every segment rewrites the chunk's output arrays);
+# summary-only runs hold one row each and go 1024 at a time.
+CHUNK_BYTES = 4 * 2**20
 MAX_CHUNK = 1024
 
 @dataclass
