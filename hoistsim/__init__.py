@@ -1,16 +1,38 @@
-"""hoistsim: time-domain start-up of a winch hoist with a stick-slip cone clutch."""
+"""hoistsim: time-domain start-up of a winch hoist with a stick-slip cone clutch.
+
+Public names are imported on first use, so the command line pays only for
+what a command needs (a run never loads the closed-form solver's scipy parts).
+"""
+
+from importlib import import_module
 
 from . import _jax  # noqa: F401  (float64 before any array exists)
-from .exact import exact_from_scenario as exact_from_scenario
-from .exact import solve_exact as solve_exact
-from .results import RunResult as RunResult
-from .scenario import ScenarioError as ScenarioError
-from .scenario import load_scenario as load_scenario
-from .scenario import scenario_from_dict as scenario_from_dict
-from .scenario import scenario_from_text as scenario_from_text
-from .simulation import SimulationError as SimulationError
-from .simulation import simulate as simulate
-from .sweeps import SweepResult as SweepResult
-from .sweeps import sweep as sweep
 
 __version__ = "0.1.0"
+
+_PUBLIC = {
+    "load_scenario": "scenario",
+    "scenario_from_dict": "scenario",
+    "scenario_from_text": "scenario",
+    "ScenarioError": "errors",
+    "simulate": "simulation",
+    "SimulationError": "simulation",
+    "RunResult": "results",
+    "sweep": "sweeps",
+    "SweepResult": "sweeps",
+    "exact_from_scenario": "exact",
+    "solve_exact": "exact",
+}
+__all__ = sorted(_PUBLIC)
+
+
+def __getattr__(name: str):
+    if name in _PUBLIC:
+        value = getattr(import_module(f".{_PUBLIC[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'hoistsim' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(list(globals()) + __all__)

@@ -18,6 +18,9 @@ import jax  # noqa: E402
 jax.config.update("jax_enable_x64", True)
 
 
+_executables: str | None = None  # folder of serialised executables, when the cache is on
+
+
 def enable_compilation_cache() -> None:
     """Keep compiled solvers on disk, so a second `hoistsim run` skips compilation.
 
@@ -30,9 +33,68 @@ def enable_compilation_cache() -> None:
     if directory is None:
         directory = os.path.join(os.path.expanduser("~"), ".cache", "hoistsim", "jax")
     try:
-        os.makedirs(directory, exist_ok=True)
+        os.makedirs(os.path.join(directory, "executables"), exist_ok=True)
     except OSError:
         return  # a read-only home: run without the cache
+    global _executables
+    _executables = os.path.join(directory, "executables")
     jax.config.update("jax_compilation_cache_dir", directory)
     jax.config.update("jax_persistent_cache_min_compile_time_secs", 0.5)
     jax.config.update("jax_persistent_cache_min_entry_size_bytes", 0)
+
+
+def executable(jitted, *args, name: str):
+    """``jitted`` compiled for ``args``, loaded from disk when a run of the same shape compiled it before.
+
+    JAX's persistent cache saves the compilation but not the tracing of the
+    Python loop (~0.5 s), which has to happen to find the cache key; a
+    serialised executable skips both.  The key covers everything the program
+    depends on: versions, backend, the function's name and the arguments'
+    structure, shapes and dtypes.  Without the cache, the usual jit call.
+    """
+    if _executables is None:
+        return jitted
+    import hashlib
+    import pickle
+    import tempfile
+    from importlib.metadata import version
+
+    from jax.experimental.serialize_executable import deserialize_and_load, serialize
+
+    leaves, treedef = jax.tree.flatten(args)
+    signature = repr((name, version("hoistsim"), jax.__version__, jax.default_backend(), str(treedef),
+                      [(getattr(x, "shape", ()), str(getattr(x, "dtype", type(x)))) for x in leaves]))
+    path = os.path.join(_executables, hashlib.sha256(signature.encode()).hexdigest() + ".bin")
+    try:
+        with open(path, "rb") as handle:
+            return _falling_back(deserialize_and_load(*pickle.load(handle)), jitted, path)
+    except Exception:  # absent, stale or unreadable: compile afresh
+        pass
+    compiled = jitted.lower(*args).compile()
+    try:
+        fd, tmp = tempfile.mkstemp(dir=_executables, suffix=".partial")
+        with os.fdopen(fd, "wb") as handle:
+            pickle.dump(serialize(compiled), handle)
+        os.replace(tmp, path)
+    except Exception:  # a full disk or an executable that cannot be serialised: still run
+        pass
+    return compiled
+
+
+def _falling_back(loaded, jitted, path):
+    """Call a loaded executable; if XLA cannot run it in this process, forget it and use ``jitted``.
+
+    (A long-lived process that has compiled other programs can fail to link a
+    loaded CPU executable's kernels; the answer is then computed the usual way.)
+    """
+    def call(*args):
+        try:
+            return jax.block_until_ready(loaded(*args))  # errors surface here, not at the call
+        except Exception:
+            try:
+                os.unlink(path)
+            except OSError:
+                pass
+            return jitted(*args)
+
+    return call

@@ -65,7 +65,8 @@ class Plan:
     max_switches: jax.Array  # mode switches allowed before the run counts as chattering
 
 
-class RawRun(eqx.Module):
+@pytree_dataclass
+class RawRun:
     """What the compiled loop returns; :mod:`hoistsim.simulation` turns it into a result."""
 
     grid_state: jax.Array  # (rows, STATE_SIZE)

@@ -7,6 +7,7 @@ import time as _time
 import jax
 import numpy as np
 
+from . import _jax
 from . import clutch_modes as cm
 from .effects import effects_for
 from .hybrid import OK, STATUS_TEXT, Plan, compiled_run
@@ -79,7 +80,8 @@ def simulate(scenario: Scenario, label: str = "") -> RunResult:
     """Run one scenario (its sweep, if any, is ignored here: see :func:`hoistsim.sweep`)."""
     plan, grid = build_plan(scenario)
     sim = scenario.simulation
-    run = compiled_run(sim.solver, *loop_sizes(plan, sim.max_switches))
+    sizes = loop_sizes(plan, sim.max_switches)
+    run = _jax.executable(compiled_run(sim.solver, *sizes), plan, name=f"run-{sim.solver}-{sizes}")
     started = _time.perf_counter()
     raw = jax.device_get(run(plan))
     elapsed = _time.perf_counter() - started

@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 import jax
 import numpy as np
 
+from . import _jax
 from . import clutch_modes as cm
 from .hybrid import OK, SOLVERS, Plan, _run
 from .results import RunResult, summarize
@@ -110,12 +111,15 @@ def simulate_many(scenarios: list[Scenario], labels: list[str], *, summary_only:
         sizes = loop_sizes(group[0], max_switches)
         rows = int(group[0].grid.shape[0])
         chunk = chunk_size or _chunk_for(rows, len(indices))
-        run = compiled_batch(first.simulation.solver, *sizes)
+        run = None
         for start in range(0, len(indices), chunk):
             part = indices[start:start + chunk]
             batch = group[start:start + chunk]
             batch = batch + [batch[-1]] * (chunk - len(batch))  # a full chunk: one compiled shape
             stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *batch)
+            if run is None:
+                run = _jax.executable(compiled_batch(first.simulation.solver, *sizes), stacked,
+                                      name=f"sweep-{first.simulation.solver}-{sizes}")
             t0 = time.perf_counter()
             raw = jax.device_get(run(stacked))
             elapsed = (time.perf_counter() - t0) / len(part)

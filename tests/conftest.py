@@ -2,11 +2,16 @@
 
 from __future__ import annotations
 
+import os
 import re
 import sys
+import tempfile
 from pathlib import Path
 
-import hoistsim  # noqa: F401  (enables float64 before any test creates an array)
+# Commands run in-process enable the compilation cache: keep it out of the user's home.
+os.environ.setdefault("HOISTSIM_CACHE_DIR", tempfile.mkdtemp(prefix="hoistsim-test-cache-"))
+
+import hoistsim  # noqa: E402,F401  (enables float64 before any test creates an array)
 
 sys.path.insert(0, str(Path(__file__).parent))
 

@@ -99,3 +99,19 @@ def test_usage_errors_are_one_line(tmp_path, args):
     lines = proc.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("hoistsim: error:"), proc.stderr
     assert not (tmp_path / "out.h5").exists()
+
+
+def test_second_run_loads_the_stored_executable(tmp_path):
+    """With the cache on, a run stores its compiled loop; the next process loads it and agrees bit for bit."""
+    env = dict(os.environ, HOISTSIM_CACHE_DIR=str(tmp_path / "cache"))
+    outputs = []
+    for i in range(2):
+        out = tmp_path / f"run{i}.h5"
+        proc = subprocess.run([sys.executable, "-m", "hoistsim.cli", "run", str(SCENARIOS / "runback_slipping_clutch.yaml"),
+                               "-o", str(out), "--set", "simulation.duration=0.5 s"],
+                              capture_output=True, text=True, env=env, cwd=ROOT)
+        assert proc.returncode == 0, proc.stderr
+        with h5py.File(out, "r") as f:
+            outputs.append(f["runs/0/slip_speed"][()])
+    assert len(list((tmp_path / "cache" / "executables").glob("*.bin"))) == 1
+    assert (outputs[0] == outputs[1]).all()
