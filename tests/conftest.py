@@ -5,11 +5,12 @@ from __future__ import annotations
 import os
 import re
 import sys
-import tempfile
 from pathlib import Path
 
-# Commands run in-process enable the compilation cache: keep it out of the user's home.
-os.environ.setdefault("HOISTSIM_CACHE_DIR", tempfile.mkdtemp(prefix="hoistsim-test-cache-"))
+# The on-disk caches serve fresh `hoistsim` processes; in the test session, commands
+# run in-process and share jit's in-memory cache instead, and nothing is written to
+# the user's home.  Tests of the caches give their subprocesses a folder of their own.
+os.environ["HOISTSIM_CACHE_DIR"] = ""
 
 import hoistsim  # noqa: E402,F401  (enables float64 before any test creates an array)
 
