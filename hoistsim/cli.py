@@ -209,6 +209,19 @@ def statics(scenario, as_json, overrides):
 
 
 @main.command()
+@click.option("--smoke", is_flag=True, help="A few tolerances on one scene (seconds), nothing written.")
+@click.option("-o", "--output", "output", default="benchmarks/results", show_default=True,
+              type=click.Path(file_okay=False), help="Folder for work_precision.csv and .png.")
+@debug_option
+@_guarded
+def bench(smoke, output):
+    """The work-precision study: error against time for every method, against the closed-form solution."""
+    from .study import main as study
+
+    study(smoke=smoke, output=output)
+
+
+@main.command()
 @click.argument("results", type=click.Path(dir_okay=False))
 @click.option("--csv", "as_csv", is_flag=True, help="Every summary column as CSV on stdout (SI units).")
 @debug_option

@@ -24,11 +24,12 @@ from .model import (
 
 def solve_with_scipy(d, times, forces, duration, wa0=0.0, wb0=0.0, release=None, *, method="DOP853",
                      rtol=1e-12, atol=1e-12, max_step=np.inf, dense=True):
-    """Integrate the hybrid model with solve_ivp; returns (events, evaluate, pieces, function evaluations).
+    """Integrate the hybrid model with solve_ivp; returns (events, evaluate, pieces, stats).
 
     ``events`` is a list of (time, kind); ``evaluate(ts)`` gives the state rows
     (motor speed, pinion speed, load position, clutch energy, motor work) at ts
-    when ``dense``; ``pieces`` are (start, end, dense output, mode).
+    when ``dense``; ``pieces`` are (start, end, dense output, mode); ``stats`` counts
+    steps and right-hand-side evaluations over all restarts.
     """
     Ja, Jb, C0, w0, TL = d.motor_inertia, d.output_inertia, d.stall_torque, d.no_load_speed, d.load_torque
     times, forces = np.asarray(times, float), np.asarray(forces, float)
@@ -49,7 +50,7 @@ def solve_with_scipy(d, times, forces, duration, wa0=0.0, wb0=0.0, release=None,
         return SLIP_FORWARD if Tc > 0 else SLIP_BACKWARD
 
     y = np.array([wa0, wb0, 0.0, 0.0, 0.0])
-    mode, events, pieces, evaluations = None, [], [], 0
+    mode, events, pieces, stats = None, [], [], {"steps": 0, "evaluations": 0}
     for a, b in zip(cuts[:-1], cuts[1:]):
         mid = 0.5 * (a + b)
         fa, fm = float(force_at(times, forces, a, np)), float(force_at(times, forces, mid, np))
@@ -103,7 +104,8 @@ def solve_with_scipy(d, times, forces, duration, wa0=0.0, wb0=0.0, release=None,
                 g.terminal, g.direction = True, -1
             sol = solve_ivp(rhs, (t, b), y, method=method, rtol=rtol, atol=atol, max_step=max_step,
                             events=guards or None, dense_output=dense)
-            evaluations += sol.nfev
+            stats["evaluations"] += sol.nfev
+            stats["steps"] += len(sol.t) - 1
             pieces.append((t, float(sol.t[-1]), sol.sol, mode))
             if sol.status != 1:
                 t, y = b, sol.y[:, -1].copy()
@@ -126,7 +128,7 @@ def solve_with_scipy(d, times, forces, duration, wa0=0.0, wb0=0.0, release=None,
             out[:, j] = dense(min(tq, end))
         return out
 
-    return events, evaluate, pieces, evaluations
+    return events, evaluate, pieces, stats
 
 
 def solve_scenario_with_scipy(scenario, method="RK45", rtol=None, atol=None, dense=False):
