@@ -17,9 +17,10 @@ from __future__ import annotations
 import equinox as eqx
 import jax.numpy as jnp
 
-from .model import LOCKED, OPEN, SLIP_BACKWARD, SLIP_FORWARD, Drivetrain
+from .model import LOCKED, OPEN, SLIP_BACKWARD, SLIP_FORWARD, STICK_TOLERANCE, Drivetrain
 
 MOTOR_SPEED, OUTPUT_SPEED, LOAD_POSITION, CLUTCH_ENERGY, MOTOR_WORK = range(5)
+
 STATE_SIZE = 5
 
 # Event kinds, stored as codes in the compiled loop and as strings in the output.
@@ -68,10 +69,15 @@ def locked_torque(drivetrain: Drivetrain, speed, drum_held):
     return motor_torque - drivetrain.motor_inertia * locked_acceleration(drivetrain, motor_torque, drum_held)
 
 
+def holding_capacity(drivetrain: Drivetrain, force):
+    """The static capacity with the stick tolerance: what a locked clutch is allowed to carry."""
+    return drivetrain.static_capacity(force) * (1.0 + STICK_TOLERANCE)
+
+
 def static_check(drivetrain: Drivetrain, segment: Segment, t, speed):
     """Mode at zero slip: locked if the static capacity holds the locked torque, else slip its way."""
     torque = locked_torque(drivetrain, speed, segment.drum_held)
-    capacity = drivetrain.static_capacity(segment.engagement_force(t))
+    capacity = holding_capacity(drivetrain, segment.engagement_force(t))
     return jnp.where(jnp.abs(torque) <= capacity, LOCKED,
                      jnp.where(torque > 0, SLIP_FORWARD, SLIP_BACKWARD))
 
@@ -135,7 +141,7 @@ def slip_guard(t, y, args, **kwargs):
 def _capacity_margin(sign, t, y, args):
     drivetrain, segment, mode = args[:3]
     torque = locked_torque(drivetrain, y[MOTOR_SPEED], segment.drum_held)
-    capacity = drivetrain.static_capacity(segment.engagement_force(t))
+    capacity = holding_capacity(drivetrain, segment.engagement_force(t))
     return jnp.where(mode == LOCKED, capacity - sign * torque, 1.0)
 
 
@@ -167,9 +173,25 @@ def load_turnaround_guard(t, y, args, **kwargs):
     return jnp.where(args[3], -y[OUTPUT_SPEED], 1.0)
 
 
+def slip_valley_guard(t, y, args, **kwargs):
+    """Minus the rate of the slip in its direction: falls through zero where the slip stops shrinking.
+
+    A safeguard, not an observation: with a loose tolerance one step can carry
+    the slip below zero and back (in the slipping equations) so that neither end
+    of the step shows the crossing.  The valley between is always detected; if
+    the slip there is negative, the loop re-solves with shorter steps.
+    """
+    drivetrain, segment, mode, observing = args
+    r = rates(drivetrain, mode, segment.engagement_force(t), y[MOTOR_SPEED], y[OUTPUT_SPEED], segment.drum_held)
+    s = slip_direction(mode)
+    return jnp.where((s != 0.0) & observing, -s * (r.motor_acceleration - r.output_acceleration), 1.0)
+
+
 # Switching guards come first: when two guards cross in one step, diffrax locates
 # the first in this order, and a switch must never be skipped for an observation.
-GUARDS = (slip_guard, forward_breakaway_guard, backward_breakaway_guard, slip_peak_guard, load_turnaround_guard)
+GUARDS = (slip_guard, forward_breakaway_guard, backward_breakaway_guard, slip_peak_guard, load_turnaround_guard,
+          slip_valley_guard)
+SLIP_VALLEY = 5  # index of the valley guard
 SWITCH_GUARDS = 3
 
 

@@ -25,6 +25,7 @@ from .model import (
     OPEN,
     SLIP_BACKWARD,
     SLIP_FORWARD,
+    STICK_TOLERANCE,
     Drivetrain,
     ForceSchedule,
     Machine,
@@ -235,7 +236,8 @@ class _Hoist:
             else:
                 motor = output = self.lag(self.Ja + self.Jb, self.C0 - self.TL, 0.0, wa)
             torque = self.locked_torque(motor, held)
-            capacity = ExpPoly.poly(self.fs * self.c * force, self.fs * self.c * slope)
+            hold = self.fs * self.c * (1.0 + STICK_TOLERANCE)  # a clutch at its limit holds
+            capacity = ExpPoly.poly(hold * force, hold * slope)
             guards = ((capacity - torque, SLIP_FORWARD, "unlock"),
                       (capacity + torque, SLIP_BACKWARD, "unlock"))
             slip_power = ExpPoly()
@@ -255,7 +257,7 @@ class _Hoist:
     def static_mode(self, w, force, held):
         """Mode at zero slip: locked if the static capacity holds the locked torque."""
         torque = self.locked_torque(w, held)
-        if abs(torque) <= self.fs * self.c * force:
+        if abs(torque) <= self.fs * self.c * force * (1.0 + STICK_TOLERANCE):
             return LOCKED
         return SLIP_FORWARD if torque > 0.0 else SLIP_BACKWARD
 

@@ -144,6 +144,7 @@ class _Carry(eqx.Module):
     log_mode: jax.Array
     log_margin: jax.Array
     observations: jax.Array
+    step_cap: jax.Array  # s: the largest step allowed (inf but while re-solving a missed crossing)
     # running extremes of the run, for its summary (exact: every extremum is a row)
     peak_torque: jax.Array
     peak_slip: jax.Array
@@ -207,10 +208,11 @@ def _apply_event(plan: Plan, segment: cm.Segment, c: _Carry, t, y, mask, hit) ->
     dt = plan.drivetrain
     slip_hit, forward_hit = mask[0], mask[1]
     observed = mask[3] | mask[4]
+    valley = mask[cm.SLIP_VALLEY]  # a slip valley above zero: nothing happened, go on
     c = _record(c, observed, t, jnp.where(mask[3], cm.SLIP_PEAK, cm.LOAD_LOWEST), y, c.mode,
                 _margin(plan, segment, t, y[cm.MOTOR_SPEED]))
-    c = eqx.tree_at(lambda k: k.observations, c, c.observations + observed)
-    hit = hit & ~observed
+    c = eqx.tree_at(lambda k: k.observations, c, c.observations + (observed | valley))
+    hit = hit & ~observed & ~valley
     # Sides that meet move on together: both take the speed that keeps their
     # angular momentum (or stay still when the brake holds the drum).
     common = (dt.motor_inertia * y[cm.MOTOR_SPEED] + dt.output_inertia * y[cm.OUTPUT_SPEED]) / (
@@ -250,7 +252,7 @@ def _solve_segment(plan: Plan, segment: cm.Segment, c: _Carry, solver):
         # Two save lists: after an event diffrax writes the final value right after
         # the last grid value it kept, so the end of the solve gets a list of its own.
         saveat=diffrax.SaveAt(subs=[diffrax.SubSaveAt(ts=save_times), diffrax.SubSaveAt(t1=True)]),
-        stepsize_controller=diffrax.PIDController(rtol=plan.rtol, atol=plan.atol),
+        stepsize_controller=diffrax.PIDController(rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap),
         event=event,
         max_steps=MAX_STEPS_PER_SEGMENT,
         adjoint=diffrax.ForwardMode(),
@@ -262,31 +264,42 @@ def _step(plan: Plan, solver, c: _Carry) -> _Carry:
     segment = segment_from(plan, c.t)
     c = _scheduled_switches(plan, segment, c)
     c = _note(plan, segment, c, c.t, c.y, c.mode)
+    start_t, start_y = c.t, c.y
     sol = _solve_segment(plan, segment, c, solver)
 
     (_, (t_end,)), (grid_values, (y_end,)) = sol.ts, sol.ys
     hit = sol.result == diffrax.RESULTS.event_occurred
     failed = ~(hit | (sol.result == diffrax.RESULTS.successful))
-    rows = (plan.grid >= c.t) & (plan.grid < t_end)
+    mask = [jnp.asarray(m) & hit for m in sol.event_mask]
+    # A slip valley below zero: the crossing fell inside one step and was missed.
+    # Throw this pass away and solve again from its start with steps capped well
+    # below the dip's length, so that a step ends inside it.
+    s = cm.slip_direction(c.mode)
+    missed = mask[cm.SLIP_VALLEY] & (s * (y_end[cm.MOTOR_SPEED] - y_end[cm.OUTPUT_SPEED]) < 0)
+    kept = ~missed
+    mask = [m & kept for m in mask]
+    rows = (plan.grid >= c.t) & (plan.grid < t_end) & kept
     grid_state = jnp.where(rows[:, None], grid_values, c.grid_state)
     grid_mode = jnp.where(rows, c.mode, c.grid_mode)
     slipping = (c.mode == cm.SLIP_FORWARD) | (c.mode == cm.SLIP_BACKWARD)
-    c = _note(plan, segment, c, t_end, y_end, c.mode)
+    y_end = jnp.where(missed, start_y, y_end)
+    t_reached = jnp.where(missed, start_t, t_end)
+    c = _note(plan, segment, c, t_reached, y_end, c.mode)
     c = eqx.tree_at(
         lambda k: (k.slip_time, k.grid_state, k.grid_mode, k.steps, k.rejected, k.segments),
         c,
-        (c.slip_time + jnp.where(slipping & ~failed, t_end - c.t, 0.0), grid_state, grid_mode, c.steps + sol.stats["num_steps"],
-         c.rejected + sol.stats["num_rejected_steps"], c.segments + 1),
+        (c.slip_time + jnp.where(slipping & ~failed & kept, t_end - c.t, 0.0), grid_state, grid_mode,
+         c.steps + sol.stats["num_steps"], c.rejected + sol.stats["num_rejected_steps"], c.segments + 1),
     )
-    mask = [jnp.asarray(m) & hit for m in sol.event_mask]
-    c = _apply_event(plan, segment, eqx.tree_at(lambda k: k.y, c, y_end), t_end, y_end, mask, hit)
-    c = _note(plan, segment, c, t_end, c.y, c.mode)
+    c = _apply_event(plan, segment, eqx.tree_at(lambda k: k.y, c, y_end), t_end, y_end, mask, hit & kept)
+    c = _note(plan, segment, c, t_reached, c.y, c.mode)
     status = jnp.where(failed, SOLVER_FAILED,
                        jnp.where(c.switches > plan.max_switches, CHATTERING, c.status))
     return eqx.tree_at(
-        lambda k: (k.t, k.at_boundary, k.status),
+        lambda k: (k.t, k.at_boundary, k.status, k.step_cap),
         c,
-        (t_end, ~hit | (t_end >= segment.end), status),
+        (t_reached, kept & (~hit | (t_end >= segment.end)), status,
+         jnp.where(missed, (t_end - start_t) / 8.0, jnp.inf)),
     )
 
 
@@ -314,6 +327,7 @@ def _run(plan: Plan, solver, max_segments: int, log_size: int) -> RawRun:
         log_mode=jnp.full((log_size,), -1),
         log_margin=jnp.full((log_size,), nan),
         observations=jnp.array(0),
+        step_cap=jnp.full((), jnp.inf),
         peak_torque=jnp.zeros(()),
         peak_slip=jnp.zeros(()),
         lowest_position=jnp.zeros(()),

@@ -24,6 +24,15 @@ from .scenario import Scenario
 
 # Clutch modes.  Integers so that they can be traced and stored.
 LOCKED, SLIP_FORWARD, SLIP_BACKWARD, OPEN = 0, 1, 2, 3
+
+# A clutch exactly at its static limit holds (|T_c| <= T_s).  Computed in floating
+# point, a torque that equals the capacity wanders by a few ulps either side of
+# it, and a steady lift at the limit would break away on round-off.  The capacity
+# is therefore taken 1e-12 larger (relative) for every sticking decision and
+# breakaway guard; that moves a genuine breakaway by ~1e-12 of its torque ramp's
+# time scale, far inside any solver tolerance.
+STICK_TOLERANCE = 1e-12
+
 MODE_NAMES = {LOCKED: "locked", SLIP_FORWARD: "slipping+", SLIP_BACKWARD: "slipping-", OPEN: "open"}
 
 
