@@ -17,7 +17,7 @@ from __future__ import annotations
 import equinox as eqx
 import jax.numpy as jnp
 
-from .model import LOCKED, OPEN, SLIP_BACKWARD, SLIP_FORWARD, STICK_TOLERANCE, Drivetrain
+from .model import LOCKED, OPEN, SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STICK_TOLERANCE, Drivetrain
 
 MOTOR_SPEED, OUTPUT_SPEED, LOAD_POSITION, CLUTCH_ENERGY, MOTOR_WORK = range(5)
 
@@ -125,17 +125,23 @@ def vector_field(t, y, args):
 # Guards: positive inside their mode, an event where they fall to zero.  Outside
 # their mode they are a constant 1 and never fire.  ``args`` is (drivetrain,
 # segment, mode, observing); ``observing`` switches the observation guards off
-# once their budget is spent.  A guard that is exactly zero
-# at a restart (slip right after an unlock) cannot fire: diffrax needs a strictly
-# positive value before a non-positive one.
+# once their budget is spent.  diffrax needs a strictly positive value before a
+# non-positive one, so a guard that is exactly zero at a restart cannot fire.
 
 
 def slip_guard(t, y, args, **kwargs):
-    """Slip speed in the direction of slip: reaches 0 when the two sides meet."""
+    """Slip speed in the direction of slip, plus a negligible slip: reaches 0 when the two sides meet.
+
+    After an unlock or a reversal the slip restarts at exactly zero.  Were the
+    guard zero there too, an excursion that returns within the first step would
+    go unseen (the crossing test needs a positive value first); offset by the
+    slip resolution (~3e-14 rad/s) the guard starts positive.  It cannot fire at
+    once: the stick tolerance makes the slip grow the right way from a restart.
+    """
     drivetrain, segment, mode = args[:3]
     slip = y[MOTOR_SPEED] - y[OUTPUT_SPEED]
     s = slip_direction(mode)
-    return jnp.where(s != 0.0, s * slip, 1.0)
+    return jnp.where(s != 0.0, s * slip + SLIP_RESOLUTION * drivetrain.no_load_speed, 1.0)
 
 
 def _capacity_margin(sign, t, y, args):

@@ -25,6 +25,7 @@ from .model import (
     OPEN,
     SLIP_BACKWARD,
     SLIP_FORWARD,
+    SLIP_RESOLUTION,
     STICK_TOLERANCE,
     Drivetrain,
     ForceSchedule,
@@ -262,12 +263,18 @@ class _Hoist:
         return SLIP_FORWARD if torque > 0.0 else SLIP_BACKWARD
 
     def decide(self, wa, wb, force_start, force_end, held):
-        """Mode at a scheduled boundary, from the coming segment's force and brake."""
+        """Mode at a scheduled boundary, from the coming segment's force and brake, and the speeds then.
+
+        A slip within SLIP_RESOLUTION of the no-load speed is no slip: the sides
+        are merged (momentum kept) if the clutch holds.
+        """
         if force_start == 0.0 and force_end == 0.0:
-            return OPEN
-        if wa != wb:  # exact test: after a lock both speeds are the same float
-            return SLIP_FORWARD if wa > wb else SLIP_BACKWARD
-        return self.static_mode(wa, force_start, held)
+            return OPEN, wa, wb
+        if abs(wa - wb) > SLIP_RESOLUTION * self.w0:  # after a lock both speeds are the same float
+            return (SLIP_FORWARD if wa > wb else SLIP_BACKWARD), wa, wb
+        common = 0.0 if held else (self.Ja * wa + self.Jb * wb) / (self.Ja + self.Jb)
+        mode = self.static_mode(common, force_start, held)
+        return (mode, common, common) if mode == LOCKED else (mode, wa, wb)
 
 
 def _segment_force(times, forces, a, b):
@@ -361,7 +368,7 @@ def solve_exact(drivetrain, force_times, force_forces, duration, *, initial_moto
     for a, b in zip(cuts[:-1], cuts[1:]):
         force0, slope = _segment_force(times, forces, a, b)
         held = held_from(a)
-        new_mode = hoist.decide(wa, wb, force0, force0 + slope * (b - a), held)
+        new_mode, wa, wb = hoist.decide(wa, wb, force0, force0 + slope * (b - a), held)
         if release is not None and a == release:
             record(a, "brake_release", new_mode)
         if mode is None:

@@ -19,7 +19,7 @@ import jax.numpy as jnp
 
 from . import clutch_modes as cm
 from ._pytree import pytree_dataclass
-from .model import LOCKED, OPEN, Drivetrain, force_at
+from .model import LOCKED, OPEN, SLIP_RESOLUTION, Drivetrain, force_at
 from .rootfind import CrossingBisection
 from .series import drum_held, row_outputs
 
@@ -118,11 +118,26 @@ def segment_from(plan: Plan, t0) -> cm.Segment:
 
 
 def decide_at_boundary(plan: Plan, segment: cm.Segment, t, y):
-    """Mode at a scheduled boundary: open with no force, else by slip sign, else the static check."""
+    """Mode at a scheduled boundary: open with no force, else by slip sign, else the static check.
+
+    Returns the mode and the state, whose speeds are made one when a (negligible)
+    slip is declared locked.
+    """
     slip = y[cm.MOTOR_SPEED] - y[cm.OUTPUT_SPEED]
-    static = cm.static_check(plan.drivetrain, segment, t, y[cm.MOTOR_SPEED])
-    mode = jnp.where(slip > 0, cm.SLIP_FORWARD, jnp.where(slip < 0, cm.SLIP_BACKWARD, static))
-    return jnp.where(segment.is_open, OPEN, mode)
+    tiny = SLIP_RESOLUTION * plan.drivetrain.no_load_speed
+    common = _common_speed(plan.drivetrain, segment, y)
+    static = cm.static_check(plan.drivetrain, segment, t, common)
+    mode = jnp.where(slip > tiny, cm.SLIP_FORWARD, jnp.where(slip < -tiny, cm.SLIP_BACKWARD, static))
+    mode = jnp.where(segment.is_open, OPEN, mode)
+    met = y.at[cm.MOTOR_SPEED].set(common).at[cm.OUTPUT_SPEED].set(common)
+    return mode, jnp.where(mode == LOCKED, met, y)
+
+
+def _common_speed(drivetrain, segment: cm.Segment, y):
+    """The speed two sides take when they meet: momentum kept, or still while the brake holds."""
+    common = (drivetrain.motor_inertia * y[cm.MOTOR_SPEED] + drivetrain.output_inertia * y[cm.OUTPUT_SPEED]) / (
+        drivetrain.motor_inertia + drivetrain.output_inertia)
+    return common if segment.drum_held is None else jnp.where(segment.drum_held, 0.0, common)
 
 
 class _Carry(eqx.Module):
@@ -195,7 +210,9 @@ def _scheduled_switches(plan: Plan, segment: cm.Segment, c: _Carry) -> _Carry:
             code = cm.EVENT_KINDS.index(kind)
             c = _record(c, c.at_boundary & happens, c.t, code, c.y, c.mode,
                         _margin(plan, segment, c.t, c.y[cm.MOTOR_SPEED]))
-    new_mode = jnp.where(c.at_boundary, decide_at_boundary(plan, segment, c.t, c.y), c.mode)
+    decided, decided_y = decide_at_boundary(plan, segment, c.t, c.y)
+    new_mode = jnp.where(c.at_boundary, decided, c.mode)
+    c = eqx.tree_at(lambda k: k.y, c, jnp.where(c.at_boundary, decided_y, c.y))
     # The first decision (t = 0) sets the initial mode; it is not an event.
     kind = cm.transition_kind(jnp.where(c.segments == 0, -1, c.mode), new_mode)
     switched = c.at_boundary & (kind != cm.NO_EVENT)
@@ -215,10 +232,7 @@ def _apply_event(plan: Plan, segment: cm.Segment, c: _Carry, t, y, mask, hit) ->
     hit = hit & ~observed & ~valley
     # Sides that meet move on together: both take the speed that keeps their
     # angular momentum (or stay still when the brake holds the drum).
-    common = (dt.motor_inertia * y[cm.MOTOR_SPEED] + dt.output_inertia * y[cm.OUTPUT_SPEED]) / (
-        dt.motor_inertia + dt.output_inertia)
-    if segment.drum_held is not None:
-        common = jnp.where(segment.drum_held, 0.0, common)
+    common = _common_speed(dt, segment, y)
     met = y.at[cm.MOTOR_SPEED].set(common).at[cm.OUTPUT_SPEED].set(common)
     y = jnp.where(slip_hit, met, y)
     after_meeting = cm.static_check(dt, segment, t, common)

@@ -33,6 +33,12 @@ LOCKED, SLIP_FORWARD, SLIP_BACKWARD, OPEN = 0, 1, 2, 3
 # time scale, far inside any solver tolerance.
 STICK_TOLERANCE = 1e-12
 
+# A slip below this fraction of the no-load speed is no slip at all when the mode
+# is decided at a boundary (and at t = 0).  Without it a slip of 1e-312 rad/s, a
+# subnormal number that XLA flushes to zero but numpy keeps, would decide between
+# sticking and slipping.  4 eps: the round-off of a speed of order omega0.
+SLIP_RESOLUTION = 4 * 2.220446049250313e-16
+
 MODE_NAMES = {LOCKED: "locked", SLIP_FORWARD: "slipping+", SLIP_BACKWARD: "slipping-", OPEN: "open"}
 
 
