@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import copy
 import math
+import os
 
 import numpy as np
 from hypothesis import HealthCheck, given, settings
@@ -21,7 +22,9 @@ from scenes import EXERCISE6
 from hoistsim import exact_from_scenario, scenario_from_dict, simulate
 from hoistsim.model import STICK_TOLERANCE, Machine
 
-SETTINGS = settings(max_examples=100, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+# 100 random scenes a property in CI; HOISTSIM_PROPERTY_EXAMPLES=400 for a deeper search by hand.
+SETTINGS = settings(max_examples=int(os.environ.get("HOISTSIM_PROPERTY_EXAMPLES", "100")), deadline=None,
+                    suppress_health_check=[HealthCheck.too_slow])
 
 
 def build(force, mass, motor_rpm, drum_rpm, fs, fk_share, duration="1 s"):
