@@ -371,8 +371,10 @@ def scenario_from_text(text: str, source: str = "<scenario>",
     for key, values in (scenario.sweep or {}).items():
         if key in scenario._overridden:
             raise ScenarioError(key, "is swept in the file (sweep:); --set cannot also set it", source="--set")
-        values, labels = _expand_range(key, values, source, _line_of(tree, ("sweep", key)))
-        runs = _check_sweep(raw, key, values, tree, source)
+        # a sweep given on the command line has no line in the file
+        where, lines = ("--sweep", None) if sweeps else (source, tree)
+        values, labels = _expand_range(key, values, where, _line_of(lines, ("sweep", key)))
+        runs = _check_sweep(raw, key, values, lines, where)
         scenario._sweep_values[key] = values
         scenario._sweep_labels[key] = labels
         if len(scenario.sweep) == 1:
@@ -478,6 +480,8 @@ def parse_sweep(assignment: str) -> tuple[str, Any]:
         raise ScenarioError("--sweep", f"expected KEY=V1,V2,... or KEY=FROM:TO:COUNT, got {assignment!r}")
     key, text = (part.strip() for part in assignment.split("=", 1))
     _check_key(key, "--sweep")
+    if not text:
+        raise ScenarioError(key, f"needs values, like {key}=V1,V2 or {key}=FROM:TO:COUNT", source="--sweep")
     if text.startswith("["):
         values = parse_override(f"{key}={text}")[1]
     elif text.count(":") == 2:

@@ -130,3 +130,29 @@ def test_python_api_for_notebooks(tmp_path):
     assert len(result) == 1 and result.runs[0].summary["lock_events"] == 1
     result.to_hdf5(tmp_path / "one.h5")
     assert result.summary["slip_energy"].shape == (1,)
+
+
+@pytest.mark.parametrize("spec, words", [
+    ("clutch.engagement_force=1 kN:9 kg:5", "cannot make a range"),
+    ("clutch.engagement_force=1 kN:9 kN:x", "whole number"),
+    ("clutch.engagement_force=1 kN:9 kN:0", "from 1 to 1000000"),
+    ("clutch.engagement_force=[1 kN, 2 kg]", "value 2 (2 kg): expected a force"),
+    ("load.mas=1 kg,2 kg", "did you mean load.mass?"),
+    ("clutch.engagement_force=", "needs values"),
+])
+def test_bad_sweep_on_the_command_line_is_one_line_naming_sweep(tmp_path, spec, words):
+    out = tmp_path / "never.h5"
+    result = CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(out), "--sweep", spec])
+    assert result.exit_code == 2
+    lines = result.output.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("hoistsim: error: --sweep: ") and words in lines[0], lines
+    assert not out.exists()
+
+
+def test_range_in_a_file_needs_from_to_and_count(tmp_path):
+    text = SWEEP_FILE.read_text().replace("{from: 3 kN, to: 12 kN, count: 10}", "{from: 3 kN, to: 12 kN}")
+    path = tmp_path / "range.yaml"
+    path.write_text(text)
+    result = CliRunner().invoke(main, ["run", str(path), "-o", str(tmp_path / "x.h5")])
+    line = next(i for i, row in enumerate(text.splitlines(), 1) if "{from: 3 kN" in row)
+    assert result.exit_code == 2 and f"range.yaml:{line}: sweep.clutch.engagement_force:" in result.output
