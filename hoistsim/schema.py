@@ -1,0 +1,190 @@
+"""The scenario schema: one pydantic model per YAML section, values in SI.
+
+Checks that involve one section live on its model; loading, overrides, sweeps
+and the error messages are in :mod:`.scenario`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, PrivateAttr, model_validator
+
+from . import units as u
+from .errors import ScenarioError
+from .units import EngagementForce, FreeText, Text
+from .yamlsource import copy_plain
+
+SOLVERS = ("tsit5", "dopri5", "dopri8", "bosh3", "heun", "kvaerno3", "kvaerno5")
+
+
+# --------------------------------------------------------------------------------------
+# the schema: one model per section
+
+
+class Section(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+
+
+class MotorSpec(Section):
+    stall_torque: u.quantity(u.TORQUE, gt=0.0)  # C0, torque at standstill
+    no_load_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0)  # omega0, where the torque reaches 0
+    inertia: u.quantity(u.INERTIA, gt=0.0) | None = None
+    rotor_mass: u.quantity(u.MASS, gt=0.0) | None = None
+    radius_of_gyration: u.quantity(u.LENGTH, gt=0.0) | None = None
+
+    @model_validator(mode="after")
+    def _one_inertia(self):
+        by_geometry = self.rotor_mass is not None or self.radius_of_gyration is not None
+        if self.inertia is not None and by_geometry:
+            raise ScenarioError("motor.inertia", "give either inertia or rotor_mass + radius_of_gyration, not both")
+        if self.inertia is None and not (self.rotor_mass is not None and self.radius_of_gyration is not None):
+            missing = "motor.inertia" if not by_geometry else (
+                "motor.radius_of_gyration" if self.rotor_mass is not None else "motor.rotor_mass")
+            raise ScenarioError(missing, "required: the motor's inertia, or its rotor_mass and radius_of_gyration")
+        return self
+
+    @property
+    def moment_of_inertia(self) -> float:
+        if self.inertia is not None:
+            return self.inertia
+        return self.rotor_mass * self.radius_of_gyration**2
+
+
+class ClutchSpec(Section):
+    inner_radius: u.quantity(u.LENGTH, gt=0.0)
+    outer_radius: u.quantity(u.LENGTH, gt=0.0)
+    half_angle: u.quantity(u.ANGLE, " (the cone half-angle beta = 90 deg - delta)", gt=0.0, lt=math.pi / 2)
+    static_friction: u.quantity(u.DIMENSIONLESS, gt=0.0)
+    kinetic_friction: u.quantity(u.DIMENSIONLESS, ge=0.0)
+    surfaces: u.whole("friction surfaces") = 1
+    engagement_force: EngagementForce
+    mean_radius: Literal["uniform_wear", "uniform_pressure"] = "uniform_wear"
+    driving_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0  # clutch half on the motor shaft
+    driven_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0  # clutch half on the pinion shaft
+
+    @model_validator(mode="after")
+    def _consistent(self):
+        if self.kinetic_friction > self.static_friction:
+            raise ScenarioError("clutch.kinetic_friction", f"must not exceed static_friction "
+                                f"({self.static_friction:g}), got {self.kinetic_friction:g}")
+        if self.inner_radius >= self.outer_radius:
+            raise ScenarioError("clutch.inner_radius", f"must be less than outer_radius "
+                                f"({self.outer_radius:g} m), got {self.inner_radius:g} m")
+        return self
+
+
+class GearSpec(Section):
+    pinion_teeth: u.whole("teeth")
+    wheel_teeth: u.whole("teeth")
+    module: u.quantity(u.LENGTH, gt=0.0)
+    pressure_angle: u.quantity(u.ANGLE, gt=0.0, lt=math.pi / 2) = math.radians(20.0)
+    pinion_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0
+    wheel_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0
+
+
+class DrumSpec(Section):
+    diameter: u.quantity(u.LENGTH, gt=0.0)
+    inertia: u.quantity(u.INERTIA, gt=0.0)
+
+
+class LoadSpec(Section):
+    mass: u.quantity(u.MASS, ge=0.0)
+
+
+class InitialSpec(Section):
+    motor_speed: u.quantity(u.ANGULAR_SPEED) = 0.0
+    drum_speed: u.quantity(u.ANGULAR_SPEED) = 0.0
+    # Start already lifting at the steady locked speed, where the motor torque
+    # equals the load torque: the constant-speed condition of the exercise.
+    steady_lift: bool = False
+
+    @model_validator(mode="after")
+    def _one_way_to_start(self):
+        if self.steady_lift and "motor_speed" in self.model_fields_set:
+            raise ScenarioError("initial.motor_speed", "give either steady_lift: true or the speeds, not both")
+        if self.steady_lift and "drum_speed" in self.model_fields_set:
+            raise ScenarioError("initial.drum_speed", "give either steady_lift: true or the speeds, not both")
+        return self
+
+
+class BrakeSpec(Section):
+    release_time: u.quantity(u.TIME, ge=0.0)  # the holding brake frees the drum at this time
+
+
+class BearingsSpec(Section):
+    gear_offset: u.quantity(u.LENGTH, gt=0.0)  # a: bearing A to the gear, away from B
+    rope_offset: u.quantity(u.LENGTH, gt=0.0)  # bearing A to the rope, towards B
+    span: u.quantity(u.LENGTH, gt=0.0)  # bearing A to bearing B
+
+
+class SimulationSpec(Section):
+    duration: u.quantity(u.TIME, gt=0.0)
+    output_interval: u.quantity(u.TIME, gt=0.0)
+    rtol: u.quantity(u.DIMENSIONLESS, gt=0.0, lt=1.0) = 1e-8
+    atol: u.quantity(u.DIMENSIONLESS, gt=0.0) = 1e-10
+    solver: Literal[SOLVERS] = "tsit5"  # type: ignore[valid-type]
+    max_switches: u.whole("mode switches") = 200  # before a run is declared chattering
+
+    @model_validator(mode="after")
+    def _grid(self):
+        if self.output_interval > self.duration:
+            raise ScenarioError("simulation.output_interval", f"must not exceed the duration "
+                                f"({self.duration:g} s), got {self.output_interval:g} s")
+        if self.duration / self.output_interval > 2_000_000:
+            raise ScenarioError("simulation.output_interval", f"gives {self.duration / self.output_interval:.3g} "
+                                "output rows; at most 2e6 are allowed")
+        return self
+
+
+class Scenario(Section):
+    name: Text
+    description: FreeText = ""
+    motor: MotorSpec
+    clutch: ClutchSpec
+    gears: GearSpec
+    drum: DrumSpec
+    load: LoadSpec
+    gravity: u.quantity(u.ACCELERATION, ge=0.0) = 9.81
+    initial: InitialSpec = InitialSpec()
+    brake: BrakeSpec | None = None
+    bearings: BearingsSpec | None = None
+    simulation: SimulationSpec
+    sweep: dict[str, Any] | None = None  # checked by _check_sweep
+
+    _raw: dict = PrivateAttr(default_factory=dict)
+    _text: str = PrivateAttr(default="")
+    _source: str = PrivateAttr(default="<scenario>")
+    _overridden: set = PrivateAttr(default_factory=set)
+    _sweep_values: dict = PrivateAttr(default_factory=dict)  # key -> values, ranges expanded
+    _sweep_labels: dict = PrivateAttr(default_factory=dict)  # key -> each value as the user reads it
+    _sweep_runs: list = PrivateAttr(default_factory=list)  # validated runs of a one-key sweep
+
+    @model_validator(mode="after")
+    def _brake_holds_still_drum(self):
+        if self.brake is not None and self.initial.drum_speed != 0.0:
+            raise ScenarioError("initial.drum_speed",
+                                "must be 0 when a holding brake (brake:) keeps the drum still at the start")
+        if self.brake is not None and self.initial.steady_lift:
+            raise ScenarioError("initial.steady_lift", "a steady lift cannot start with the brake holding the drum")
+        return self
+
+    @property
+    def text(self) -> str:
+        """The scenario as read, with command-line overrides noted."""
+        return self._text
+
+    @property
+    def source(self) -> str:
+        return self._source
+
+    @property
+    def raw(self) -> dict:
+        """The scenario as plain data (before unit conversion), overrides applied."""
+        return copy_plain(self._raw)
+
+    def resolved(self) -> dict:
+        """The scenario in SI numbers, as JSON-friendly data."""
+        return json.loads(self.model_dump_json(exclude={"sweep"}))
