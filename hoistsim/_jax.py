@@ -7,13 +7,7 @@ from __future__ import annotations
 
 import os
 
-# Equinox's runtime checks run as host callbacks, and XLA will not keep a
-# program with host callbacks in the persistent cache.  With "nan" a failed
-# check poisons the result instead; hoistsim checks each run's status and
-# values explicitly.  Must be set before equinox is first imported.
-os.environ.setdefault("EQX_ON_ERROR", "nan")
-
-import jax  # noqa: E402
+import jax
 
 jax.config.update("jax_enable_x64", True)
 
@@ -23,6 +17,10 @@ _executables: str | None = None  # folder of serialised executables, when the ca
 
 def enable_compilation_cache() -> None:
     """Keep compiled solvers on disk, so a second `hoistsim run` skips compilation.
+
+    XLA keeps no program with host callbacks in the cache, and equinox's runtime
+    checks are host callbacks unless EQX_ON_ERROR=nan, which the command line
+    sets before equinox is imported (hoistsim checks each run's status itself).
 
     The directory is HOISTSIM_CACHE_DIR, else ~/.cache/hoistsim/jax; setting
     HOISTSIM_CACHE_DIR to an empty string turns the cache off.
