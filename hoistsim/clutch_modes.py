@@ -198,7 +198,6 @@ def slip_valley_guard(t, y, args, **kwargs):
 GUARDS = (slip_guard, forward_breakaway_guard, backward_breakaway_guard, slip_peak_guard, load_turnaround_guard,
           slip_valley_guard)
 SLIP_VALLEY = 5  # index of the valley guard
-SWITCH_GUARDS = 3
 
 
 def transition_kind(previous, new):

@@ -19,6 +19,7 @@ import jax.numpy as jnp
 
 from . import clutch_modes as cm
 from ._pytree import pytree_dataclass
+from .schema import SOLVERS as SOLVER_NAMES
 from .model import LOCKED, OPEN, SLIP_RESOLUTION, Drivetrain, force_at
 from .rootfind import CrossingBisection
 from .series import drum_held, row_outputs
@@ -31,15 +32,8 @@ STATUS_TEXT = {
     TOO_MANY_SEGMENTS: "too many segments",
 }
 
-SOLVERS = {
-    "tsit5": diffrax.Tsit5,
-    "dopri5": diffrax.Dopri5,
-    "dopri8": diffrax.Dopri8,
-    "bosh3": diffrax.Bosh3,
-    "heun": diffrax.Heun,
-    "kvaerno3": diffrax.Kvaerno3,
-    "kvaerno5": diffrax.Kvaerno5,
-}
+# The names a scenario accepts (schema.SOLVERS) are diffrax's class names in lower case.
+SOLVERS = {name: getattr(diffrax, name.capitalize()) for name in SOLVER_NAMES}
 
 MAX_STEPS_PER_SEGMENT = 200_000
 

@@ -166,8 +166,6 @@ def summary_figure(summaries, swept, plt):
 
 
 def json_ratio(attrs) -> float:
-    import json
-
     gears = json.loads(attrs["parameters"])["gears"]
     return gears["wheel_teeth"] / gears["pinion_teeth"]
 

@@ -10,7 +10,7 @@ import numpy as np
 from . import _jax
 from . import clutch_modes as cm
 from .effects import effects_for
-from .hybrid import OK, STATUS_TEXT, Plan, compiled_run
+from .hybrid import CHATTERING, OK, SOLVER_FAILED, STATUS_TEXT, Plan, compiled_run
 from .model import MODE_NAMES, Machine, initial_speeds
 from .results import RunResult
 from .scenario import Scenario
@@ -93,17 +93,17 @@ def simulate(scenario: Scenario, label: str = "") -> RunResult:
 
 def _failure_message(scenario: Scenario, raw, status: int) -> str:
     name = scenario.name
-    text = STATUS_TEXT[status]
     t = float(raw.end_time)
-    if text == "chattering":
-        kinds = [cm.EVENT_KINDS[int(k)] for k in raw.event_kind[: int(raw.event_count)] if 0 <= k < 6]
+    if status == CHATTERING:
+        kinds = [cm.EVENT_KINDS[int(k)] for k in raw.event_kind[: int(raw.event_count)]]
+        kinds = [kind for kind in kinds if kind in cm.SWITCH_KINDS]
         tail = ", ".join(kinds[-4:])
         return (f"{name}: the clutch chatters: more than {scenario.simulation.max_switches} mode switches "
                 f"by t = {t:.6g} s (last: {tail}); raise simulation.max_switches if this is real")
-    if text == "solver failed":
+    if status == SOLVER_FAILED:
         return (f"{name}: the {scenario.simulation.solver} solver failed at t = {t:.6g} s "
                 f"(step size or step count limit); try a looser rtol or another solver")
-    return f"{name}: the run stopped at t = {t:.6g} s: {text}"
+    return f"{name}: the run stopped at t = {t:.6g} s: {STATUS_TEXT[status]}"
 
 
 def _result(scenario: Scenario, label: str, plan: Plan, grid: np.ndarray, raw, elapsed: float) -> RunResult:
@@ -130,7 +130,7 @@ def _result(scenario: Scenario, label: str, plan: Plan, grid: np.ndarray, raw, e
     return RunResult(
         scenario=scenario,
         label=label,
-        drivetrain=Machine.from_scenario(scenario).reduced(),
+        drivetrain=plan.drivetrain,
         time=times[keep],
         series=series,
         units=units_of(plan.effects),

@@ -144,8 +144,7 @@ def _groups(scenarios, plans) -> list[list[int]]:
     groups: dict = {}
     for i, (scenario, (plan, grid)) in enumerate(zip(scenarios, plans)):
         structure = jax.tree.structure(plan.effects)
-        key = (scenario.simulation.solver, structure, tuple(np.asarray(plan.grid)), plan.boundaries.shape[0]
-               - plan.force_times.shape[0])
+        key = (scenario.simulation.solver, structure, np.asarray(plan.grid).tobytes())
         groups.setdefault(key, []).append(i)
     return list(groups.values())
 

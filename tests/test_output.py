@@ -118,3 +118,11 @@ def test_killed_writer_leaves_existing_file_intact(tmp_path):
     proc = subprocess.run([sys.executable, "-c", script], capture_output=True)
     assert proc.returncode == -signal.SIGKILL
     assert path.read_bytes() == b"the previous results"
+
+
+def test_run_to_xarray_has_time_coordinate_and_units(braked_run):
+    pytest.importorskip("xarray")
+    ds = braked_run.to_xarray()
+    assert ds["slip_speed"].dims == ("time",) and ds["time"].attrs["units"] == "s"
+    assert ds["brake_torque"].attrs["units"] == "N*m"
+    np.testing.assert_array_equal(ds["motor_speed"].values, braked_run["motor_speed"])

@@ -21,8 +21,3 @@ class LinearMotor:
     def torque(self, speed):
         """Motor torque (N*m) at shaft speed ``speed`` (rad/s); works on arrays."""
         return self.stall_torque * (1.0 - speed / self.no_load_speed)
-
-    @property
-    def damping(self) -> float:
-        """-dC/domega (N*m*s/rad): how fast the torque falls with speed."""
-        return self.stall_torque / self.no_load_speed
