@@ -2,6 +2,8 @@
 
 Cold: an empty cache folder (everything is traced and compiled).  Warm: the
 same command again, the compiled loop loaded from the cache; median of 5.
+Also a warm run inside one Python process (`hoistsim.simulate`, compiled once
+first): median and min of 20.
 
     python benchmarks/startup.py [SCENARIO]
 """
@@ -39,6 +41,17 @@ def main() -> None:
     print(f"warm run (median of 5):        {statistics.median(warm):.2f} s  (min {min(warm):.2f} s)")
     print(f"cache turned off (median of 3): {statistics.median(off):.2f} s")
     print(f"of which importing the CLI:     {statistics.median(bare):.2f} s")
+    from hoistsim import load_scenario, simulate
+
+    loaded = load_scenario(scenario)
+    simulate(loaded)  # compile
+    inside = []
+    for _ in range(20):
+        start = time.perf_counter()
+        simulate(loaded)
+        inside.append(time.perf_counter() - start)
+    print(f"in-process simulate (warm):     {statistics.median(inside) * 1e3:.2f} ms median, "
+          f"{min(inside) * 1e3:.2f} ms min")
 
 
 if __name__ == "__main__":
