@@ -5,7 +5,10 @@ Imported first by the package, so that every array hoistsim creates is float64.
 
 from __future__ import annotations
 
+import functools
+import hashlib
 import os
+from pathlib import Path
 
 import jax
 
@@ -41,26 +44,47 @@ def enable_compilation_cache() -> None:
     jax.config.update("jax_persistent_cache_min_entry_size_bytes", 0)
 
 
+@functools.lru_cache(maxsize=None)
+def source_digest(package: str | None = None) -> str:
+    """SHA-256 of every Python source of the package: a stored program is only as good as the code behind it.
+
+    The version number does not change with an edit; the source does.  Read once
+    per process (the package is ~100 kB).
+    """
+    root = Path(package or Path(__file__).resolve().parent)
+    digest = hashlib.sha256()
+    for path in sorted(root.rglob("*.py")):
+        digest.update(str(path.relative_to(root)).encode() + b"\0" + path.read_bytes() + b"\0")
+    return digest.hexdigest()
+
+
+@functools.lru_cache(maxsize=None)
+def _program_origin() -> tuple:
+    """What a compiled program is made from besides its arguments: our source, the libraries that trace it."""
+    from importlib.metadata import version
+
+    return (source_digest(), *(version(p) for p in ("jax", "jaxlib", "diffrax", "equinox", "optimistix")))
+
+
 def executable(jitted, *args, name: str):
     """``jitted`` compiled for ``args``, loaded from disk when a run of the same shape compiled it before.
 
     JAX's persistent cache saves the compilation but not the tracing of the
     Python loop (~0.5 s), which has to happen to find the cache key; a
     serialised executable skips both.  The key covers everything the program
-    depends on: versions, backend, the function's name and the arguments'
-    structure, shapes and dtypes.  Without the cache, the usual jit call.
+    depends on: the package's source (:func:`source_digest`), the versions of
+    the libraries that trace it, the backend, the function's name and the
+    arguments' structure, shapes and dtypes.  Without the cache, the usual jit call.
     """
     if _executables is None:
         return jitted
-    import hashlib
     import pickle
     import tempfile
-    from importlib.metadata import version
 
     from jax.experimental.serialize_executable import deserialize_and_load, serialize
 
     leaves, treedef = jax.tree.flatten(args)
-    signature = repr((name, version("hoistsim"), jax.__version__, jax.default_backend(), str(treedef),
+    signature = repr((name, _program_origin(), jax.default_backend(), str(treedef),
                       [(getattr(x, "shape", ()), str(getattr(x, "dtype", type(x)))) for x in leaves]))
     path = os.path.join(_executables, hashlib.sha256(signature.encode()).hexdigest() + ".bin")
     try:

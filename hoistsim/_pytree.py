@@ -1,8 +1,10 @@
 """Frozen dataclasses that are JAX pytrees: cheap to build on the host by the thousand.
 
-The reduced model, the plan of a run and the effects are built once per run
-of a sweep; an equinox module costs ~75 us to construct, a registered frozen
-dataclass ~1 us.  Every field is data (a leaf or a subtree).
+The plan of a run and its elements are built once per run of a sweep; an
+equinox module costs ~75 us to construct, a registered frozen dataclass ~1 us.
+Every field is data (a leaf or a subtree) unless it is declared with
+:func:`static`: then it is part of the structure (a shaft's name, say), so two
+values of it compile two programs.
 """
 
 from __future__ import annotations
@@ -11,9 +13,18 @@ import dataclasses
 
 import jax
 
+_STATIC = "hoistsim_static"
+
+
+def static(default=dataclasses.MISSING):
+    """A field that is structure, not a traced number."""
+    return dataclasses.field(default=default, metadata={_STATIC: True})
+
 
 def pytree_dataclass(cls):
-    """Make ``cls`` a frozen dataclass whose fields are all pytree children."""
+    """Make ``cls`` a frozen dataclass whose fields are pytree children, except the static ones."""
     cls = dataclasses.dataclass(frozen=True)(cls)
-    names = [f.name for f in dataclasses.fields(cls)]
-    return jax.tree_util.register_dataclass(cls, data_fields=names, meta_fields=[])
+    fields = dataclasses.fields(cls)
+    data = [f.name for f in fields if not f.metadata.get(_STATIC)]
+    meta = [f.name for f in fields if f.metadata.get(_STATIC)]
+    return jax.tree_util.register_dataclass(cls, data_fields=data, meta_fields=meta)

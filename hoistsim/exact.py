@@ -9,6 +9,13 @@ position, clutch energy, motor work) is therefore a short sum of terms
 segment are the first roots of such sums, refined to machine precision, so the
 result is a reference for the numerical hybrid solver, not another
 approximation of it.
+
+Covers the canonical scene and what reduces to it: a linear motor, the cone
+clutch with a piecewise-linear engagement force, the gear pair, the drum, a
+rigid hanging load, the holding brake and a flywheel on either shaft (through
+:mod:`hoistsim.model`'s own reduction, not the elements').  Other motor
+characteristics are checked against independent answers of their own
+(``tests/test_elements.py``).
 """
 
 from __future__ import annotations
@@ -424,3 +431,19 @@ def exact_from_scenario(scenario) -> ExactSolution:
         initial_output_speed=output_speed,
         brake_release=brake.release_time if brake else None,
     )
+
+
+def clutch_torque(drivetrain, mode, force, motor_speed, held):
+    """Torque through the clutch (N*m) in the closed form's terms, at rows of (mode, force, motor speed, held).
+
+    Locked: what the motor torque does not spend on the motor's own inertia
+    ((J_b C + J_a T_L)/(J_a + J_b), or C itself while the brake holds the drum);
+    slipping: the kinetic torque in the slip's direction; open: 0.
+    """
+    hoist = _Hoist(drivetrain)
+    mode, force = np.asarray(mode), np.asarray(force, float)
+    motor_speed, held = np.asarray(motor_speed, float), np.asarray(held, bool)
+    locked = np.where(held, hoist.motor_torque(motor_speed), hoist.locked_torque(motor_speed, False))
+    kinetic = hoist.fk * hoist.c * force
+    return np.where(mode == LOCKED, locked, np.where(mode == SLIP_FORWARD, kinetic,
+                                                     np.where(mode == SLIP_BACKWARD, -kinetic, 0.0)))

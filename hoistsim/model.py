@@ -1,4 +1,4 @@
-"""The reduced model: every mass and force brought to the two clutch shafts.
+"""The canonical hoist as two shafts meeting at the clutch: the oracles' own reduction.
 
 Side a is the motor shaft; side b the clutch output (pinion) shaft.  Masses are
 reduced by equal kinetic energy and forces by equal power (physics.md):
@@ -7,9 +7,13 @@ reduced by equal kinetic energy and forces by equal power (physics.md):
     J_b = J_clutch,driven + J_pinion + (J_wheel + I_drum + M R^2) / tau^2
     T_L = M g R / tau
 
-The numbers live in :class:`Drivetrain`, a pytree dataclass, so the same object
-is a set of traced inputs inside the compiled solver and a set of plain floats
-for the closed-form solution.
+The simulator does not use these numbers: its elements declare inertias and
+torques on their shafts, and the core reduces them.  The closed-form solution
+(:mod:`hoistsim.exact`), the scipy reference, the statics and the reduced-model
+table do, written here once and independently of the elements, so that the
+oracles and the engine agree only if both are right.  They cover the canonical
+scene: a linear motor, the cone clutch, gears, drum, a rigid load, a holding
+brake.
 """
 
 from __future__ import annotations
@@ -20,26 +24,16 @@ import numpy as np
 
 from ._pytree import pytree_dataclass
 from .components import ConeClutch, Drum, GearPair, HangingLoad, LinearMotor
+from .core.element import MODE_NAMES as MODE_NAMES
+from .core.element import OPEN as OPEN
+from .core.element import SLIP_BACKWARD as SLIP_BACKWARD
+from .core.element import SLIP_FORWARD as SLIP_FORWARD
+from .core.element import SLIP_RESOLUTION as SLIP_RESOLUTION
+from .core.element import STICK_TOLERANCE as STICK_TOLERANCE
+from .core.element import STUCK as LOCKED
+from .core.schedule import table_at
+from .errors import ScenarioError
 from .scenario import Scenario
-
-# Clutch modes.  Integers so that they can be traced and stored.
-LOCKED, SLIP_FORWARD, SLIP_BACKWARD, OPEN = 0, 1, 2, 3
-
-# A clutch exactly at its static limit holds (|T_c| <= T_s).  Computed in floating
-# point, a torque that equals the capacity wanders by a few ulps either side of
-# it, and a steady lift at the limit would break away on round-off.  The capacity
-# is therefore taken 1e-12 larger (relative) for every sticking decision and
-# breakaway guard; that moves a genuine breakaway by ~1e-12 of its torque ramp's
-# time scale, far inside any solver tolerance.
-STICK_TOLERANCE = 1e-12
-
-# A slip below this fraction of the no-load speed is no slip at all when the mode
-# is decided at a boundary (and at t = 0).  Without it a slip of 1e-312 rad/s, a
-# subnormal number that XLA flushes to zero but numpy keeps, would decide between
-# sticking and slipping.  4 eps: the round-off of a speed of order omega0.
-SLIP_RESOLUTION = 4 * 2.220446049250313e-16
-
-MODE_NAMES = {LOCKED: "locked", SLIP_FORWARD: "slipping+", SLIP_BACKWARD: "slipping-", OPEN: "open"}
 
 
 @dataclass(frozen=True)
@@ -57,6 +51,9 @@ class Machine:
     @classmethod
     def from_scenario(cls, scenario: Scenario) -> "Machine":
         m, c, g = scenario.motor, scenario.clutch, scenario.gears
+        if m.characteristic != "linear":
+            raise ScenarioError("motor", "the two-shaft reduction (statics, closed form) needs a linear motor "
+                                "(stall_torque + no_load_speed)")
         return cls(
             motor=LinearMotor(m.stall_torque, m.no_load_speed, m.moment_of_inertia),
             clutch=ConeClutch(c.inner_radius, c.outer_radius, c.half_angle, c.static_friction,
@@ -90,7 +87,7 @@ class Machine:
 
 @pytree_dataclass
 class Drivetrain:
-    """The two-shaft reduced model (SI).  Fields may be floats or (traced) arrays."""
+    """The two-shaft reduced model (SI): plain floats (or numpy arrays)."""
 
     motor_inertia: float  # J_a, kg*m^2
     output_inertia: float  # J_b, kg*m^2, reduced to the pinion shaft
@@ -151,23 +148,5 @@ class ForceSchedule:
 
 
 def force_at(times, forces, t, xp):
-    """Piecewise-linear engagement force, right-continuous at steps; ``xp`` is numpy or jax.numpy.
-
-    Works for scalar or array ``t`` and for tables with repeated times (steps):
-    the interval used is the last one that starts at or before ``t``.
-    """
-    t = xp.asarray(t)
-    n = times.shape[0]
-    if n == 1:
-        return xp.broadcast_to(forces[0], t.shape) * xp.ones_like(t)
-    # index of the last knot at or before t (right-continuous: a step at t is taken)
-    k = xp.clip(xp.searchsorted(times, t, side="right") - 1, 0, n - 2)
-    t0, t1 = times[k], times[k + 1]
-    f0, f1 = forces[k], forces[k + 1]
-    width = t1 - t0
-    safe = xp.where(width > 0, width, 1.0)
-    frac = xp.clip((t - t0) / safe, 0.0, 1.0)
-    value = xp.where(width > 0, f0 + frac * (f1 - f0), f1)
-    before = t < times[0]
-    value = xp.where(before, forces[0], value)
-    return xp.where(t >= times[-1], forces[-1], value)
+    """Piecewise-linear engagement force, right-continuous at steps; ``xp`` is numpy or jax.numpy."""
+    return table_at(times, forces, t, xp)

@@ -5,7 +5,7 @@ Layout (the contract's names; see README):
     /runs/<i>/     one group per run; datasets share the dimension scale `time`,
                    so ``xarray.open_dataset(path, group="runs/0", engine="h5netcdf")``
                    reads it with time as the coordinate
-    /runs/<i>/events   compound table (time, kind, torque_margin, mode_after)
+    /runs/<i>/events   compound table (time, kind, element, torque_margin, mode_after)
     /summary       one row per run
     /scenario      the scenario text, with provenance attributes
 """
@@ -22,8 +22,6 @@ from pathlib import Path
 
 import h5py
 import numpy as np
-
-from .series import DESCRIPTIONS
 
 _TEXT = h5py.string_dtype()
 
@@ -113,27 +111,28 @@ def _write_run(group: h5py.Group, run) -> None:
 
     time = group.create_dataset("time", data=run.time)
     time.attrs["units"] = "s"
-    time.attrs["long_name"] = DESCRIPTIONS["time"]
+    time.attrs["long_name"] = "time since the start"
     time.make_scale("time")
     for name, values in run.series.items():
         data = group.create_dataset(name, data=values)
         data.attrs["units"] = run.units[name]
-        if name in DESCRIPTIONS:
-            data.attrs["long_name"] = DESCRIPTIONS[name]
+        if name in run.descriptions:
+            data.attrs["long_name"] = run.descriptions[name]
         data.dims[0].attach_scale(time)
     _write_events(group, run.events)
 
 
 def _write_events(group: h5py.Group, events: dict) -> None:
     count = len(events["time"])
-    table = np.zeros(count, dtype=[("time", "f8"), ("kind", _TEXT), ("torque_margin", "f8"),
+    table = np.zeros(count, dtype=[("time", "f8"), ("kind", _TEXT), ("element", _TEXT), ("torque_margin", "f8"),
                                    ("mode_after", _TEXT)])
     for field in table.dtype.names:
         table[field] = events[field]
     data = group.create_dataset("events", data=table)
     data.attrs["units"] = "time: s, torque_margin: N*m"
-    data.attrs["long_name"] = ("mode switches and scheduled events; torque_margin is the static "
-                               "capacity minus the torque a locked clutch would carry")
+    data.attrs["long_name"] = ("mode switches and scheduled events, and the element each belongs to; "
+                               "torque_margin is that coupling's static capacity minus the torque it would "
+                               "carry stuck (NaN for scheduled events)")
     index = group.create_dataset("event", data=np.arange(count))
     index.attrs["units"] = "1"
     index.make_scale("event")

@@ -65,11 +65,22 @@ def summary_table(summaries: list[dict], head: int = 12, tail: int = 6) -> str:
 
 
 def reduced_model_table(scenario) -> str:
-    machine = Machine.from_scenario(scenario)
-    d = machine.reduced()
+    """The machine as the simulator sees it: each body's inertia, then the two-shaft numbers of exercise 6."""
+    from .assemble import machine_elements
+    from .core.dynamics import Bodies
+    from .core.layout import Layout
+    from .errors import ScenarioError
+
+    layout = Layout(machine_elements(scenario))
+    rows = [[f"J[{body}]", f"inertia of the {body} body (all its shafts carry, reduced)", fmt(float(j)), "kg*m^2"]
+            for body, j in zip(layout.bodies, Bodies(layout).inertia)]
+    try:
+        d = Machine.from_scenario(scenario).reduced()
+    except ScenarioError:  # not the two-shaft hoist of exercise 6 (a motor that is not linear)
+        return table(["symbol", "quantity", "value", "unit"], rows, align="llrl")
     force = scenario.clutch.engagement_force
     peak = max(force.forces)
-    rows = [
+    rows += [
         ["J_a", "motor-side inertia", fmt(d.motor_inertia), "kg*m^2"],
         ["J_b", "output-side inertia (at the pinion)", fmt(d.output_inertia), "kg*m^2"],
         ["tau", "gear ratio z2/z1", fmt(d.ratio), "-"],

@@ -35,6 +35,11 @@ class MotorSpec(Section):
     rotor_mass: u.quantity(u.MASS, gt=0.0) | None = None
     radius_of_gyration: u.quantity(u.LENGTH, gt=0.0) | None = None
 
+    @property
+    def characteristic(self) -> str:
+        """Which variant of the motor element: the linear characteristic."""
+        return "linear"
+
     @model_validator(mode="after")
     def _one_inertia(self):
         by_geometry = self.rotor_mass is not None or self.radius_of_gyration is not None

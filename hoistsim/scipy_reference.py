@@ -3,6 +3,12 @@
 A straightforward, independent implementation: the peer that the sweep
 benchmark and the work-precision study measure hoistsim against, and a second
 opinion on the closed-form solution in the tests.  Plain Python per run.
+
+It writes the two-shaft equations out for itself, from :mod:`hoistsim.model`'s
+reduction, and shares nothing with the elements or the core: an oracle that
+used the elements would agree with them by construction.  It covers the scenes
+the closed form covers (linear motor, cone clutch, gears, drum, rigid load,
+holding brake, flywheel).
 """
 
 from __future__ import annotations

@@ -144,7 +144,8 @@ def run_regularised(name, solver, width, exact, repeats, rtol=1e-8):
         return Row(name, "regularised", f"tanh {solver}", f"width {width:g}", rtol, math.nan, math.nan, False,
                    math.nan, stats["steps"], math.nan, best, median, compile_time)
     # no modes, so no switches: only the trajectory and the heat can be compared
-    speed, _, _, heat = _errors(exact, t, states[:, 0], states[:, 1], states[-1, 3], [])
+    speed, _, _, heat = _errors(exact, t, states["motor.speed"], states["pinion.speed"], states["clutch_energy"][-1],
+                                [])
     return Row(name, "regularised", f"tanh {solver}", f"width {width:g}", rtol, speed, math.nan, False, heat,
                stats["steps"], stats["steps"] * STAGES.get(solver, math.nan), best, median, compile_time)
 

@@ -19,17 +19,12 @@ import jax
 import numpy as np
 
 from . import _jax
-from . import clutch_modes as cm
-from .hybrid import OK, SOLVERS, Plan, _run
+from .assemble import build_plan, loop_sizes
+from .core.loop import OK, SOLVERS, Plan, _run
+from .core.readout import Readout
 from .results import RunResult, summarize
 from .scenario import Scenario, sweep_values
-from .simulation import (
-    SimulationError,
-    _failure_message,
-    _result,
-    build_plan,
-    loop_sizes,
-)
+from .simulation import SimulationError, failure_message, run_result, simulate
 
 # Bytes of time series a chunk may hold.  Measured: with full output, small
 # chunks are fastest per run (every segment rewrites the chunk's output arrays);
@@ -104,13 +99,14 @@ def simulate_many(scenarios: list[Scenario], labels: list[str], *, summary_only:
     done = 0
     for indices in _groups(scenarios, plans):
         group = [plans[i][0] for i in indices]
-        table_length = max(int(p.force_times.shape[0]) for p in group)
-        group = [_pad_table(p, table_length) for p in group]
+        group = _padded_tables(group)
         first = scenarios[indices[0]]
         max_switches = max(scenarios[i].simulation.max_switches for i in indices)
         sizes = loop_sizes(group[0], max_switches)
+        if summary_only:  # the summary needs no event rows, only their counts
+            sizes = (sizes[0], 1)
         rows = int(group[0].grid.shape[0])
-        chunk = chunk_size or _chunk_for(rows, len(indices))
+        chunk = chunk_size or _chunk_for(rows, group[0].layout.size, len(indices))
         run = None
         for start in range(0, len(indices), chunk):
             part = indices[start:start + chunk]
@@ -118,21 +114,25 @@ def simulate_many(scenarios: list[Scenario], labels: list[str], *, summary_only:
             batch = batch + [batch[-1]] * (chunk - len(batch))  # a full chunk: one compiled shape
             stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *batch)
             if run is None:
-                run = _jax.executable(compiled_batch(first.simulation.solver, *sizes), stacked,
-                                      name=f"sweep-{first.simulation.solver}-{sizes}")
+                run = _jax.executable(compiled_batch(first.simulation.solver, *sizes, not summary_only), stacked,
+                                      name=f"sweep-{first.simulation.solver}-{sizes}-{summary_only}")
             t0 = time.perf_counter()
             raw = jax.device_get(run(stacked))
             elapsed = (time.perf_counter() - t0) / len(part)
+            layout = group[0].layout
             for k, i in enumerate(part):
-                if int(raw.status[k]) != OK:
-                    one = jax.tree.map(lambda leaf, k=k: leaf[k], raw)
-                    raise SimulationError(f"{labels[i] or scenarios[i].name}: "
-                                          + _failure_message(scenarios[i], one, int(one.status)))
+                one = Readout(layout, raw, lane=k)
+                if one.status != OK:
+                    if summary_only:  # the lean run kept no event rows: run it alone to say what happened
+                        try:
+                            simulate(scenarios[i])
+                        except SimulationError as exc:
+                            raise SimulationError(f"{labels[i] or scenarios[i].name}: {exc}") from None
+                    raise SimulationError(f"{labels[i] or scenarios[i].name}: " + failure_message(scenarios[i], one))
                 if summary_only:
-                    out[i] = _summary_of(scenarios[i], labels[i], raw, k, batch[k])
+                    out[i] = summarize(labels[i], one.summary(), one.ledger(), one.count("lock"), one.count("unlock"))
                 else:
-                    one = jax.tree.map(lambda leaf, k=k: leaf[k], raw)
-                    out[i] = _result(scenarios[i], labels[i], batch[k], plans[i][1], one, elapsed)
+                    out[i] = run_result(scenarios[i], labels[i], plans[i][1], one, elapsed)
             done += len(part)
             if progress is not None:
                 progress(done, len(scenarios))
@@ -143,40 +143,54 @@ def _groups(scenarios, plans) -> list[list[int]]:
     """Runs that can share one compiled loop: same solver, effects and grid."""
     groups: dict = {}
     for i, (scenario, (plan, grid)) in enumerate(zip(scenarios, plans)):
-        structure = jax.tree.structure(plan.effects)
+        structure = jax.tree.structure(plan.elements)
         key = (scenario.simulation.solver, structure, np.asarray(plan.grid).tobytes())
         groups.setdefault(key, []).append(i)
     return list(groups.values())
 
 
-def _pad_table(plan: Plan, length: int) -> Plan:
-    """Repeat a force table's last row (and the duration as a boundary) up to ``length`` rows."""
-    extra = length - int(plan.force_times.shape[0])
-    if extra == 0:
-        return plan
-    times = np.concatenate([plan.force_times, np.repeat(plan.force_times[-1:], extra)])
-    forces = np.concatenate([plan.force_values, np.repeat(plan.force_values[-1:], extra)])
-    boundaries = np.concatenate([plan.boundaries, np.repeat(plan.duration[None], extra)])
-    return dataclasses.replace(plan, force_times=times, force_values=forces, boundaries=boundaries)
+def _padded_tables(plans: list[Plan]) -> list[Plan]:
+    """Every element's tables padded to the longest in the group (one compiled shape).
+
+    A table's last row is repeated, and the duration added as a boundary for
+    each row added, so every run keeps its own values and boundaries.
+    """
+    longest: dict = {}
+    for plan in plans:
+        for i, element in enumerate(plan.elements):
+            for name, (times, _) in element.tables().items():
+                longest[i, name] = max(longest.get((i, name), 0), int(getattr(element, times).shape[0]))
+    out = []
+    for plan in plans:
+        elements, extra_boundaries = list(plan.elements), 0
+        for i, element in enumerate(plan.elements):
+            changes = {}
+            for name, fields in element.tables().items():
+                extra = longest[i, name] - int(getattr(element, fields[0]).shape[0])
+                if extra:
+                    for f in fields:
+                        column = getattr(element, f)
+                        changes[f] = np.concatenate([column, np.full(extra, column[-1])])
+                    extra_boundaries += extra
+            if changes:
+                elements[i] = dataclasses.replace(element, **changes)
+        if extra_boundaries:
+            boundaries = np.concatenate([plan.boundaries, np.full(extra_boundaries, plan.duration)])
+            plan = dataclasses.replace(plan, elements=tuple(elements), boundaries=boundaries)
+        out.append(plan)
+    return out
 
 
-def _chunk_for(rows: int, runs: int) -> int:
-    per_run = rows * 8 * (2 * cm.STATE_SIZE + 24)  # states, outputs and masks of one run
+def _chunk_for(rows: int, states: int, runs: int) -> int:
+    per_run = rows * 8 * (2 * states + 24)  # states, outputs and masks of one run
     chunk = max(1, min(MAX_CHUNK, CHUNK_BYTES // per_run))
     chunk = 1 << int(math.log2(chunk))  # a power of two: few distinct compiled shapes
     return min(chunk, 1 << math.ceil(math.log2(runs)))
 
 
-def _summary_of(scenario: Scenario, label: str, raw, k: int, plan: Plan) -> dict:
-    """Run k of a batch, summarised from its end states and running extremes."""
-    kinds = raw.event_kind[k, : int(raw.event_count[k])]
-    return summarize(label, {name: values[k] for name, values in raw.extremes.items()}, plan.drivetrain,
-                     plan.initial_state, raw.final_state[k], int(np.sum(kinds == cm.LOCK)),
-                     int(np.sum(kinds == cm.UNLOCK)))
-
-
 @functools.lru_cache(maxsize=None)
-def compiled_batch(solver_name: str, max_segments: int, log_size: int):
-    """The restart loop, vectorised over a leading batch axis of the plan."""
+def compiled_batch(solver_name: str, max_segments: int, log_size: int, columns: bool = True):
+    """The restart loop, vectorised over a leading batch axis of the plan (without columns: summaries only)."""
     solver = SOLVERS[solver_name]()
-    return jax.jit(jax.vmap(functools.partial(_run, solver=solver, max_segments=max_segments, log_size=log_size)))
+    return jax.jit(jax.vmap(functools.partial(_run, solver=solver, max_segments=max_segments, log_size=log_size,
+                                              columns=columns)))

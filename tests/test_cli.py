@@ -117,3 +117,35 @@ def test_second_run_loads_the_stored_executable(tmp_path):
     # JAX's own cache took the loop too: it refuses programs with host callbacks
     assert list((tmp_path / "cache").glob("jit__run-*"))
     assert (outputs[0] == outputs[1]).all()
+
+
+def test_a_changed_source_is_never_served_a_stored_program(tmp_path):
+    """The cache key holds a digest of the package's source: edit the physics and the next run rebuilds."""
+    import shutil
+
+    package = tmp_path / "tree" / "hoistsim"
+    shutil.copytree(ROOT / "hoistsim", package, ignore=shutil.ignore_patterns("__pycache__"))
+    env = dict(os.environ, HOISTSIM_CACHE_DIR=str(tmp_path / "cache"), PYTHONPATH=str(tmp_path / "tree"))
+
+    def heat(tag: str) -> float:
+        out = tmp_path / f"{tag}.h5"
+        proc = subprocess.run([sys.executable, "-m", "hoistsim.cli", "run", str(SCENARIOS / "runback_slipping_clutch.yaml"),
+                               "-o", str(out), "--set", "simulation.duration=0.5 s"],
+                              capture_output=True, text=True, env=env, cwd=tmp_path)
+        assert proc.returncode == 0, proc.stderr
+        with h5py.File(out, "r") as f:
+            return float(f["runs/0"].attrs["slip_energy"])
+
+    original = heat("original")
+    clutch = package / "elements" / "cone_clutch.py"
+    text = clutch.read_text(encoding="utf-8")
+    edited = text.replace("return self.kinetic_friction * self.clutch_constant", "return 0.5 * self.kinetic_friction * "
+                          "self.clutch_constant")
+    assert edited != text
+    clutch.write_text(edited, encoding="utf-8")
+    halved = heat("halved")
+    assert len(list((tmp_path / "cache" / "executables").glob("*.bin"))) == 2  # a second program, rebuilt
+    assert abs(halved - original) > 0.05 * original  # the edit is in the answer, not the stored program
+    from hoistsim import _jax
+
+    assert _jax.source_digest(str(package)) != _jax.source_digest(str(ROOT / "hoistsim"))

@@ -1,4 +1,4 @@
-"""Effects assemble only their own parts: a scene without `brake:` contains nothing of it."""
+"""Elements assemble only their own parts: a scene without `brake:` contains nothing of it."""
 
 from __future__ import annotations
 
@@ -6,23 +6,25 @@ import jax
 import numpy as np
 from scenes import scene
 
-from hoistsim import hybrid, simulate
-from hoistsim.effects import HoldingBrake, effects_for
-from hoistsim.simulation import build_plan, loop_sizes
+from hoistsim import simulate
+from hoistsim.assemble import build_plan, loop_sizes
+from hoistsim.core import loop
+from hoistsim.elements import HoldingBrake, elements_for
 
 
 def _jaxpr_size(s) -> int:
     plan, _ = build_plan(s)
-    run = hybrid.compiled_run(s.simulation.solver, *loop_sizes(plan, s.simulation.max_switches))
+    run = loop.compiled_run(s.simulation.solver, *loop_sizes(plan, s.simulation.max_switches))
     return len(str(jax.make_jaxpr(run)(plan)).splitlines())
 
 
 def test_scene_without_brake_has_no_brake_anywhere():
     bare = scene(force=[["0 s", "0 N"], ["0.3 s", "0 N"], ["0.3 s", "5000 N"]])
-    assert effects_for(bare) == ()
+    assert not any(isinstance(e, HoldingBrake) for e in elements_for(bare))
     plan, _ = build_plan(bare)
     # no traced input of the brake ...
-    assert plan.effects == ()
+    assert "brake" not in plan.layout.sections
+    assert not any("brake" in name for name in plan.layout.state_names)
     # ... no output column ...
     run = simulate(bare)
     assert not any(name.startswith("brake") for name in run.series)
@@ -34,10 +36,11 @@ def test_scene_without_brake_has_no_brake_anywhere():
 
 def test_brake_contributes_boundary_event_and_outputs():
     s = scene(force=[["0 s", "0 N"], ["0.3 s", "0 N"], ["0.3 s", "5000 N"]], brake="0.5 s")
-    (brake,) = effects_for(s)
-    assert isinstance(brake, HoldingBrake) and brake.release_time == 0.5
+    (brake,) = [e for e in elements_for(s) if isinstance(e, HoldingBrake)]
+    assert brake.release_time == 0.5
     run = simulate(s)
     assert list(run.events["kind"][:2]) == ["engage", "brake_release"]
+    assert list(run.events["element"][:2]) == ["clutch", "brake"]
     assert run.units["brake_torque"] == "N*m"
     held = run.time < 0.5
     # while held the drum does not move and the brake carries what the clutch does not

@@ -101,14 +101,13 @@ def test_default_tolerance_balances_energy():
 
 def _exact_series(run, exact, t):
     """Slip, load position and clutch torque of the exact solution at times t."""
-    from hoistsim import clutch_modes as cm
+    from hoistsim.exact import clutch_torque
     from hoistsim.model import ForceSchedule
 
     ref = exact.evaluate(t)
-    held = None if run.scenario.brake is None else t < run.scenario.brake.release_time
+    held = np.zeros(t.shape, bool) if run.scenario.brake is None else t < run.scenario.brake.release_time
     force = ForceSchedule.from_scenario(run.scenario)(t)
-    torque = np.asarray(cm.rates(run.drivetrain, ref["mode"], force, ref["motor_speed"], ref["output_speed"],
-                                 held).clutch_torque)
+    torque = clutch_torque(run.drivetrain, ref["mode"], force, ref["motor_speed"], held)
     return ref["motor_speed"] - ref["output_speed"], ref["load_position"], torque, ref["mode"]
 
 

@@ -8,13 +8,23 @@ from typing import ClassVar
 import jax.numpy as jnp
 
 from ..components import DrumShaft
-from ._base import AbstractEffect, RowContext
+from ..core.element import AbstractElement
 
-_NAMES = ("tooth_tangential_force", "tooth_radial_force", "tooth_force", "rope_tension",
-          "bearing_A_x", "bearing_A_y", "bearing_A", "bearing_B_x", "bearing_B_y", "bearing_B")
+_DESCRIPTIONS = {
+    "tooth_tangential_force": "tooth force along the pitch-circle tangent, from the torque the pinion passes",
+    "tooth_radial_force": "separating tooth force, T tan(pressure angle)",
+    "tooth_force": "total tooth force",
+    "rope_tension": "rope tension M (g + a)",
+    "bearing_A_x": "bearing A reaction in the plane of the tangential tooth force",
+    "bearing_A_y": "bearing A reaction in the plane of the radial tooth force and the rope",
+    "bearing_A": "bearing A reaction, magnitude",
+    "bearing_B_x": "bearing B reaction in the plane of the tangential tooth force",
+    "bearing_B_y": "bearing B reaction in the plane of the radial tooth force and the rope",
+    "bearing_B": "bearing B reaction, magnitude",
+}
 
 
-class DrumShaftLoads(AbstractEffect):
+class DrumShaftLoads(AbstractElement):
     """The exercise's question 3 at every output row, with the inertia forces of the start.
 
     The tooth force comes from the torque the pinion actually passes to the wheel:
@@ -28,12 +38,13 @@ class DrumShaftLoads(AbstractEffect):
     pinion_side_inertia: object  # kg*m^2: driven clutch half + pinion
     load_mass: object  # kg
     gravity: object  # m/s^2
+    rope_radius: object  # m
     gear_offset: object  # m
     rope_offset: object  # m
     span: object  # m
 
     section: ClassVar[str] = "bearings"
-    output_units: ClassVar[dict[str, str]] = {name: "N" for name in _NAMES}
+    columns: ClassVar[dict] = {name: ("N", text) for name, text in _DESCRIPTIONS.items()}
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "DrumShaftLoads":
@@ -44,17 +55,17 @@ class DrumShaftLoads(AbstractEffect):
             pinion_side_inertia=scenario.clutch.driven_inertia + gears.pinion_inertia,
             load_mass=scenario.load.mass,
             gravity=scenario.gravity,
+            rope_radius=0.5 * scenario.drum.diameter,
             gear_offset=spec.gear_offset,
             rope_offset=spec.rope_offset,
             span=spec.span,
         )
 
-    def outputs(self, row: RowContext, drivetrain) -> dict:
-        teeth_torque = row.clutch_torque - self.pinion_side_inertia * row.output_acceleration
+    def outputs(self, x) -> dict:
+        teeth_torque = x.coupling_torque("clutch") - self.pinion_side_inertia * x.acceleration("pinion")
         tangential = teeth_torque / self.pinion_pitch_radius
         radial = jnp.abs(tangential) * self.tan_pressure_angle
-        load_acceleration = drivetrain.rope_radius * row.output_acceleration / drivetrain.ratio
-        rope_tension = self.load_mass * (self.gravity + load_acceleration)
+        rope_tension = self.load_mass * (self.gravity + self.rope_radius * x.acceleration("drum"))
         shaft = DrumShaft(self.gear_offset, self.rope_offset, self.span)
         return {
             "tooth_tangential_force": tangential,

@@ -1,0 +1,124 @@
+"""From a validated scenario to the traced plan of a run: elements, boundaries, initial state, grid."""
+
+from __future__ import annotations
+
+import jax
+import numpy as np
+
+from .core.element import AbstractCoupling
+from .core.layout import Layout, LayoutError
+from .core.loop import Plan
+from .core.schedule import scheduled_times
+from .elements import elements_for
+from .errors import ScenarioError
+from .scenario import Scenario
+
+
+def output_grid(duration: float, interval: float) -> np.ndarray:
+    """Output times 0, dt, 2 dt, ... and the duration itself."""
+    count = int(np.floor(duration / interval * (1 + 1e-12))) + 1
+    grid = np.arange(count, dtype=float) * interval
+    grid = grid[grid < duration * (1 - 1e-12)]
+    return np.append(grid, duration)
+
+
+def _padded(grid: np.ndarray) -> np.ndarray:
+    # Round the row count up to a power of two so that nearby durations share a compiled loop.
+    size = max(64, 1 << int(np.ceil(np.log2(grid.size))))
+    return np.concatenate([grid, np.full(size - grid.size, grid[-1])])
+
+
+def check_couplings(layout: Layout) -> None:
+    """Refuse couplings that would constrain the same motion twice (a singular constrained solve).
+
+    Were every coupling stuck at once, their rows of G must be independent: then
+    any subset is too, and the solve for whichever set is stuck is regular.
+    """
+    couplings = layout.coupling_elements
+    if len(couplings) < 2:
+        return
+    from .core.dynamics import Bodies
+
+    rows = np.array([[float(g) for g in row] for row in Bodies(layout).rows])
+    for k in range(2, len(couplings) + 1):
+        if np.linalg.matrix_rank(rows[:k], tol=1e-12 * np.abs(rows).max()) < k:
+            other = ", ".join(c.section for c in couplings[: k - 1])
+            raise ScenarioError(couplings[k - 1].section, f"would hold a motion that {other} already holds; "
+                                "two couplings stuck together would constrain it twice (leave one out)")
+
+
+def _steady_lift_speed(scenario: Scenario) -> float:
+    """Speed at which the motor torque equals the load torque: the hoist lifting at constant speed."""
+    from .model import Machine
+
+    if scenario.motor.characteristic != "linear":
+        raise ScenarioError("initial.steady_lift", "needs a linear motor (stall_torque + no_load_speed)")
+    d = Machine.from_scenario(scenario).reduced()
+    return d.no_load_speed * (1.0 - d.load_torque / d.stall_torque)
+
+
+def _steady(scenario: Scenario) -> Scenario:
+    """With ``initial.steady_lift``, the scenario with its initial speeds set to the steady lifting speed."""
+    if not scenario.initial.steady_lift:
+        return scenario
+    speed = _steady_lift_speed(scenario)
+    ratio = scenario.gears.wheel_teeth / scenario.gears.pinion_teeth
+    return scenario.model_copy(update={"initial": scenario.initial.model_copy(
+        update={"motor_speed": speed, "drum_speed": speed / ratio})})
+
+
+_checked: set = set()  # element structures already found to fit together
+
+
+def machine_elements(scenario: Scenario) -> tuple:
+    """The scene's elements, checked to fit together (a bad fit is a one-line ScenarioError).
+
+    The check depends on the structure alone (which elements, on which shafts),
+    so a sweep pays it once.
+    """
+    elements = elements_for(_steady(scenario))
+    structure = jax.tree.structure(elements)
+    if structure not in _checked:
+        try:
+            check_couplings(Layout(elements))
+        except LayoutError as exc:
+            raise ScenarioError(exc.key, str(exc)) from None
+        _checked.add(structure)
+    return elements
+
+
+def build_plan(scenario: Scenario, summary_only: bool = False) -> tuple[Plan, np.ndarray]:
+    """The traced inputs of a run, and its (unpadded) output grid.
+
+    ``summary_only`` keeps a single output row (the end): the summary comes from
+    the loop's running extremes, so a large sweep need not store time series.
+    """
+    sim = scenario.simulation
+    elements = machine_elements(scenario)
+    scheduled = [0.0, sim.duration, *scheduled_times(elements)]
+    grid = np.array([sim.duration]) if summary_only else output_grid(sim.duration, sim.output_interval)
+    speeds = [float(v) for e in elements for v in e.bodies().values()]
+    # the state in Layout's order: the bodies' speeds, then every element's states
+    initial = speeds + [float(v) for e in elements for v in e.states().values()]
+    scales = [float(s) for s in (e.speed_scale() for e in elements) if s is not None]
+    plan = Plan(
+        elements=elements,  # floats and float arrays already (from_spec); jit takes them as they are
+        boundaries=np.clip(np.asarray(scheduled, dtype=np.float64), 0.0, sim.duration),
+        initial_state=np.asarray(initial, dtype=np.float64),
+        speed_scale=np.asarray(max(scales or [abs(v) for v in speeds] + [1.0]), dtype=np.float64),
+        duration=np.asarray(sim.duration, dtype=np.float64),
+        grid=grid if summary_only else _padded(grid),
+        rtol=np.asarray(sim.rtol, dtype=np.float64),
+        atol=np.asarray(sim.atol, dtype=np.float64),
+        max_switches=np.asarray(sim.max_switches),
+    )
+    return plan, grid
+
+
+def loop_sizes(plan: Plan, max_switches: int) -> tuple[int, int]:
+    """Static sizes of the loop: passes allowed and event rows kept."""
+    # each pass ends at a boundary, a switch or an observation (as many allowed as switches);
+    # a switch may log one row per coupling
+    boundaries = int(plan.boundaries.shape[0])
+    couplings = max(1, sum(isinstance(e, AbstractCoupling) for e in plan.elements))
+    return boundaries + 2 * max_switches + 2, (couplings + 1) * max_switches + 2 * boundaries + 4

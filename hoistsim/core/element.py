@@ -1,0 +1,156 @@
+"""What a part of the machine may bring to a run: the element and coupling interfaces.
+
+An element is a frozen dataclass whose fields are its traced numbers (a new
+value never recompiles); fields declared ``static()`` are structure (a shaft's
+name).  Everything an element contributes is optional and empty by default, so
+an element the scene does not name contributes nothing at all: no body, no
+state, no term, no guard, no column.
+
+Elements speak of *shafts*: a body (a rigid shaft with a speed of its own in
+the state) or a shaft tied rigidly to one (its speed a fixed multiple of the
+body's).  Inertia and torque on a shaft are brought to its body by equal
+kinetic energy and equal power, the seed's reduced system.
+
+Contributions, all read at trace time (``x`` is the machine at one instant,
+:class:`hoistsim.core.dynamics.Instant`):
+- ``bodies()``: new bodies, name -> initial speed (rad/s);
+- ``shafts()``: new shafts tied to others, name -> (shaft it turns with, speed ratio);
+- ``inertias()``: (shaft, kg*m^2) pairs;
+- ``torques(x)``: (shaft, N*m) pairs, positive in the shaft's positive sense;
+- ``states()`` / ``rates(x)``: named states with initial values, and their rates;
+- ``ledger(x)``: energy terms by name (J), each declared in ``ledger_kinds`` as
+  "work" (done on the machine), "loss" (dissipated) or "potential" (stored);
+  kinetic energy is the core's;
+- ``tables()``: piecewise-linear tables of time, name -> (times field, values field);
+  their knots are segment boundaries and ``x.table(name)`` reads them;
+- ``boundaries()`` and ``boundary_events(t)``: scheduled times and the events
+  recorded at them (kinds listed in ``event_kinds``);
+- ``observations(x)``: guards whose zero is recorded as an output row (kinds in
+  ``event_kinds``), positive before it;
+- ``extremes(x)``: running reductions for the summary, name -> (reduction, value)
+  with reduction one of "max", "min", "first" (the first time the value is true),
+  "duration" (time spent while it is true; constant between switches);
+- ``summary(x)``: values of the final state for the summary; every name of
+  ``extremes`` and ``summary`` is declared in ``summaries`` with its units
+  ("bool" for a yes/no);
+- ``outputs(x)``: time series, described in ``columns`` (name -> (units, description));
+  a column in units "1" is a flag or a mode, stored as a small integer;
+- ``speed_scale()``: a speed (rad/s) typical of the element, for the slip resolution.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+from .._pytree import pytree_dataclass
+
+# Modes of a coupling.  Integers, so that they can be traced and stored.
+STUCK, SLIP_FORWARD, SLIP_BACKWARD, OPEN = 0, 1, 2, 3
+MODE_NAMES = {STUCK: "locked", SLIP_FORWARD: "slipping+", SLIP_BACKWARD: "slipping-", OPEN: "open"}
+
+# A coupling exactly at its static limit holds (|T| <= T_s).  Computed in floating
+# point, a torque that equals the capacity wanders by a few ulps either side of
+# it, and a steady lift at the limit would break away on round-off.  The capacity
+# is therefore taken 1e-12 larger (relative) for every sticking decision and
+# breakaway guard; that moves a genuine breakaway by ~1e-12 of its torque ramp's
+# time scale, far inside any solver tolerance.
+STICK_TOLERANCE = 1e-12
+
+# A relative speed below this fraction of the machine's speed scale is no slip at
+# all when modes are decided at a boundary (and at t = 0).  Without it a slip of
+# 1e-312 rad/s, a subnormal number that XLA flushes to zero but numpy keeps,
+# would decide between sticking and slipping.  4 eps: the round-off of a speed of
+# the order of the scale.
+SLIP_RESOLUTION = 4 * 2.220446049250313e-16
+
+
+class AbstractElement:
+    """A part of the machine, selected by its scenario section (see the module docstring)."""
+
+    section: ClassVar[str]
+    columns: ClassVar[dict[str, tuple[str, str]]] = {}
+    event_kinds: ClassVar[tuple[str, ...]] = ()  # scheduled events
+    observation_kinds: ClassVar[tuple[str, ...]] = ()  # guards recorded as rows
+    summaries: ClassVar[dict[str, str]] = {}  # summary name -> units
+    ledger_kinds: ClassVar[dict[str, str]] = {}  # energy term -> "work", "loss" or "potential"
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        pytree_dataclass(cls)
+
+    def bodies(self) -> dict:
+        return {}
+
+    def shafts(self) -> dict:
+        return {}
+
+    def inertias(self) -> tuple:
+        return ()
+
+    def torques(self, x) -> tuple:
+        return ()
+
+    def states(self) -> dict:
+        return {}
+
+    def rates(self, x) -> dict:
+        return {}
+
+    def ledger(self, x) -> dict:
+        return {}
+
+    def tables(self) -> dict:
+        return {}
+
+    def boundaries(self) -> tuple:
+        return ()
+
+    def boundary_events(self, t) -> tuple:
+        return ()
+
+    def observations(self, x) -> dict:
+        return {}
+
+    def extremes(self, x) -> dict:
+        return {}
+
+    def summary(self, x) -> dict:
+        return {}
+
+    def outputs(self, x) -> dict:
+        return {}
+
+    def speed_scale(self):
+        return None
+
+
+class AbstractCoupling(AbstractElement):
+    """A friction coupling between two shafts, or a shaft and the ground.
+
+    Its modes (stuck, slipping either way, open), the guards that switch them
+    and the momentum-keeping reset at a lock are the core's, written once for
+    every coupling; a coupling supplies only its numbers:
+    - ``joins()``: the shafts it ties, (a, b), b None for the ground; it
+      transmits a torque from a to b, positive when a drives b;
+    - ``capacity(x)``: the largest torque it carries stuck (N*m, inf for no limit);
+    - ``sliding_torque(x)``: the torque it passes while slipping (N*m, >= 0);
+    - ``is_open(segment)``: whether it carries nothing over a whole segment.
+    ``can_slip`` False: it is stuck or open, never slipping (no slip guards).
+    ``reports_switches`` False: its mode changes are not events of their own
+    (its scheduled events say what happened).
+    """
+
+    can_slip: ClassVar[bool] = True
+    reports_switches: ClassVar[bool] = True
+
+    def joins(self) -> tuple:
+        raise NotImplementedError
+
+    def capacity(self, x):
+        raise NotImplementedError
+
+    def sliding_torque(self, x):
+        raise NotImplementedError
+
+    def is_open(self, segment):
+        return False

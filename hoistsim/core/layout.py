@@ -1,0 +1,105 @@
+"""The structure of a machine, read from its elements: bodies, shafts, couplings, states, kinds.
+
+Built at trace time from the plan's elements (cheap: a few dictionaries), so
+the structure always follows the elements a scene names.  Names are the only
+way in: ``state_index(name)``, ``coupling_index(section)``,
+``shaft(name)``.
+"""
+
+from __future__ import annotations
+
+from .element import AbstractCoupling
+
+# Kinds of the events the core itself records: coupling mode changes.
+SWITCH_KINDS = ("lock", "unlock", "reversal", "engage", "disengage")
+LOCK, UNLOCK, REVERSAL, ENGAGE, DISENGAGE = range(5)
+NO_EVENT = -1
+
+
+class LayoutError(ValueError):
+    """Elements that do not fit together; ``key`` names the scenario key to blame."""
+
+    def __init__(self, key: str, message: str):
+        super().__init__(message)
+        self.key = key
+
+
+class Layout:
+    """Bodies, shafts, couplings, named states and event kinds of a tuple of elements."""
+
+    def __init__(self, elements: tuple):
+        self.elements = elements
+        self.bodies: list[str] = []
+        self.body_speeds: list = []
+        self.shafts: dict[str, tuple[int, object]] = {}  # shaft -> (body index, speed ratio to the body)
+        for element in elements:
+            for body, speed in element.bodies().items():
+                self._new_shaft(element, body, (len(self.bodies), 1.0))
+                self.bodies.append(body)
+                self.body_speeds.append(speed)
+            for shaft, (parent, ratio) in element.shafts().items():
+                body, factor = self.shaft(parent, element)
+                self._new_shaft(element, shaft, (body, factor * ratio))
+        self.couplings = [i for i, e in enumerate(elements) if isinstance(e, AbstractCoupling)]
+        self.coupling_names = [elements[i].section for i in self.couplings]
+        self.state_names = [f"{body}.speed" for body in self.bodies]
+        self.initial_states: list = list(self.body_speeds)
+        for element in elements:
+            for name, value in element.states().items():
+                if name in self.state_names:
+                    raise LayoutError(element.section, f"state {name!r} is declared twice")
+                self.state_names.append(name)
+                self.initial_states.append(value)
+        self._state_index = {name: i for i, name in enumerate(self.state_names)}
+        self.event_kinds = list(SWITCH_KINDS)
+        for element in elements:
+            self.event_kinds += [k for k in element.event_kinds if k not in self.event_kinds]
+        self.observation_kinds = ["slip_peak"] if any(e.can_slip for e in self.coupling_elements) else []
+        for element in elements:
+            self.observation_kinds += [k for k in element.observation_kinds
+                                       if k not in self.observation_kinds]
+        self.event_kinds += [k for k in self.observation_kinds if k not in self.event_kinds]
+        self.sections = [e.section for e in elements]
+        self._columns = {name: column for e in elements for name, column in e.columns.items()}
+        self.summaries = {name: units for e in elements for name, units in e.summaries.items()}
+        self.ledger_kinds = {"kinetic_energy": "potential"}
+        self.ledger_kinds.update({name: kind for e in elements for name, kind in e.ledger_kinds.items()})
+        # The bodies' response to torques for every set of stuck couplings, when a run
+        # has worked it out once (dynamics.response_table); None: solved where needed.
+        self.responses = None
+
+    def _new_shaft(self, element, name, where):
+        if name in self.shafts:
+            raise LayoutError(element.section, f"shaft {name!r} is declared twice")
+        self.shafts[name] = where
+
+    def shaft(self, name: str, element=None) -> tuple[int, object]:
+        """(body index, speed ratio) of a shaft: its speed is the ratio times the body's."""
+        try:
+            return self.shafts[name]
+        except KeyError:
+            who = element.section if element is not None else "machine"
+            known = ", ".join(self.shafts) or "none"
+            raise LayoutError(f"{who}.shaft", f"there is no shaft {name!r} in this machine (shafts: {known})") \
+                from None
+
+    @property
+    def coupling_elements(self) -> list:
+        return [self.elements[i] for i in self.couplings]
+
+    def state_index(self, name: str) -> int:
+        return self._state_index[name]
+
+    def coupling_index(self, section: str) -> int:
+        return self.coupling_names.index(section)
+
+    def kind_code(self, kind: str) -> int:
+        return self.event_kinds.index(kind)
+
+    @property
+    def size(self) -> int:
+        return len(self.state_names)
+
+    def columns(self) -> dict[str, tuple[str, str]]:
+        """Every output column of the machine: name -> (units, description), in element order."""
+        return self._columns

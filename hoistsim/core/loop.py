@@ -1,0 +1,374 @@
+"""The one restart loop: diffeqsolve between switches, inside a single compiled call.
+
+Each pass of the loop integrates the current modes from the current time to
+the next scheduled boundary (a table knot, an element's scheduled time, the
+end), stopping early where a guard reaches zero; the event time is found by
+root-finding on the solver's dense interpolant.  The switch is then applied
+(reset + new modes) and the loop goes on.  The loop names no part of the
+machine: it asks the elements (through :class:`Layout`) for bodies, states,
+couplings, guards, boundaries, observations and summaries.  Every number is a
+traced input of :class:`Plan`: a new value reuses the compiled loop.
+"""
+
+from __future__ import annotations
+
+import functools
+from functools import cached_property
+
+import diffrax
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from .._pytree import pytree_dataclass
+from ..rootfind import CrossingBisection
+from ..schema import SOLVERS as SOLVER_NAMES
+from . import switching
+from .dynamics import Instant, Response, keep_momentum, response, response_table, slip_sign, vector_field
+from .element import SLIP_BACKWARD, SLIP_FORWARD, STUCK
+from .layout import NO_EVENT, Layout
+from .columns import row_outputs, summary_values
+from .ledger import ledger_values
+from .readout import RawRun
+from .schedule import Segment, segment_from
+
+OK, CHATTERING, SOLVER_FAILED, TOO_MANY_SEGMENTS = range(4)
+STATUS_TEXT = {OK: "ok", CHATTERING: "chattering", SOLVER_FAILED: "solver failed",
+               TOO_MANY_SEGMENTS: "too many segments"}
+
+# The names a scenario accepts (schema.SOLVERS) are diffrax's class names in lower case.
+SOLVERS = {name: getattr(diffrax, name.capitalize()) for name in SOLVER_NAMES}
+
+MAX_STEPS_PER_SEGMENT = 200_000
+_REDUCTIONS = {"max": -jnp.inf, "min": jnp.inf, "first": jnp.nan, "duration": 0.0}
+
+# Incremented each time the loop is traced (i.e. compiled): tests use it to show
+# that new parameter values do not recompile.
+trace_count = 0
+
+
+@pytree_dataclass
+class Plan:
+    """Everything one run needs, as arrays: the traced inputs of the compiled loop."""
+
+    elements: tuple
+    boundaries: jax.Array  # s, scheduled segment boundaries (any order, within [0, duration])
+    initial_state: jax.Array  # named by Layout(elements).state_names
+    speed_scale: jax.Array  # rad/s, for the slip resolution
+    duration: jax.Array  # s
+    grid: jax.Array  # s, output times (padded with the duration)
+    rtol: jax.Array
+    atol: jax.Array
+    max_switches: jax.Array  # mode switches allowed before the run counts as chattering
+
+    @cached_property
+    def layout(self) -> Layout:
+        return Layout(self.elements)
+
+
+@pytree_dataclass
+class Args:
+    """What the vector field and the guards read during one pass."""
+
+    elements: tuple
+    segment: Segment
+    modes: jax.Array
+    observing: jax.Array
+    speed_scale: jax.Array
+    reply: Response | None  # the bodies' response while these modes hold (None: worked out at each call)
+    offsets: dict  # observation and valley guards -> what is taken off them this pass (see switching)
+
+    @cached_property
+    def layout(self) -> Layout:
+        return Layout(self.elements)
+
+
+class _Carry(eqx.Module):
+    t: jax.Array
+    y: jax.Array
+    modes: jax.Array
+    at_boundary: jax.Array
+    status: jax.Array
+    switches: jax.Array
+    segments: jax.Array
+    steps: jax.Array
+    rejected: jax.Array
+    grid_state: jax.Array
+    grid_modes: jax.Array
+    log_count: jax.Array
+    kind_counts: jax.Array  # events of each kind so far (Layout.event_kinds)
+    log: jax.Array  # (rows, LOG_FIELDS + states + couplings): one buffer, one write per event (see _record)
+    observations: jax.Array
+    step_cap: jax.Array  # s: the largest step allowed (inf but while re-solving a missed crossing)
+    fired: dict  # observation and valley guards -> whether one ended the last pass
+    extremes: dict  # running reductions of the run, for its summary (exact: every extremum is a row)
+
+
+def _instant(plan: Plan, segment: Segment, t, y, modes, reply=None) -> Instant:
+    return Instant(plan.layout, t, y, modes, segment.table, segment, reply=reply)
+
+
+def _reductions(plan: Plan, x: Instant) -> dict:
+    out = {}
+    for element in plan.layout.elements:
+        out.update(element.extremes(x))
+    return out
+
+
+def _note(plan: Plan, segment: Segment, c: _Carry, t, y, modes, reply=None) -> _Carry:
+    """Fold the state at (t, y, modes) into the run's running extremes."""
+    folded = {}
+    for name, (kind, value) in _reductions(plan, _instant(plan, segment, t, y, modes, reply)).items():
+        old = c.extremes[name]
+        folded[name] = {"max": lambda: jnp.maximum(old, value), "min": lambda: jnp.minimum(old, value),
+                        "first": lambda: jnp.where(jnp.isnan(old) & value, t, old),
+                        "duration": lambda: old}[kind]()
+    return eqx.tree_at(lambda k: k.extremes, c, folded)
+
+
+# The event log's fields before the state and the modes: time, kind, element, torque margin.
+LOG_FIELDS = 4
+
+
+def _record(c: _Carry, when, t, kind, element, y, modes, margin=jnp.nan) -> _Carry:
+    """Append an event row when ``when`` holds (a masked write keeps the loop branch-free).
+
+    One row of one buffer: under vmap a write to a buffer indexed by a per-lane
+    count costs as much as the buffer, so one write beats one per field, and a
+    summary-only run keeps a log of one row and counts the events by kind.
+    """
+    i = jnp.minimum(c.log_count, c.log.shape[0] - 1)
+    # a lean log (summary-only runs) keeps no state: its rows are never output rows
+    state = y if c.log.shape[1] > LOG_FIELDS + modes.shape[0] else y[:0]
+    row = jnp.concatenate([jnp.stack([jnp.asarray(v, jnp.float64) for v in (t, kind, element, margin)]),
+                           state, modes.astype(jnp.float64)])
+    log = c.log.at[i].set(jnp.where(when, row, c.log[i]))
+    counts = c.kind_counts + (when & (jnp.arange(c.kind_counts.shape[0]) == kind))
+    return eqx.tree_at(lambda k: (k.log_count, k.kind_counts, k.log), c, (c.log_count + when, counts, log))
+
+
+def _record_transitions(plan: Plan, segment: Segment, c: _Carry, when, t, y, before, after,
+                        columns: bool) -> _Carry:
+    """One event row per coupling whose mode changed (if it reports its switches); count them."""
+    layout = plan.layout
+    for k, (index, coupling) in enumerate(zip(layout.couplings, layout.coupling_elements)):
+        if not coupling.reports_switches:
+            continue
+        kind = switching.transition_kind(before[k], after[k])
+        happened = when & (kind != NO_EVENT)
+        margin = switching.margin(layout, segment, t, y, after, k) if columns else jnp.nan
+        c = _record(c, happened, t, kind, index, y, after, margin)
+        c = eqx.tree_at(lambda q: q.switches, c, c.switches + happened)
+    return c
+
+
+def _scheduled_switches(plan: Plan, segment: Segment, c: _Carry, columns: bool) -> _Carry:
+    """At a boundary: record the elements' scheduled events, then re-decide every coupling."""
+    layout = plan.layout
+    modes, candidates = switching.candidates_at_boundary(layout, segment, c.y, plan.speed_scale)
+    decided, _ = switching.settle(layout, segment, c.t, c.y, modes, candidates)
+    decided_y = keep_momentum(layout, c.y, [m == STUCK for m in decided])
+    before = c.modes
+    new_modes = jnp.where(c.at_boundary, decided, c.modes)
+    c = eqx.tree_at(lambda k: (k.y, k.modes), c, (jnp.where(c.at_boundary, decided_y, c.y), new_modes))
+    for index, element in enumerate(layout.elements):
+        for kind, happens in element.boundary_events(c.t):
+            c = _record(c, c.at_boundary & happens, c.t, layout.kind_code(kind), index, c.y, new_modes, jnp.nan)
+    # The first decision (t = 0) sets the initial modes; it is not an event.
+    before = jnp.where(c.segments == 0, -1, before)
+    return _record_transitions(plan, segment, c, c.at_boundary, c.t, c.y, before, new_modes, columns)
+
+
+def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit, columns: bool) -> _Carry:
+    """A guard fired at (t, y): lock, reverse or unlock with the matching reset, or an observation."""
+    layout = plan.layout
+    # At most one guard fires at a time (diffrax reports the first): one row for any observation.
+    observed, kind, element = jnp.zeros((), bool), NO_EVENT, -1
+    for role, name, _ in switching.guards(layout):
+        if role == "observe":
+            section, what = name.split(".")
+            kind = jnp.where(masks[name], layout.kind_code(what), kind)
+            element = jnp.where(masks[name], layout.sections.index(section), element)
+            observed = observed | masks[name]
+    c = _record(c, observed, t, kind, element, y, c.modes, jnp.nan)
+    valley = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in switching.guards(layout) if r == "valley"],
+                              jnp.zeros((), bool))
+    c = eqx.tree_at(lambda k: k.observations, c, c.observations + (observed | valley))
+    hit = hit & ~observed & ~valley
+    # Sides that meet move on together (momentum kept); a coupling whose
+    # capacity is exceeded slips the way its torque pushes.
+    modes, candidates = c.modes, [m == STUCK for m in c.modes]
+    for k, coupling in enumerate(layout.coupling_elements):
+        if not coupling.can_slip:
+            continue
+        name = coupling.section
+        met, up, down = masks[f"{name}.slip"], masks[f"{name}.breakaway+"], masks[f"{name}.breakaway-"]
+        modes = modes.at[k].set(jnp.where(up, SLIP_FORWARD, jnp.where(down, SLIP_BACKWARD,
+                                                                       jnp.where(met, STUCK, modes[k]))))
+        candidates[k] = (candidates[k] & ~up & ~down) | met
+    new_modes, new_y = switching.settle(layout, segment, t, y, modes, candidates)
+    c = _record_transitions(plan, segment, c, hit, t, new_y, c.modes, new_modes, columns)
+    return eqx.tree_at(lambda k: (k.y, k.modes), c,
+                       (jnp.where(hit, new_y, c.y), jnp.where(hit, new_modes, c.modes)))
+
+
+def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, reply):
+    observing = c.observations < plan.max_switches
+    args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply,
+                {name: jnp.zeros(()) for name in c.fired})
+    # a guard that ended the last pass starts this one at or below zero (see switching)
+    offsets = {name: jnp.where(c.fired[name], jnp.maximum(g(c.t, c.y, args), 0.0), 0.0)
+               for _, name, g in guards if name in c.fired}
+    event = diffrax.Event(cond_fn=[g for _, _, g in guards], root_finder=CrossingBisection(), direction=False)
+    save_times = jnp.clip(plan.grid, c.t, segment.end)
+    return diffrax.diffeqsolve(
+        diffrax.ODETerm(vector_field),
+        solver,
+        t0=c.t,
+        t1=segment.end,
+        dt0=None,
+        y0=c.y,
+        args=Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, offsets),
+        # Two save lists: after an event diffrax writes the final value right after
+        # the last grid value it kept, so the end of the solve gets a list of its own.
+        saveat=diffrax.SaveAt(subs=[diffrax.SubSaveAt(ts=save_times), diffrax.SubSaveAt(t1=True)]),
+        stepsize_controller=diffrax.PIDController(rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap),
+        event=event,
+        max_steps=MAX_STEPS_PER_SEGMENT,
+        adjoint=diffrax.ForwardMode(),
+        throw=False,
+    )
+
+
+def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
+    layout = plan.layout
+    guards = switching.guards(layout)
+    segment = segment_from(plan.elements, plan.boundaries, plan.duration, c.t)
+    c = _scheduled_switches(plan, segment, c, columns)
+    reply = response(layout, c.modes)
+    c = _note(plan, segment, c, c.t, c.y, c.modes, reply)
+    durations = {name: value for name, (kind, value) in
+                 _reductions(plan, _instant(plan, segment, c.t, c.y, c.modes, reply)).items() if kind == "duration"}
+    start_t, start_y = c.t, c.y
+    sol = _solve_segment(plan, segment, c, solver, guards, reply)
+
+    (_, (t_end,)), (grid_values, (y_end,)) = sol.ts, sol.ys
+    hit = sol.result == diffrax.RESULTS.event_occurred
+    failed = ~(hit | (sol.result == diffrax.RESULTS.successful))
+    masks = {name: jnp.asarray(m) & hit for (_, name, _), m in zip(guards, sol.event_mask)}
+    # A slip valley of the wrong sign: the crossing fell inside one step and was
+    # missed.  Throw this pass away and solve again from its start with steps
+    # capped well below the dip's length, so that a step ends inside it.
+    end = Instant(layout, t_end, y_end)
+    missed = jnp.zeros((), bool)
+    for k, coupling in enumerate(layout.coupling_elements):
+        if coupling.can_slip:
+            wrong = slip_sign(c.modes[k]) * end.relative_speed(coupling.section) < 0
+            missed = missed | (masks[f"{coupling.section}.slip_valley"] & wrong)
+    kept = ~missed
+    masks = {name: m & kept for name, m in masks.items()}
+    rows = (plan.grid >= c.t) & (plan.grid < t_end) & kept
+    grid_state = jnp.where(rows[:, None], grid_values, c.grid_state)
+    grid_modes = jnp.where(rows[:, None], c.modes, c.grid_modes)
+    y_end = jnp.where(missed, start_y, y_end)
+    t_reached = jnp.where(missed, start_t, t_end)
+    c = _note(plan, segment, c, t_reached, y_end, c.modes, reply)
+    spent = jnp.where(~failed & kept, t_end - start_t, 0.0)
+    extremes = dict(c.extremes, **{name: c.extremes[name] + jnp.where(on, spent, 0.0)
+                                   for name, on in durations.items()})
+    c = eqx.tree_at(
+        lambda k: (k.extremes, k.grid_state, k.grid_modes, k.steps, k.rejected, k.segments, k.fired),
+        c,
+        (extremes, grid_state, grid_modes, c.steps + sol.stats["num_steps"],
+         c.rejected + sol.stats["num_rejected_steps"], c.segments + 1, {name: masks[name] for name in c.fired}),
+    )
+    c = _apply_event(plan, segment, eqx.tree_at(lambda k: k.y, c, y_end), t_end, y_end, masks, hit & kept,
+                     columns)
+    c = _note(plan, segment, c, t_reached, c.y, c.modes)
+    status = jnp.where(failed, SOLVER_FAILED, jnp.where(c.switches > plan.max_switches, CHATTERING, c.status))
+    return eqx.tree_at(
+        lambda k: (k.t, k.at_boundary, k.status, k.step_cap),
+        c,
+        (t_reached, kept & (~hit | (t_end >= segment.end)), status,
+         jnp.where(missed, (t_end - start_t) / 8.0, jnp.inf)),
+    )
+
+
+def _run(plan: Plan, solver, max_segments: int, log_size: int, columns: bool = True) -> RawRun:
+    """One run; ``columns`` False leaves out the output columns (a summary-only sweep needs none)."""
+    global trace_count
+    trace_count += 1
+    layout = plan.layout
+    layout.responses = response_table(layout)  # once per run, outside the loop
+    rows, size, couplings = plan.grid.shape[0], layout.size, len(layout.couplings)
+    nan = jnp.nan
+    c = _Carry(
+        t=jnp.zeros(()),
+        y=plan.initial_state,
+        modes=jnp.full((couplings,), STUCK),
+        at_boundary=jnp.array(True),
+        status=jnp.array(OK),
+        switches=jnp.array(0),
+        segments=jnp.array(0),
+        steps=jnp.array(0),
+        rejected=jnp.array(0),
+        grid_state=jnp.full((rows, size), nan),
+        grid_modes=jnp.full((rows, couplings), -1),
+        log_count=jnp.array(0),
+        kind_counts=jnp.zeros((len(layout.event_kinds),), int),
+        log=jnp.full((log_size, LOG_FIELDS + (size if columns else 0) + couplings), nan),
+        observations=jnp.array(0),
+        step_cap=jnp.full((), jnp.inf),
+        fired={name: jnp.array(False) for role, name, _ in switching.guards(layout) if role != "switch"},
+        extremes=_initial_extremes(plan),
+    )
+
+    def going(c: _Carry):
+        return (c.t < plan.duration) & (c.status == OK) & (c.segments < max_segments)
+
+    c = jax.lax.while_loop(going, functools.partial(_step, plan, solver, columns), c)
+    status = jnp.where((c.status == OK) & (c.t < plan.duration), TOO_MANY_SEGMENTS, c.status)
+    # The end of the run: rows at the duration (and the grid's padding) take the final state.
+    last = plan.grid >= c.t
+    grid_state = jnp.where(last[:, None] & (status == OK), c.y, c.grid_state)
+    grid_modes = jnp.where(last[:, None] & (status == OK), c.modes, c.grid_modes)
+    scalars = [c.t, *summary_values(plan, c.extremes, c.y, c.modes), *ledger_values(layout, plan.initial_state),
+               *ledger_values(layout, c.y)]
+    logged = jnp.arange(log_size) < c.log_count
+    codes = jnp.where(logged[:, None], c.log[:, 1:3], -1.0).astype(jnp.int32)
+    log_time, log_margin = c.log[:, 0], c.log[:, 3]
+    log_state = c.log[:, LOG_FIELDS: -couplings or None] if columns else jnp.zeros((log_size, 0))
+    log_modes = jnp.where(logged[:, None], c.log[:, c.log.shape[1] - couplings:], -1.0).astype(jnp.int32)
+    # the grid's rows and the events' through one evaluation (one copy of it in the program)
+    outputs = row_outputs(plan, jnp.concatenate([plan.grid, log_time]), jnp.concatenate([grid_state, log_state]),
+                          jnp.concatenate([grid_modes, log_modes])) if columns else jnp.zeros((0, rows + log_size))
+    return RawRun(
+        grid_state=grid_state,
+        grid_modes=grid_modes,
+        grid_columns=outputs[:, :rows],
+        event_columns=outputs[:, rows:],
+        event_times=jnp.stack([log_time, log_margin], axis=1),
+        event_codes=codes,
+        event_state=log_state,
+        event_modes=log_modes,
+        final_state=c.y,
+        scalars=jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in scalars]),
+        counters=jnp.stack([c.log_count, c.switches, status, c.steps, c.rejected, c.segments]),
+        kind_counts=c.kind_counts,
+    )
+
+
+def _initial_extremes(plan: Plan) -> dict:
+    """Each running reduction's starting value (its identity: -inf for a max, NaN for a first time...)."""
+    x = Instant(plan.layout, jnp.zeros(()), plan.initial_state, jnp.full((len(plan.layout.couplings),), STUCK),
+                lambda name, t: jnp.zeros(()))
+    return {name: jnp.asarray(_REDUCTIONS[kind], dtype=jnp.float64) for name, (kind, _) in
+            _reductions(plan, x).items()}
+
+
+@functools.lru_cache(maxsize=None)
+def compiled_run(solver_name: str, max_segments: int, log_size: int, columns: bool = True):
+    """The jitted loop for a solver and buffer sizes; shapes of the plan select the rest."""
+    solver = SOLVERS[solver_name]()
+    return jax.jit(functools.partial(_run, solver=solver, max_segments=max_segments, log_size=log_size,
+                                     columns=columns))

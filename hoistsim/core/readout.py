@@ -1,0 +1,111 @@
+"""What the compiled loop returns, and reading it back on the host by name: columns, events, summary, ledger."""
+
+from __future__ import annotations
+
+import jax
+import numpy as np
+
+from .._pytree import pytree_dataclass
+from .layout import Layout
+
+EVENT_COUNT, SWITCHES, STATUS, STEPS, REJECTED, PASSES = range(6)
+
+
+@pytree_dataclass
+class RawRun:
+    """What the compiled loop returns, packed into few arrays (each costs a transfer to the host).
+
+    :class:`Readout` reads it back by name.
+    """
+
+    grid_state: jax.Array  # (rows, states)
+    grid_modes: jax.Array  # (rows, couplings)
+    grid_columns: jax.Array  # (columns, rows), in the order of Layout.columns()
+    event_columns: jax.Array  # (columns, events)
+    event_times: jax.Array  # (events, 2): time (NaN where unused), margin (N*m: capacity less |stuck torque|)
+    event_codes: jax.Array  # (events, 2): kind (Layout.event_kinds), element (Layout.sections)
+    event_state: jax.Array
+    event_modes: jax.Array
+    final_state: jax.Array
+    scalars: jax.Array  # end time, then Layout.summaries, then each ledger term at the start and the end
+    counters: jax.Array  # event count, switches, status, steps, rejected steps, passes
+    kind_counts: jax.Array  # events of each kind (Layout.event_kinds), however small the log
+
+
+class _Lane:
+    """Run ``k`` of a batch: each field of the batch's RawRun indexed at k when read."""
+
+    def __init__(self, raw, k: int):
+        self._raw, self._k = raw, k
+
+    def __getattr__(self, name):
+        return getattr(self._raw, name)[self._k]
+
+
+class Readout:
+    """One run's :class:`hoistsim.core.loop.RawRun` (numpy arrays, on the host) read through its layout.
+
+    ``lane`` picks one run of a batch (a vmapped sweep's chunk).
+    """
+
+    def __init__(self, layout: Layout, raw, lane: int | None = None):
+        self.layout = layout
+        self.raw = raw if lane is None else _Lane(raw, lane)
+
+    def _count(self, which: int) -> int:
+        return int(self.raw.counters[which])
+
+    @property
+    def status(self) -> int:
+        return self._count(STATUS)
+
+    @property
+    def event_count(self) -> int:
+        return self._count(EVENT_COUNT)
+
+    @property
+    def end_time(self) -> float:
+        return float(self.raw.scalars[0])
+
+    @property
+    def stats(self) -> dict:
+        return {"steps": self._count(STEPS), "rejected_steps": self._count(REJECTED),
+                "segments": self._count(PASSES), "switches": self._count(SWITCHES)}
+
+    def _cast(self, name: str, values: np.ndarray) -> np.ndarray:
+        # a column in units "1" is a flag or a mode (see AbstractElement)
+        return values.astype(np.int8) if self.layout.columns()[name][0] == "1" else values
+
+    def columns(self, rows: int) -> dict[str, np.ndarray]:
+        """Every output column on the first ``rows`` grid rows followed by the event rows."""
+        events = self.event_count
+        grid, at_events = np.asarray(self.raw.grid_columns), np.asarray(self.raw.event_columns)
+        return {name: self._cast(name, np.concatenate([grid[i, :rows], at_events[i, :events]]))
+                for i, name in enumerate(self.layout.columns())}
+
+    def events(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Times, kinds, elements and torque margins of every logged event (observations included)."""
+        n = self.event_count
+        codes = np.asarray(self.raw.event_codes[:n])
+        kinds = np.asarray([self.layout.event_kinds[int(k)] for k in codes[:, 0]], dtype=object)
+        elements = np.asarray([self.layout.sections[int(e)] for e in codes[:, 1]], dtype=object)
+        times = np.asarray(self.raw.event_times[:n], dtype=float)
+        return times[:, 0], kinds, elements, times[:, 1]
+
+    def count(self, kind: str) -> int:
+        """How many events of a kind the run had (known even when the log kept no rows)."""
+        return int(self.raw.kind_counts[self.layout.kind_code(kind)]) if kind in self.layout.event_kinds else 0
+
+    def summary(self) -> dict:
+        """The elements' summary values by name (yes/no values as bools)."""
+        values = self.raw.scalars[1: 1 + len(self.layout.summaries)]
+        return {name: bool(v) if units == "bool" else float(v)
+                for (name, units), v in zip(self.layout.summaries.items(), values)}
+
+    def ledger(self) -> dict:
+        """Each energy term: name -> (kind, value at the start, value at the end)."""
+        n = len(self.layout.ledger_kinds)
+        start = self.raw.scalars[1 + len(self.layout.summaries):][:n]
+        end = self.raw.scalars[1 + len(self.layout.summaries) + n:][:n]
+        return {name: (kind, float(a), float(b))
+                for (name, kind), a, b in zip(self.layout.ledger_kinds.items(), start, end)}

@@ -1,0 +1,174 @@
+"""Switching couplings, written once: guards, the static check and mode transitions.
+
+Every coupling that can slip brings the same guards, positive inside their mode
+and an event where they fall to zero (a constant 1 outside it, so they never
+fire there); diffrax needs a strictly positive value before a non-positive one,
+so a guard that is exactly zero at a restart cannot fire.
+- ``slip``: the relative speed in the direction of slip, plus a negligible slip,
+  reaches 0 when the two sides meet.  After an unlock or a reversal the slip
+  restarts at exactly zero; were the guard zero there too, an excursion that
+  returns within the first step would go unseen, so it is offset by the slip
+  resolution (~3e-14 rad/s at 300 rpm) and starts positive.  It cannot fire at
+  once: the stick tolerance makes the slip grow the right way from a restart.
+- ``breakaway+`` / ``breakaway-``: the capacity less / plus the torque a stuck
+  coupling carries: 0 when side a breaks away forwards / backwards.
+- ``slip_peak`` (an observation): the rate of |slip| while not stuck, through 0
+  where the slip speed peaks, so the peak is a row, not a sample.
+- ``slip_valley`` (a safeguard): minus the rate of the slip in its direction,
+  through 0 where the slip stops shrinking.  With a loose tolerance one step can
+  carry the slip below zero and back so that neither end of the step shows the
+  crossing; the valley between is always seen, and if the slip there has the
+  wrong sign the loop re-solves with shorter steps.
+
+Switching guards come first: when two guards cross in one step, diffrax locates
+the first in this order, and a switch must never be skipped for an observation.
+
+Observations and valleys restart at their own zero, where round-off alone
+decides the sign of a rate that is passing through zero: a restart state a few
+ulps different from the root's could read slightly positive and fire again at
+once, without end (seen in a vmapped sweep whose slip settles into a steady
+value).  So a guard that ended the previous pass is lowered, for the next pass,
+by its own (non-negative, round-off sized) value at the restart: it starts at
+or below zero and cannot fire before it has genuinely risen again (``offsets``).
+"""
+
+from __future__ import annotations
+
+import jax.numpy as jnp
+
+from .dynamics import Instant, keep_momentum, slip_sign
+from .element import OPEN, SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STICK_TOLERANCE, STUCK
+from .layout import DISENGAGE, ENGAGE, LOCK, NO_EVENT, REVERSAL, UNLOCK, Layout
+
+
+def holding_capacity(coupling, x):
+    """The capacity with the stick tolerance: what a stuck coupling is allowed to carry."""
+    return coupling.capacity(x) * (1.0 + STICK_TOLERANCE)
+
+
+def _instant(t, y, args) -> Instant:
+    """The machine at (t, y) for the guards, shared by all of them at one (t, y).
+
+    diffrax evaluates every guard with the same t, y and args; one Instant for
+    them all keeps the traced program (and its compile time) small.
+    """
+    shared = args.__dict__.get("_guard_instant")
+    if shared is not None and shared.t is t and shared.y is y:
+        return shared
+    x = Instant(args.layout, t, y, args.modes, args.segment.table, args.segment, args.observing, args.reply)
+    args.__dict__["_guard_instant"] = x
+    return x
+
+
+def guards(layout: Layout) -> list[tuple[str, str, object]]:
+    """(role, name, guard function) of every guard, in the order diffrax must see them.
+
+    Roles: "switch" (a mode change), "observe" (a row is recorded), "valley".
+    Names are "<section>.<guard>" for couplings and "<section>.<kind>" for elements' observations.
+    """
+    switch, observe, valley = [], [], []
+    for k, coupling in enumerate(layout.coupling_elements):
+        if not coupling.can_slip:
+            continue
+        name = coupling.section
+
+        def slip(t, y, args, k=k, name=name, **_):
+            x = _instant(t, y, args)
+            s = slip_sign(args.modes[k])
+            return jnp.where(s != 0.0, s * x.relative_speed(name) + SLIP_RESOLUTION * args.speed_scale, 1.0)
+
+        def breakaway(sign, k=k, coupling=coupling, name=name):
+            def guard(t, y, args, **_):
+                x = _instant(t, y, args)
+                return jnp.where(args.modes[k] == STUCK,
+                                 holding_capacity(coupling, x) - sign * x.coupling_torque(name), 1.0)
+            return guard
+
+        def peak(t, y, args, k=k, name=name, **_):
+            x = _instant(t, y, args)
+            growth = jnp.sign(x.relative_speed(name)) * x.relative_acceleration(name)
+            return jnp.where((args.modes[k] != STUCK) & args.observing, growth - args.offsets[f"{name}.slip_peak"], 1.0)
+
+        def dip(t, y, args, k=k, name=name, **_):
+            x = _instant(t, y, args)
+            s = slip_sign(args.modes[k])
+            return jnp.where((s != 0.0) & args.observing,
+                             -s * x.relative_acceleration(name) - args.offsets[f"{name}.slip_valley"], 1.0)
+
+        switch += [("switch", f"{name}.slip", slip), ("switch", f"{name}.breakaway+", breakaway(1.0)),
+                   ("switch", f"{name}.breakaway-", breakaway(-1.0))]
+        observe.append(("observe", f"{name}.slip_peak", peak))
+        valley.append(("valley", f"{name}.slip_valley", dip))
+    for element in layout.elements:
+        for kind in element.observation_kinds:
+            def seen(t, y, args, element=element, kind=kind, **_):
+                value = element.observations(_instant(t, y, args))[kind]
+                return jnp.where(args.observing, value - args.offsets[f"{element.section}.{kind}"], 1.0)
+            observe.append(("observe", f"{element.section}.{kind}", seen))
+    return switch + observe + valley
+
+
+def candidates_at_boundary(layout: Layout, segment, y, speed_scale):
+    """Modes at a scheduled boundary before the static check, and which couplings may stick.
+
+    Open over the segment: open.  Slipping by more than the slip resolution:
+    slipping that way.  Otherwise (the sides move together): a candidate for
+    sticking, decided by the static check.
+    """
+    x = Instant(layout, 0.0, y)
+    tiny = SLIP_RESOLUTION * speed_scale
+    modes, candidates = [], []
+    for coupling in layout.coupling_elements:
+        is_open = jnp.asarray(coupling.is_open(segment))
+        if coupling.can_slip:
+            slip = x.relative_speed(coupling.section)
+            mode = jnp.where(slip > tiny, SLIP_FORWARD, jnp.where(slip < -tiny, SLIP_BACKWARD, STUCK))
+        else:
+            mode = jnp.asarray(STUCK)
+        mode = jnp.where(is_open, OPEN, mode)
+        modes.append(mode)
+        candidates.append(mode == STUCK)
+    return jnp.stack(modes) if modes else jnp.zeros((0,), int), candidates
+
+
+def settle(layout: Layout, segment, t, y, modes, candidates, observing=True):
+    """The static check: which candidates stay stuck, which slip (and which way).
+
+    All candidates are tried stuck, with their speeds met (momentum kept); the
+    most overstressed one beyond its capacity slips the way its torque pushes, and
+    the rest are tried again, once per coupling.  Returns the new modes and the
+    met speeds.
+    """
+    met = keep_momentum(layout, y, candidates)
+    couplings = layout.coupling_elements
+    for _ in [c for c in couplings if c.can_slip]:  # only those can be let go
+        x = Instant(layout, t, met, modes, segment.table, segment, observing)
+        excess = []
+        for k, coupling in enumerate(couplings):
+            torque = x.coupling_torques[k]
+            ratio = jnp.abs(torque) / holding_capacity(coupling, x)
+            excess.append(jnp.where(candidates[k] & (modes[k] == STUCK) & (ratio > 1.0), ratio, 0.0))
+        worst = jnp.argmax(jnp.stack(excess))
+        for k in range(len(couplings)):
+            slips = (worst == k) & (excess[k] > 0.0)
+            direction = jnp.where(x.coupling_torques[k] > 0, SLIP_FORWARD, SLIP_BACKWARD)
+            modes = modes.at[k].set(jnp.where(slips, direction, modes[k]))
+    return modes, met
+
+
+def transition_kind(previous, new):
+    """Event kind recorded when a coupling's mode changes (NO_EVENT if it does not)."""
+    slipping_before = (previous == SLIP_FORWARD) | (previous == SLIP_BACKWARD)
+    kind = jnp.where(new == STUCK, LOCK,
+           jnp.where(new == OPEN, DISENGAGE,
+           jnp.where(previous == STUCK, UNLOCK,
+           jnp.where(previous == OPEN, ENGAGE, REVERSAL))))
+    changed = (previous != new) & ((previous == STUCK) | (previous == OPEN) | slipping_before)
+    return jnp.where(changed, kind, NO_EVENT)
+
+
+def margin(layout: Layout, segment, t, y, modes, k):
+    """Capacity less |torque| of coupling k were it stuck at (t, y), the others as they are (N*m)."""
+    coupling = layout.coupling_elements[k]
+    x = Instant(layout, t, y, modes.at[k].set(STUCK), segment.table, segment)
+    return coupling.capacity(x) - jnp.abs(x.coupling_torques[k])

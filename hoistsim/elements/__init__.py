@@ -1,0 +1,43 @@
+"""The parts of the machine, one file each, and the registry that builds a scene's elements.
+
+A scenario section that is present builds its element; a section that is
+absent builds nothing, so the scene has none of its bodies, states, terms,
+guards or columns.  Variants of a section (the motor's characteristics) are
+alternatives picked by the keys given, each in its own file.
+"""
+
+from __future__ import annotations
+
+from ..core.element import AbstractCoupling as AbstractCoupling
+from ..core.element import AbstractElement as AbstractElement
+from .bearings import DrumShaftLoads as DrumShaftLoads
+from .cone_clutch import ConeClutch as ConeClutch
+from .drum import Drum as Drum
+from .gear_pair import GearPair as GearPair
+from .holding_brake import HoldingBrake as HoldingBrake
+from .linear_motor import LinearMotor as LinearMotor
+from .rigid_load import RigidLoad as RigidLoad
+
+# Scenario section -> its element, or the variant's name -> element for a section with variants.
+# The order is the order of bodies, states and output columns.
+REGISTRY: dict[str, object] = {
+    "motor": {"linear": LinearMotor},
+    "gears": GearPair,
+    "clutch": ConeClutch,
+    "drum": Drum,
+    "load": RigidLoad,
+    "brake": HoldingBrake,
+    "bearings": DrumShaftLoads,
+}
+
+
+def elements_for(scenario) -> tuple[AbstractElement, ...]:
+    """The elements a scenario names, built from their sections, in registry order."""
+    built = []
+    for section, entry in REGISTRY.items():
+        spec = getattr(scenario, section, None)
+        if spec is None:
+            continue
+        cls = entry[spec.characteristic] if isinstance(entry, dict) else entry
+        built.append(cls.from_spec(spec, scenario))
+    return tuple(built)

@@ -1,0 +1,106 @@
+"""The cone clutch between the motor shaft and the pinion shaft."""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+import jax.numpy as jnp
+import numpy as np
+
+from .. import components
+
+from ..core.element import SLIP_BACKWARD, SLIP_FORWARD, STUCK, AbstractCoupling
+
+
+class ConeClutch(AbstractCoupling):
+    """A friction coupling pressed by an engagement force F(t), a table of time.
+
+    Static capacity f_a c F and sliding torque f c F, with the geometry constant
+    c = n r_m / sin(beta) (:class:`hoistsim.components.ConeClutch`); open while
+    the force is zero.  Its halves' inertias sit on the two shafts it joins.
+    The heat of slip (torque times slip speed) is a state and a loss of the ledger.
+    """
+
+    clutch_constant: object  # c = n r_m / sin(beta), m
+    static_friction: object  # f_a
+    kinetic_friction: object  # f
+    force_times: object  # s, the engagement force table (a repeated time is a step)
+    force_values: object  # N
+    driving_inertia: object  # kg*m^2, the half on the motor shaft
+    driven_inertia: object  # kg*m^2, the half on the pinion shaft
+
+    section: ClassVar[str] = "clutch"
+    summaries: ClassVar[dict] = {"lockup_time": "s", "slip_duration": "s", "peak_clutch_torque": "N*m",
+                                 "peak_slip_speed": "rad/s", "slip_energy": "J"}
+    ledger_kinds: ClassVar[dict] = {"clutch_energy": "loss"}
+    columns: ClassVar[dict] = {
+        "slip_speed": ("rad/s", "motor speed minus clutch-output (pinion) speed"),
+        "clutch_torque": ("N*m", "torque through the clutch, positive when the motor drives the load"),
+        "clutch_locked": ("1", "1 while the clutch sticks, 0 while it slips or is open"),
+        "engagement_force": ("N", "axial force pressing the cone clutch"),
+        "clutch_energy": ("J", "energy dissipated in the clutch so far"),
+        "clutch_capacity": ("N*m", "static torque capacity at the current engagement force"),
+        "clutch_mode": ("1", "0 locked, 1 slipping forwards, 2 slipping backwards, 3 open"),
+    }
+
+    @classmethod
+    def from_spec(cls, spec, scenario) -> "ConeClutch":
+        geometry = components.ConeClutch(spec.inner_radius, spec.outer_radius, spec.half_angle,
+                                         spec.static_friction, spec.kinetic_friction, spec.surfaces,
+                                         spec.mean_radius)
+        table = spec.engagement_force
+        return cls(clutch_constant=geometry.torque_per_newton, static_friction=spec.static_friction,
+                   kinetic_friction=spec.kinetic_friction, force_times=np.asarray(table.times, float),
+                   force_values=np.asarray(table.forces, float), driving_inertia=spec.driving_inertia,
+                   driven_inertia=spec.driven_inertia)
+
+    def joins(self) -> tuple:
+        return ("motor", "pinion")
+
+    def tables(self) -> dict:
+        return {"engagement_force": ("force_times", "force_values")}
+
+    def capacity(self, x):
+        return self.static_friction * self.clutch_constant * x.table("engagement_force")
+
+    def sliding_torque(self, x):
+        return self.kinetic_friction * self.clutch_constant * x.table("engagement_force")
+
+    def is_open(self, segment):
+        return segment.zero_throughout("engagement_force")
+
+    def inertias(self) -> tuple:
+        return (("motor", self.driving_inertia), ("pinion", self.driven_inertia))
+
+    def states(self) -> dict:
+        return {"clutch_energy": 0.0}
+
+    def rates(self, x) -> dict:
+        return {"clutch_energy": x.coupling_torque("clutch") * x.relative_speed("clutch")}
+
+    def ledger(self, x) -> dict:
+        return {"clutch_energy": x.state("clutch_energy")}
+
+    def extremes(self, x) -> dict:
+        mode = x.mode("clutch")
+        return {
+            "lockup_time": ("first", mode == STUCK),
+            "slip_duration": ("duration", (mode == SLIP_FORWARD) | (mode == SLIP_BACKWARD)),
+            "peak_clutch_torque": ("max", jnp.abs(x.coupling_torque("clutch"))),
+            "peak_slip_speed": ("max", jnp.abs(x.relative_speed("clutch"))),
+        }
+
+    def outputs(self, x) -> dict:
+        mode = x.mode("clutch")
+        return {
+            "slip_speed": x.relative_speed("clutch"),
+            "clutch_torque": x.coupling_torque("clutch"),
+            "clutch_locked": (mode == STUCK).astype(jnp.int8),
+            "engagement_force": x.table("engagement_force"),
+            "clutch_energy": x.state("clutch_energy"),
+            "clutch_capacity": self.capacity(x),
+            "clutch_mode": mode.astype(jnp.int8),
+        }
+
+    def summary(self, x) -> dict:
+        return {"slip_energy": x.state("clutch_energy")}
