@@ -3,8 +3,8 @@
 Side a is the motor shaft; side b the clutch output (pinion) shaft.  Masses are
 reduced by equal kinetic energy and forces by equal power (physics.md):
 
-    J_a = J_motor + J_clutch,driving
-    J_b = J_clutch,driven + J_pinion + (J_wheel + I_drum + M R^2) / tau^2
+    J_a = J_motor + J_clutch,driving (+ a flywheel on the motor shaft)
+    J_b = J_clutch,driven + J_pinion + (J_wheel + I_drum + M R^2 (+ a flywheel on the drum)) / tau^2
     T_L = M g R / tau
 
 The simulator does not use these numbers: its elements declare inertias and
@@ -13,7 +13,7 @@ torques on their shafts, and the core reduces them.  The closed-form solution
 table do, written here once and independently of the elements, so that the
 oracles and the engine agree only if both are right.  They cover the canonical
 scene: a linear motor, the cone clutch, gears, drum, a rigid load, a holding
-brake.
+brake, a flywheel.
 """
 
 from __future__ import annotations
@@ -48,12 +48,17 @@ class Machine:
     driving_inertia: float = 0.0
     driven_inertia: float = 0.0
 
+    motor_flywheel: float = 0.0
+    drum_flywheel: float = 0.0
+
     @classmethod
     def from_scenario(cls, scenario: Scenario) -> "Machine":
         m, c, g = scenario.motor, scenario.clutch, scenario.gears
         if m.characteristic != "linear":
             raise ScenarioError("motor", "the two-shaft reduction (statics, closed form) needs a linear motor "
                                 "(stall_torque + no_load_speed)")
+        flywheel = scenario.flywheel
+        fly = flywheel.moment_of_inertia if flywheel is not None else 0.0
         return cls(
             motor=LinearMotor(m.stall_torque, m.no_load_speed, m.moment_of_inertia),
             clutch=ConeClutch(c.inner_radius, c.outer_radius, c.half_angle, c.static_friction,
@@ -64,14 +69,16 @@ class Machine:
             load=HangingLoad(scenario.load.mass, scenario.gravity),
             driving_inertia=c.driving_inertia,
             driven_inertia=c.driven_inertia,
+            motor_flywheel=fly if flywheel is not None and flywheel.shaft == "motor" else 0.0,
+            drum_flywheel=fly if flywheel is not None and flywheel.shaft == "drum" else 0.0,
         )
 
     def reduced(self) -> "Drivetrain":
         tau = self.gears.ratio
         R = self.drum.rope_radius
-        drum_side = self.gears.wheel_inertia + self.drum.inertia + self.load.mass * R**2
+        drum_side = self.gears.wheel_inertia + self.drum.inertia + self.drum_flywheel + self.load.mass * R**2
         return Drivetrain(
-            motor_inertia=self.motor.inertia + self.driving_inertia,
+            motor_inertia=self.motor.inertia + self.driving_inertia + self.motor_flywheel,
             output_inertia=self.driven_inertia + self.gears.pinion_inertia + drum_side / tau**2,
             stall_torque=self.motor.stall_torque,
             no_load_speed=self.motor.no_load_speed,

@@ -115,6 +115,42 @@ class InitialSpec(Section):
         return self
 
 
+class FlywheelSpec(Section):
+    shaft: Literal["motor", "drum"] = "motor"
+    inertia: u.quantity(u.INERTIA, ge=0.0) | None = None
+    # or a rim: I = pi * density * width * (R_outer^4 - R_inner^4) / 2
+    density: u.quantity(u.DENSITY, gt=0.0) | None = None
+    outer_diameter: u.quantity(u.LENGTH, gt=0.0) | None = None
+    inner_diameter: u.quantity(u.LENGTH, ge=0.0) | None = None
+    width: u.quantity(u.LENGTH, gt=0.0) | None = None
+
+    @model_validator(mode="after")
+    def _inertia_or_rim(self):
+        rim = {name: getattr(self, name) for name in ("density", "outer_diameter", "inner_diameter", "width")}
+        given = [name for name, value in rim.items() if value is not None]
+        if self.inertia is not None and given:
+            raise ScenarioError(f"flywheel.{given[0]}", "give either inertia or a rim (density, outer_diameter, "
+                                "inner_diameter, width), not both")
+        if self.inertia is None:
+            missing = [name for name, value in rim.items() if value is None]
+            if missing:
+                raise ScenarioError(f"flywheel.{missing[0] if given else 'inertia'}",
+                                    "required: the flywheel's inertia, or a rim's density, outer_diameter, "
+                                    "inner_diameter and width")
+            if self.inner_diameter >= self.outer_diameter:
+                raise ScenarioError("flywheel.inner_diameter", f"must be less than outer_diameter "
+                                    f"({self.outer_diameter:g} m), got {self.inner_diameter:g} m")
+        return self
+
+    @property
+    def moment_of_inertia(self) -> float:
+        """kg*m^2: as given, or the rim's pi rho s (R_o^4 - R_i^4) / 2."""
+        if self.inertia is not None:
+            return self.inertia
+        outer, inner = 0.5 * self.outer_diameter, 0.5 * self.inner_diameter
+        return math.pi * self.density * self.width * (outer**4 - inner**4) / 2.0
+
+
 class BrakeSpec(Section):
     release_time: u.quantity(u.TIME, ge=0.0)  # the holding brake frees the drum at this time
 
@@ -154,6 +190,7 @@ class Scenario(Section):
     load: LoadSpec
     gravity: u.quantity(u.ACCELERATION, ge=0.0) = 9.81
     initial: InitialSpec = InitialSpec()
+    flywheel: FlywheelSpec | None = None
     brake: BrakeSpec | None = None
     bearings: BearingsSpec | None = None
     simulation: SimulationSpec

@@ -57,6 +57,7 @@ FORCE = Dimension("force", "N", "'200 daN'")
 TIME = Dimension("time", "s", "'0.5 s'")
 ACCELERATION = Dimension("acceleration", "m/s^2", "'9.81 m/s^2'")
 DIMENSIONLESS = Dimension("pure number", "", "0.3")
+DENSITY = Dimension("density", "kg/m^3", "'7200 kg/m^3'")
 
 # dimensionality (as pint prints it, radian power) -> what an engineer calls it
 _KNOWN = {

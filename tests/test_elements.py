@@ -49,6 +49,40 @@ def _speeds(run):
     return run["motor_speed"], run["drum_speed"]
 
 
+@pytest.mark.parametrize("shaft, section, key, base", [("motor", "motor", "inertia", 0.9),
+                                                        ("drum", "drum", "inertia", 40.0)])
+def test_flywheel_equals_its_inertia_on_the_shaft(shaft, section, key, base):
+    extra = 7.5
+    with_flywheel = simulate(_scene(flywheel={"shaft": shaft, "inertia": f"{extra} kg*m^2"}))
+    heavier = simulate(_scene(**{section: {key: f"{base + extra} kg*m^2"}}))
+    assert with_flywheel.events["kind"].tolist() == heavier.events["kind"].tolist()
+    np.testing.assert_allclose(with_flywheel.events["time"], heavier.events["time"], atol=1e-10)
+    for ours, theirs in zip(_speeds(with_flywheel), _speeds(heavier)):
+        assert np.max(np.abs(ours - theirs)) < 1e-8
+    assert with_flywheel.energy_balance["relative_residual"] < 1e-8
+
+
+def test_rim_inertia_is_the_formula():
+    rim = {"density": "7200 kg/m^3", "outer_diameter": "80 cm", "inner_diameter": "60 cm", "width": "12 cm"}
+    s = _scene(flywheel=rim)
+    expected = math.pi * 7200 * 0.12 * (0.4**4 - 0.3**4) / 2
+    assert s.flywheel.moment_of_inertia == pytest.approx(expected, rel=1e-14)
+    (flywheel,) = [e for e in elements_for(s) if e.section == "flywheel"]
+    assert flywheel.inertias() == (("motor", pytest.approx(expected, rel=1e-14)),)
+    # and the run sees it: the same as that inertia given directly
+    direct = simulate(_scene(flywheel={"inertia": f"{expected!r} kg*m^2"}))
+    np.testing.assert_allclose(simulate(s)["motor_speed"], direct["motor_speed"], rtol=0, atol=1e-12)
+
+
+def test_a_scene_names_only_its_elements():
+    plain = build_plan(_scene())[0].layout
+    assert plain.sections == ["motor", "gears", "clutch", "drum", "load"]
+    assert plain.bodies == ["motor", "pinion"]
+    assert plain.state_names == ["motor.speed", "pinion.speed", "motor_work", "clutch_energy", "load_position"]
+    heavy = build_plan(_scene(flywheel={"inertia": "3 kg*m^2"}))[0].layout
+    assert heavy.state_names == plain.state_names and heavy.columns() == plain.columns()
+
+
 class _SecondBrake(AbstractCoupling):
     """A brake on the pinion shaft: with a brake on the drum, the same motion held twice."""
 

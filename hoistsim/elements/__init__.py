@@ -13,6 +13,7 @@ from ..core.element import AbstractElement as AbstractElement
 from .bearings import DrumShaftLoads as DrumShaftLoads
 from .cone_clutch import ConeClutch as ConeClutch
 from .drum import Drum as Drum
+from .flywheel import Flywheel as Flywheel
 from .gear_pair import GearPair as GearPair
 from .holding_brake import HoldingBrake as HoldingBrake
 from .linear_motor import LinearMotor as LinearMotor
@@ -26,6 +27,7 @@ REGISTRY: dict[str, object] = {
     "clutch": ConeClutch,
     "drum": Drum,
     "load": RigidLoad,
+    "flywheel": Flywheel,
     "brake": HoldingBrake,
     "bearings": DrumShaftLoads,
 }
