@@ -29,16 +29,41 @@ class Section(BaseModel):
 
 
 class MotorSpec(Section):
-    stall_torque: u.quantity(u.TORQUE, gt=0.0)  # C0, torque at standstill
-    no_load_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0)  # omega0, where the torque reaches 0
+    # exactly one characteristic: linear (C0 and omega0), a torque-speed table, or a constant torque
+    stall_torque: u.quantity(u.TORQUE, gt=0.0) | None = None  # C0, torque at standstill
+    no_load_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) | None = None  # omega0, where the torque reaches 0
+    torque_speed: u.TorqueSpeedTable | None = None
+    torque: u.quantity(u.TORQUE) | None = None  # 0 N*m: the motor is off and its shaft coasts
     inertia: u.quantity(u.INERTIA, gt=0.0) | None = None
     rotor_mass: u.quantity(u.MASS, gt=0.0) | None = None
     radius_of_gyration: u.quantity(u.LENGTH, gt=0.0) | None = None
 
+    @model_validator(mode="after")
+    def _one_characteristic(self):
+        given = [name for name in ("stall_torque", "no_load_speed", "torque_speed", "torque")
+                 if getattr(self, name) is not None]
+        linear = {"stall_torque", "no_load_speed"} & set(given)
+        others = [name for name in given if name not in linear]
+        if linear and others:
+            raise ScenarioError(f"motor.{others[0]}", "give one characteristic: stall_torque + no_load_speed "
+                                f"(linear), torque_speed (a table) or torque (constant); got {', '.join(given)}")
+        if len(others) > 1:
+            raise ScenarioError(f"motor.{others[1]}", "give one characteristic: stall_torque + no_load_speed "
+                                f"(linear), torque_speed (a table) or torque (constant); got {', '.join(given)}")
+        if not given:
+            raise ScenarioError("motor.stall_torque", "required: a characteristic, stall_torque + no_load_speed "
+                                "(linear), torque_speed (a table) or torque (constant)")
+        if linear and len(linear) == 1:
+            missing = "motor.no_load_speed" if self.no_load_speed is None else "motor.stall_torque"
+            raise ScenarioError(missing, "required with a linear characteristic (stall_torque + no_load_speed)")
+        return self
+
     @property
     def characteristic(self) -> str:
-        """Which variant of the motor element: the linear characteristic."""
-        return "linear"
+        """Which variant: ``linear``, ``torque_speed`` or ``torque``."""
+        if self.torque_speed is not None:
+            return "torque_speed"
+        return "torque" if self.torque is not None else "linear"
 
     @model_validator(mode="after")
     def _one_inertia(self):

@@ -248,6 +248,26 @@ def force_table(value: object) -> tuple[tuple[float, ...], tuple[float, ...]]:
     return tuple(times), tuple(forces)
 
 
+def torque_speed_table(value: object) -> tuple[tuple[float, float], ...]:
+    """A motor characteristic: rows ``[speed, torque]``, at least two, speeds strictly increasing."""
+    example = "like [[0 rpm, 500 N*m], [300 rpm, 0 N*m]]"
+    if not isinstance(value, (list, tuple)) or len(value) < 2:
+        raise UnitError(f"must be a table of at least two rows [speed, torque], {example}")
+    rows: list[tuple[float, float]] = []
+    for i, row in enumerate(value):
+        if not isinstance(row, (list, tuple)) or len(row) != 2:
+            raise TableError(i, f"must be a pair [speed, torque], {example}, got {row!r}")
+        try:
+            speed, torque = to_si(row[0], ANGULAR_SPEED), to_si(row[1], TORQUE)
+        except UnitError as exc:
+            raise TableError(i, str(exc)) from None
+        if rows and speed <= rows[-1][0]:
+            raise TableError(i, f"speeds must increase ({show(speed, ANGULAR_SPEED)} after "
+                                f"{show(rows[-1][0], ANGULAR_SPEED)})")
+        rows.append((speed, torque))
+    return tuple(rows)
+
+
 # --------------------------------------------------------------------------------------
 # the value types of the scenario schema (pydantic fields)
 
@@ -301,6 +321,8 @@ def _to_force_table(value: Any) -> ForceTable:
 
 
 EngagementForce = Annotated[ForceTable, BeforeValidator(_to_force_table)]
+TorqueSpeedTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
+    lambda value: value if isinstance(value, tuple) else torque_speed_table(value))]
 
 
 def range_ends(start: object, stop: object) -> tuple[float, float, str]:

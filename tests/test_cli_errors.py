@@ -175,7 +175,19 @@ CASES = [
     Case("negative constant force", TABLE, "engagement_force: -3 kN", "clutch.engagement_force",
          "engagement_force", "pushed apart"),
     # malformed YAML
-    # flywheels
+    # motor characteristics and flywheels
+    Case("two motor characteristics", "no_load_speed: 300 rpm", "no_load_speed: 300 rpm\n  torque: 100 N*m",
+         "motor.torque", "torque: 100", "give one characteristic"),
+    Case("two table-like characteristics", "stall_torque: 500 N*m\n  no_load_speed: 300 rpm",
+         "torque: 100 N*m\n  torque_speed: [[0 rpm, 500 N*m], [300 rpm, 0 N*m]]", "motor.torque",
+         "torque: 100", "give one characteristic"),
+    Case("torque-speed table with speeds not increasing", "stall_torque: 500 N*m\n  no_load_speed: 300 rpm",
+         "torque_speed: [[0 rpm, 500 N*m], [200 rpm, 300 N*m], [100 rpm, 0 N*m]]", "motor.torque_speed",
+         "torque_speed", "row 3: speeds must increase"),
+    Case("torque-speed table of one row", "stall_torque: 500 N*m\n  no_load_speed: 300 rpm",
+         "torque_speed: [[0 rpm, 500 N*m]]", "motor.torque_speed", "torque_speed", "at least two rows"),
+    Case("no motor characteristic", "  stall_torque: 500 N*m\n  no_load_speed: 300 rpm\n", "",
+         "motor.stall_torque", "motor:", "a characteristic"),
     Case("rim with the inner diameter not below the outer", None,
          "flywheel:\n  density: 7200 kg/m^3\n  outer_diameter: 1 m\n  inner_diameter: 1.2 m\n  width: 10 cm\n",
          "flywheel.inner_diameter", "inner_diameter", "must be less than outer_diameter"),

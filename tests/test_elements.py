@@ -74,6 +74,50 @@ def test_rim_inertia_is_the_formula():
     np.testing.assert_allclose(simulate(s)["motor_speed"], direct["motor_speed"], rtol=0, atol=1e-12)
 
 
+def test_torque_speed_table_on_the_line_is_the_linear_motor():
+    c0, w0 = 500.0, 300 * math.pi / 30
+    rows = [[f"{float(w)!r} rad/s", f"{float(c0 * (1 - w / w0))!r} N*m"] for w in np.linspace(0.0, w0, 7)]
+    table = _scene(motor={"stall_torque": None, "no_load_speed": None, "torque_speed": rows})
+    data = table.raw
+    assert "stall_torque" not in data["motor"]
+    linear = simulate(_scene())
+    tabled = simulate(table)
+    assert tabled.events["kind"].tolist() == linear.events["kind"].tolist()
+    for ours, theirs in zip(_speeds(tabled), _speeds(linear)):
+        assert np.max(np.abs(ours - theirs)) < 1e-8
+    assert tabled.summary["slip_energy"] == pytest.approx(linear.summary["slip_energy"], rel=1e-8)
+
+
+def test_table_is_continued_linearly_beyond_its_ends():
+    from hoistsim.elements import TableMotor
+
+    motor = TableMotor(inertia=1.0, initial_speed=0.0, table_speeds=np.array([10.0, 20.0, 30.0]),
+                       table_torques=np.array([100.0, 80.0, 20.0]))
+    speeds = np.array([-10.0, 0.0, 15.0, 25.0, 40.0])
+    np.testing.assert_allclose(np.asarray(motor.characteristic(speeds)), [140.0, 120.0, 90.0, 50.0, -40.0])
+
+
+def test_motor_off_meets_a_second_inertia_through_a_slipping_clutch():
+    """Closed form: J_a w' = -T, J_b w' = T until the speeds meet."""
+    w1, force = 30.0, 2000.0
+    run = simulate(_scene(motor={"stall_torque": None, "no_load_speed": None, "torque": "0 N*m"},
+                          clutch={"engagement_force": f"{force} N"}, load={"mass": "0 kg"},
+                          initial={"motor_speed": f"{w1} rad/s"}))
+    tau = 90 / 17
+    ja, jb = 0.9, 40.0 / tau**2  # the motor's inertia; the drum's, at the pinion
+    from hoistsim.components import ConeClutch
+
+    torque = 0.1 * ConeClutch(0.20, 0.24, math.radians(25), 0.3, 0.1).torque_per_newton * force
+    lock = ja * jb * w1 / (torque * (ja + jb))
+    heat = ja * jb * w1**2 / (2 * (ja + jb))
+    assert run.events["kind"].tolist() == ["lock"]
+    assert abs(run.lockup_time - lock) < 1e-8 * lock
+    assert abs(run.slip_energy - heat) < 1e-8 * heat
+    assert run["motor_torque"].max() == 0.0 and run.energy_balance["motor_work"] == 0.0
+    # after the lock both turn at the common speed, momentum kept
+    assert run["motor_speed"][-1] == pytest.approx(ja * w1 / (ja + jb), rel=1e-10)
+
+
 def test_a_scene_names_only_its_elements():
     plain = build_plan(_scene())[0].layout
     assert plain.sections == ["motor", "gears", "clutch", "drum", "load"]

@@ -12,17 +12,19 @@ from ..core.element import AbstractCoupling as AbstractCoupling
 from ..core.element import AbstractElement as AbstractElement
 from .bearings import DrumShaftLoads as DrumShaftLoads
 from .cone_clutch import ConeClutch as ConeClutch
+from .constant_torque_motor import ConstantTorqueMotor as ConstantTorqueMotor
 from .drum import Drum as Drum
 from .flywheel import Flywheel as Flywheel
 from .gear_pair import GearPair as GearPair
 from .holding_brake import HoldingBrake as HoldingBrake
 from .linear_motor import LinearMotor as LinearMotor
+from .motor_table import TableMotor as TableMotor
 from .rigid_load import RigidLoad as RigidLoad
 
 # Scenario section -> its element, or the variant's name -> element for a section with variants.
 # The order is the order of bodies, states and output columns.
 REGISTRY: dict[str, object] = {
-    "motor": {"linear": LinearMotor},
+    "motor": {"linear": LinearMotor, "torque_speed": TableMotor, "torque": ConstantTorqueMotor},
     "gears": GearPair,
     "clutch": ConeClutch,
     "drum": Drum,
