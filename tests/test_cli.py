@@ -101,17 +101,21 @@ def test_usage_errors_are_one_line(tmp_path, args):
     assert not (tmp_path / "out.h5").exists()
 
 
+def _short_runback(out, env, cwd) -> h5py.File:
+    """Run half a second of the run-back scenario in a new process; the written file, open."""
+    proc = subprocess.run([sys.executable, "-m", "hoistsim.cli", "run", str(SCENARIOS / "runback_slipping_clutch.yaml"),
+                           "-o", str(out), "--set", "simulation.duration=0.5 s"],
+                          capture_output=True, text=True, env=env, cwd=cwd)
+    assert proc.returncode == 0, proc.stderr
+    return h5py.File(out, "r")
+
+
 def test_second_run_loads_the_stored_executable(tmp_path):
     """With the cache on, a run stores its compiled loop; the next process loads it and agrees bit for bit."""
     env = dict(os.environ, HOISTSIM_CACHE_DIR=str(tmp_path / "cache"))
     outputs = []
     for i in range(2):
-        out = tmp_path / f"run{i}.h5"
-        proc = subprocess.run([sys.executable, "-m", "hoistsim.cli", "run", str(SCENARIOS / "runback_slipping_clutch.yaml"),
-                               "-o", str(out), "--set", "simulation.duration=0.5 s"],
-                              capture_output=True, text=True, env=env, cwd=ROOT)
-        assert proc.returncode == 0, proc.stderr
-        with h5py.File(out, "r") as f:
+        with _short_runback(tmp_path / f"run{i}.h5", env, ROOT) as f:
             outputs.append(f["runs/0/slip_speed"][()])
     assert len(list((tmp_path / "cache" / "executables").glob("*.bin"))) == 1
     # JAX's own cache took the loop too: it refuses programs with host callbacks
@@ -128,12 +132,7 @@ def test_a_changed_source_is_never_served_a_stored_program(tmp_path):
     env = dict(os.environ, HOISTSIM_CACHE_DIR=str(tmp_path / "cache"), PYTHONPATH=str(tmp_path / "tree"))
 
     def heat(tag: str) -> float:
-        out = tmp_path / f"{tag}.h5"
-        proc = subprocess.run([sys.executable, "-m", "hoistsim.cli", "run", str(SCENARIOS / "runback_slipping_clutch.yaml"),
-                               "-o", str(out), "--set", "simulation.duration=0.5 s"],
-                              capture_output=True, text=True, env=env, cwd=tmp_path)
-        assert proc.returncode == 0, proc.stderr
-        with h5py.File(out, "r") as f:
+        with _short_runback(tmp_path / f"{tag}.h5", env, tmp_path) as f:
             return float(f["runs/0"].attrs["slip_energy"])
 
     original = heat("original")
