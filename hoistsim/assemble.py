@@ -7,7 +7,7 @@ import numpy as np
 
 from .core.element import AbstractCoupling
 from .core.layout import Layout, LayoutError
-from .core.loop import Plan
+from .core.loop import KINK_BUDGET, Plan
 from .core.schedule import scheduled_times
 from .elements import elements_for
 from .errors import ScenarioError
@@ -98,8 +98,9 @@ def build_plan(scenario: Scenario, summary_only: bool = False) -> tuple[Plan, np
     scheduled = [0.0, sim.duration, *scheduled_times(elements)]
     grid = np.array([sim.duration]) if summary_only else output_grid(sim.duration, sim.output_interval)
     speeds = [float(v) for e in elements for v in e.bodies().values()]
-    # the state in Layout's order: the bodies' speeds, then every element's states
-    initial = speeds + [float(v) for e in elements for v in e.states().values()]
+    # the state in Layout's order: the bodies' speeds, every element's states, the angles read
+    angles = {shaft for e in elements for shaft in e.angles()}  # each starts at 0
+    initial = speeds + [float(v) for e in elements for v in e.states().values()] + [0.0] * len(angles)
     scales = [float(s) for s in (e.speed_scale() for e in elements) if s is not None]
     plan = Plan(
         elements=elements,  # floats and float arrays already (from_spec); jit takes them as they are
@@ -121,4 +122,5 @@ def loop_sizes(plan: Plan, max_switches: int) -> tuple[int, int]:
     # a switch may log one row per coupling
     boundaries = int(plan.boundaries.shape[0])
     couplings = max(1, sum(isinstance(e, AbstractCoupling) for e in plan.elements))
-    return boundaries + 2 * max_switches + 2, (couplings + 1) * max_switches + 2 * boundaries + 4
+    kinks = KINK_BUDGET * max_switches if any(e.kink_names() for e in plan.elements) else 0
+    return boundaries + 2 * max_switches + kinks + 2, (couplings + 1) * max_switches + 2 * boundaries + 4

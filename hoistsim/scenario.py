@@ -225,8 +225,10 @@ def _validate(raw: dict, tree: Any, source: str, overridden: set[str] = frozense
 def _error_from(err: dict, tree: Any, source: str, overridden: set[str]) -> ScenarioError:
     loc = tuple(err["loc"])
     kind, cause = err["type"], (err.get("ctx") or {}).get("error")
-    if isinstance(cause, ScenarioError):  # a check across keys names its own key
-        loc, message = tuple(cause.key.split(".")), cause.message
+    if isinstance(cause, ScenarioError):  # a check across keys names its own key ...
+        key = tuple(cause.key.lstrip(".").split("."))
+        # ... from the top, or (".table") within a section that may sit at several places
+        loc, message = (loc + key if cause.key.startswith(".") else key), cause.message
     elif kind == "missing":
         message = "required value is missing"
         if len(loc) == 1 and _model_of(Scenario, str(loc[0])) is not None:

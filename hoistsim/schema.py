@@ -28,6 +28,38 @@ class Section(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
 
+class HarmonicSpec(Section):
+    order: u.whole("periods per ripple period")  # k: amplitude * sin(k * 2 pi * angle / period + phase)
+    amplitude: u.quantity(u.TORQUE)
+    phase: u.quantity(u.ANGLE) = 0.0
+
+
+class RippleSpec(Section):
+    """A torque periodic in a shaft's angle: harmonics, or one period as a table (not both)."""
+
+    period: u.quantity(u.ANGLE, gt=0.0) = 2 * math.pi
+    harmonics: list[HarmonicSpec] | None = None
+    table: u.AngleTorqueTable | None = None
+
+    @model_validator(mode="after")
+    def _one_form(self):
+        if self.harmonics is not None and self.table is not None:
+            raise ScenarioError(".table", "give either harmonics or a table, not both")
+        if self.harmonics is None and self.table is None:
+            raise ScenarioError(".harmonics", "required: harmonics (order, amplitude, phase) or a table of one period")
+        if self.harmonics is not None and not self.harmonics:
+            raise ScenarioError(".harmonics", "give at least one harmonic {order, amplitude, phase}")
+        if self.table is not None:
+            first, last = self.table[0], self.table[-1]
+            if first[0] != 0.0 or not math.isclose(last[0], self.period, rel_tol=1e-12):
+                raise ScenarioError(".table", f"must span exactly one period, from 0 to {math.degrees(self.period):g} deg "
+                                    f"(got {math.degrees(first[0]):g} to {math.degrees(last[0]):g} deg)")
+            if first[1] != last[1]:
+                raise ScenarioError(".table", f"must end where it starts, one period on ({first[1]:g} N*m at 0, "
+                                    f"{last[1]:g} N*m at the end)")
+        return self
+
+
 class MotorSpec(Section):
     # exactly one characteristic: linear (C0 and omega0), a torque-speed table, or a constant torque
     stall_torque: u.quantity(u.TORQUE, gt=0.0) | None = None  # C0, torque at standstill
@@ -37,6 +69,7 @@ class MotorSpec(Section):
     inertia: u.quantity(u.INERTIA, gt=0.0) | None = None
     rotor_mass: u.quantity(u.MASS, gt=0.0) | None = None
     radius_of_gyration: u.quantity(u.LENGTH, gt=0.0) | None = None
+    ripple: RippleSpec | None = None  # a torque added to the characteristic, periodic in the motor angle
 
     @model_validator(mode="after")
     def _one_characteristic(self):
@@ -118,6 +151,7 @@ class GearSpec(Section):
 class DrumSpec(Section):
     diameter: u.quantity(u.LENGTH, gt=0.0)
     inertia: u.quantity(u.INERTIA, gt=0.0)
+    resisting_ripple: RippleSpec | None = None  # a torque resisting the lift, periodic in the drum angle
 
 
 class LoadSpec(Section):

@@ -248,24 +248,33 @@ def force_table(value: object) -> tuple[tuple[float, ...], tuple[float, ...]]:
     return tuple(times), tuple(forces)
 
 
-def torque_speed_table(value: object) -> tuple[tuple[float, float], ...]:
-    """A motor characteristic: rows ``[speed, torque]``, at least two, speeds strictly increasing."""
-    example = "like [[0 rpm, 500 N*m], [300 rpm, 0 N*m]]"
+def pair_table(value: object, first: Dimension, second: Dimension, what: str, example: str
+               ) -> tuple[tuple[float, float], ...]:
+    """Rows ``[first, second]``, at least two, the first column strictly increasing (``what`` names it)."""
     if not isinstance(value, (list, tuple)) or len(value) < 2:
-        raise UnitError(f"must be a table of at least two rows [speed, torque], {example}")
+        raise UnitError(f"must be a table of at least two rows [{first.name}, {second.name}], {example}")
     rows: list[tuple[float, float]] = []
     for i, row in enumerate(value):
         if not isinstance(row, (list, tuple)) or len(row) != 2:
-            raise TableError(i, f"must be a pair [speed, torque], {example}, got {row!r}")
+            raise TableError(i, f"must be a pair [{first.name}, {second.name}], {example}, got {row!r}")
         try:
-            speed, torque = to_si(row[0], ANGULAR_SPEED), to_si(row[1], TORQUE)
+            x, y = to_si(row[0], first), to_si(row[1], second)
         except UnitError as exc:
             raise TableError(i, str(exc)) from None
-        if rows and speed <= rows[-1][0]:
-            raise TableError(i, f"speeds must increase ({show(speed, ANGULAR_SPEED)} after "
-                                f"{show(rows[-1][0], ANGULAR_SPEED)})")
-        rows.append((speed, torque))
+        if rows and x <= rows[-1][0]:
+            raise TableError(i, f"{what} must increase ({show(x, first)} after {show(rows[-1][0], first)})")
+        rows.append((x, y))
     return tuple(rows)
+
+
+def torque_speed_table(value: object) -> tuple[tuple[float, float], ...]:
+    """A motor characteristic: rows ``[speed, torque]``, at least two, speeds strictly increasing."""
+    return pair_table(value, ANGULAR_SPEED, TORQUE, "speeds", "like [[0 rpm, 500 N*m], [300 rpm, 0 N*m]]")
+
+
+def angle_torque_table(value: object) -> tuple[tuple[float, float], ...]:
+    """One period of a torque ripple: rows ``[angle, torque]``, angles strictly increasing."""
+    return pair_table(value, ANGLE, TORQUE, "angles", "like [[0 deg, 0 N*m], [90 deg, 850 N*m], [360 deg, 0 N*m]]")
 
 
 # --------------------------------------------------------------------------------------
@@ -323,6 +332,8 @@ def _to_force_table(value: Any) -> ForceTable:
 EngagementForce = Annotated[ForceTable, BeforeValidator(_to_force_table)]
 TorqueSpeedTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
     lambda value: value if isinstance(value, tuple) else torque_speed_table(value))]
+AngleTorqueTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
+    lambda value: value if isinstance(value, tuple) else angle_torque_table(value))]
 
 
 def range_ends(start: object, stop: object) -> tuple[float, float, str]:

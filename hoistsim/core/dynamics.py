@@ -25,7 +25,7 @@ import jax.numpy as jnp
 
 from .._pytree import pytree_dataclass
 from .element import SLIP_BACKWARD, SLIP_FORWARD, STUCK
-from .layout import Layout
+from .layout import Layout, angle_state
 
 
 def slip_sign(mode):
@@ -265,6 +265,10 @@ class Instant:
         body, ratio = self.layout.shaft(shaft)
         return ratio * self.body_speeds[body]
 
+    def angle(self, shaft):
+        """Angle the shaft has turned since the start (rad); only for shafts an element declares in angles()."""
+        return self.state(angle_state(shaft))
+
     def acceleration(self, shaft):
         body, ratio = self.layout.shaft(shaft)
         return ratio * self.accelerations[body]
@@ -352,4 +356,6 @@ def vector_field(t, y, args):
     for element in layout.elements:
         for name, rate in element.rates(x).items():
             rates[layout.state_index(name)] = rate
+    for shaft in layout.angle_shafts:
+        rates[layout.state_index(angle_state(shaft))] = x.speed(shaft)
     return jnp.stack([jnp.asarray(r, dtype=y.dtype) for r in rates])

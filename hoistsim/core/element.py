@@ -18,6 +18,9 @@ Contributions, all read at trace time (``x`` is the machine at one instant,
 - ``inertias()``: (shaft, kg*m^2) pairs;
 - ``torques(x)``: (shaft, N*m) pairs, positive in the shaft's positive sense;
 - ``states()`` / ``rates(x)``: named states with initial values, and their rates;
+- ``angles()``: shafts whose angle the element reads (``x.angle(shaft)``, rad, 0 at
+  the start): the core keeps one state and one output column ``<shaft>_angle``
+  for each shaft some element asks for, and none otherwise;
 - ``ledger(x)``: energy terms by name (J), each declared in ``ledger_kinds`` as
   "work" (done on the machine), "loss" (dissipated) or "potential" (stored);
   kinetic energy is the core's;
@@ -26,7 +29,12 @@ Contributions, all read at trace time (``x`` is the machine at one instant,
 - ``boundaries()`` and ``boundary_events(t)``: scheduled times and the events
   recorded at them (kinds listed in ``event_kinds``);
 - ``observations(x)``: guards whose zero is recorded as an output row (kinds in
-  ``event_kinds``), positive before it;
+  ``observation_kinds``), positive before it;
+- ``kinks(x)``: knot coordinates (named by ``kink_names()``), continuous in the
+  state and whole numbers exactly where the element's torque has a kink (a
+  table's knot in angle): the integration stops at the next whole number either
+  way and restarts there, as at a scheduled boundary in time, so no step
+  straddles a knot;
 - ``extremes(x)``: running reductions for the summary, name -> (reduction, value)
   with reduction one of "max", "min", "first" (the first time the value is true),
   "duration" (time spent while it is true; constant between switches);
@@ -96,6 +104,9 @@ class AbstractElement:
     def rates(self, x) -> dict:
         return {}
 
+    def angles(self) -> tuple:
+        return ()
+
     def ledger(self, x) -> dict:
         return {}
 
@@ -109,6 +120,12 @@ class AbstractElement:
         return ()
 
     def observations(self, x) -> dict:
+        return {}
+
+    def kink_names(self) -> tuple:
+        return ()
+
+    def kinks(self, x) -> dict:
         return {}
 
     def extremes(self, x) -> dict:

@@ -16,6 +16,11 @@ LOCK, UNLOCK, REVERSAL, ENGAGE, DISENGAGE = range(5)
 NO_EVENT = -1
 
 
+def angle_state(shaft: str) -> str:
+    """The name of a shaft's angle, as a state and as an output column."""
+    return f"{shaft}_angle"
+
+
 class LayoutError(ValueError):
     """Elements that do not fit together; ``key`` names the scenario key to blame."""
 
@@ -50,6 +55,15 @@ class Layout:
                     raise LayoutError(element.section, f"state {name!r} is declared twice")
                 self.state_names.append(name)
                 self.initial_states.append(value)
+        # angles: a state only for a shaft some element reads the angle of
+        self.angle_shafts = []
+        for element in elements:
+            for shaft in element.angles():
+                self.shaft(shaft, element)
+                if shaft not in self.angle_shafts:
+                    self.angle_shafts.append(shaft)
+        self.state_names += [angle_state(shaft) for shaft in self.angle_shafts]
+        self.initial_states += [0.0] * len(self.angle_shafts)
         self._state_index = {name: i for i, name in enumerate(self.state_names)}
         self.event_kinds = list(SWITCH_KINDS)
         for element in elements:
@@ -61,6 +75,8 @@ class Layout:
         self.event_kinds += [k for k in self.observation_kinds if k not in self.event_kinds]
         self.sections = [e.section for e in elements]
         self._columns = {name: column for e in elements for name, column in e.columns.items()}
+        self._columns.update({angle_state(shaft): ("rad", f"angle the {shaft} shaft has turned since the start")
+                              for shaft in self.angle_shafts})
         self.summaries = {name: units for e in elements for name, units in e.summaries.items()}
         self.ledger_kinds = {"kinetic_energy": "potential"}
         self.ledger_kinds.update({name: kind for e in elements for name, kind in e.ledger_kinds.items()})

@@ -40,6 +40,8 @@ STATUS_TEXT = {OK: "ok", CHATTERING: "chattering", SOLVER_FAILED: "solver failed
 SOLVERS = {name: getattr(diffrax, name.capitalize()) for name in SOLVER_NAMES}
 
 MAX_STEPS_PER_SEGMENT = 200_000
+# Passes that may end at a kink, per allowed switch (beyond, kinks are stepped across).
+KINK_BUDGET = 100
 _REDUCTIONS = {"max": -jnp.inf, "min": jnp.inf, "first": jnp.nan, "duration": 0.0}
 
 # Incremented each time the loop is traced (i.e. compiled): tests use it to show
@@ -76,7 +78,9 @@ class Args:
     observing: jax.Array
     speed_scale: jax.Array
     reply: Response | None  # the bodies' response while these modes hold (None: worked out at each call)
-    offsets: dict  # observation and valley guards -> what is taken off them this pass (see switching)
+    offsets: dict  # observation, valley and kink guards -> what is taken off them this pass (see switching)
+    kinking: jax.Array  # whether kinks still stop the integration (their budget is not spent)
+    anchors: dict  # knot coordinates where the pass started (see switching.guards)
 
     @cached_property
     def layout(self) -> Layout:
@@ -99,6 +103,7 @@ class _Carry(eqx.Module):
     kind_counts: jax.Array  # events of each kind so far (Layout.event_kinds)
     log: jax.Array  # (rows, LOG_FIELDS + states + couplings): one buffer, one write per event (see _record)
     observations: jax.Array
+    kinks: jax.Array  # passes ended at a kink
     step_cap: jax.Array  # s: the largest step allowed (inf but while re-solving a missed crossing)
     fired: dict  # observation and valley guards -> whether one ended the last pass
     extremes: dict  # running reductions of the run, for its summary (exact: every extremum is a row)
@@ -186,15 +191,18 @@ def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit
     observed, kind, element = jnp.zeros((), bool), NO_EVENT, -1
     for role, name, _ in switching.guards(layout):
         if role == "observe":
-            section, what = name.split(".")
+            section, what = name.rsplit(".", 1)
             kind = jnp.where(masks[name], layout.kind_code(what), kind)
             element = jnp.where(masks[name], layout.sections.index(section), element)
             observed = observed | masks[name]
     c = _record(c, observed, t, kind, element, y, c.modes, jnp.nan)
     valley = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in switching.guards(layout) if r == "valley"],
                               jnp.zeros((), bool))
-    c = eqx.tree_at(lambda k: k.observations, c, c.observations + (observed | valley))
-    hit = hit & ~observed & ~valley
+    kinked = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in switching.guards(layout) if r == "kink"],
+                              jnp.zeros((), bool))
+    c = eqx.tree_at(lambda k: (k.observations, k.kinks), c,
+                    (c.observations + (observed | valley), c.kinks + kinked))
+    hit = hit & ~observed & ~valley & ~kinked
     # Sides that meet move on together (momentum kept); a coupling whose
     # capacity is exceeded slips the way its torque pushes.
     modes, candidates = c.modes, [m == STUCK for m in c.modes]
@@ -214,8 +222,10 @@ def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit
 
 def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, reply):
     observing = c.observations < plan.max_switches
+    kinking = c.kinks < KINK_BUDGET * plan.max_switches
+    anchors = switching.kink_anchors(plan.layout, _instant(plan, segment, c.t, c.y, c.modes, reply))
     args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply,
-                {name: jnp.zeros(()) for name in c.fired})
+                {name: jnp.zeros(()) for name in c.fired}, kinking, anchors)
     # a guard that ended the last pass starts this one at or below zero (see switching)
     offsets = {name: jnp.where(c.fired[name], jnp.maximum(g(c.t, c.y, args), 0.0), 0.0)
                for _, name, g in guards if name in c.fired}
@@ -228,7 +238,7 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
         t1=segment.end,
         dt0=None,
         y0=c.y,
-        args=Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, offsets),
+        args=Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, offsets, kinking, anchors),
         # Two save lists: after an event diffrax writes the final value right after
         # the last grid value it kept, so the end of the solve gets a list of its own.
         saveat=diffrax.SaveAt(subs=[diffrax.SubSaveAt(ts=save_times), diffrax.SubSaveAt(t1=True)]),
@@ -318,8 +328,9 @@ def _run(plan: Plan, solver, max_segments: int, log_size: int, columns: bool = T
         kind_counts=jnp.zeros((len(layout.event_kinds),), int),
         log=jnp.full((log_size, LOG_FIELDS + (size if columns else 0) + couplings), nan),
         observations=jnp.array(0),
+        kinks=jnp.array(0),
         step_cap=jnp.full((), jnp.inf),
-        fired={name: jnp.array(False) for role, name, _ in switching.guards(layout) if role != "switch"},
+        fired={name: jnp.array(False) for role, name, _ in switching.guards(layout) if role in ("observe", "valley")},
         extremes=_initial_extremes(plan),
     )
 

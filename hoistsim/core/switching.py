@@ -40,6 +40,9 @@ from .dynamics import Instant, keep_momentum, slip_sign
 from .element import OPEN, SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STICK_TOLERANCE, STUCK
 from .layout import DISENGAGE, ENGAGE, LOCK, NO_EVENT, REVERSAL, UNLOCK, Layout
 
+# A pass that starts within this of a knot (in knots) starts at it: the next ones are a whole knot away.
+KNOT_RESOLUTION = 1e-9
+
 
 def holding_capacity(coupling, x):
     """The capacity with the stick tolerance: what a stuck coupling is allowed to carry."""
@@ -63,7 +66,7 @@ def _instant(t, y, args) -> Instant:
 def guards(layout: Layout) -> list[tuple[str, str, object]]:
     """(role, name, guard function) of every guard, in the order diffrax must see them.
 
-    Roles: "switch" (a mode change), "observe" (a row is recorded), "valley".
+    Roles: "switch" (a mode change), "observe" (a row is recorded), "valley", "kink" (a restart).
     Names are "<section>.<guard>" for couplings and "<section>.<kind>" for elements' observations.
     """
     switch, observe, valley = [], [], []
@@ -105,7 +108,27 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
                 value = element.observations(_instant(t, y, args))[kind]
                 return jnp.where(args.observing, value - args.offsets[f"{element.section}.{kind}"], 1.0)
             observe.append(("observe", f"{element.section}.{kind}", seen))
-    return switch + observe + valley
+    kinks = []
+    for element in layout.elements:
+        for kink in element.kink_names():
+            # The knots either side of where the pass started (``args.anchors``): the
+            # distance to each falls monotonically to zero, so none is stepped over.
+            anchor = f"{element.section}.{kink}"
+
+            def ahead(t, y, args, element=element, kink=kink, anchor=anchor, **_):
+                u = element.kinks(_instant(t, y, args))[kink]
+                return jnp.where(args.kinking, jnp.floor(args.anchors[anchor] + KNOT_RESOLUTION) + 1.0 - u, 1.0)
+
+            def behind(t, y, args, element=element, kink=kink, anchor=anchor, **_):
+                u = element.kinks(_instant(t, y, args))[kink]
+                return jnp.where(args.kinking, u - jnp.ceil(args.anchors[anchor] - KNOT_RESOLUTION) + 1.0, 1.0)
+            kinks += [("kink", f"{anchor}+", ahead), ("kink", f"{anchor}-", behind)]
+    return switch + observe + valley + kinks
+
+
+def kink_anchors(layout: Layout, x: Instant) -> dict:
+    """Every knot coordinate at the start of a pass (see ``guards``)."""
+    return {f"{e.section}.{kink}": value for e in layout.elements for kink, value in e.kinks(x).items()}
 
 
 def candidates_at_boundary(layout: Layout, segment, y, speed_scale):

@@ -18,16 +18,21 @@ from .flywheel import Flywheel as Flywheel
 from .gear_pair import GearPair as GearPair
 from .holding_brake import HoldingBrake as HoldingBrake
 from .linear_motor import LinearMotor as LinearMotor
+from .motor_ripple import MotorRipple as MotorRipple
 from .motor_table import TableMotor as TableMotor
+from .resisting_ripple import ResistingRipple as ResistingRipple
 from .rigid_load import RigidLoad as RigidLoad
 
-# Scenario section -> its element, or the variant's name -> element for a section with variants.
+# Scenario section (dotted within another) -> its element, or the variant's name -> element for a
+# section with variants.
 # The order is the order of bodies, states and output columns.
 REGISTRY: dict[str, object] = {
     "motor": {"linear": LinearMotor, "torque_speed": TableMotor, "torque": ConstantTorqueMotor},
+    "motor.ripple": MotorRipple,
     "gears": GearPair,
     "clutch": ConeClutch,
     "drum": Drum,
+    "drum.resisting_ripple": ResistingRipple,
     "load": RigidLoad,
     "flywheel": Flywheel,
     "brake": HoldingBrake,
@@ -39,7 +44,9 @@ def elements_for(scenario) -> tuple[AbstractElement, ...]:
     """The elements a scenario names, built from their sections, in registry order."""
     built = []
     for section, entry in REGISTRY.items():
-        spec = getattr(scenario, section, None)
+        spec = scenario
+        for part in section.split("."):  # a section within a section: motor.ripple
+            spec = getattr(spec, part, None)
         if spec is None:
             continue
         cls = entry[spec.characteristic] if isinstance(entry, dict) else entry
