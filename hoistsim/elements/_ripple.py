@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import ClassVar
 
 import jax.numpy as jnp
 import numpy as np
@@ -27,6 +28,30 @@ class AbstractRipple(AbstractElement):
     table_angles: object  # rad, 0 .. period; empty for harmonics
     table_torques: object  # N*m
     form: str = static("harmonics")
+
+    shaft: ClassVar[str]  # the shaft whose angle it follows and on which it acts
+    direction: ClassVar[float]  # +1: drives the shaft; -1: resists it
+    work_term: ClassVar[str]  # its work's name in the energy ledger (declared "work" in ledger_kinds)
+    column: ClassVar[str]  # its output column (the ripple torque, positive in its own sense)
+
+    @classmethod
+    def from_spec(cls, spec, scenario) -> "AbstractRipple":
+        return cls(**cls.fields_from(spec))
+
+    def angles(self) -> tuple:
+        return (self.shaft,)
+
+    def kinks(self, x) -> dict:
+        return {"knots": self.knots_passed(x.angle(self.shaft))} if self.kink_names() else {}
+
+    def torques(self, x) -> tuple:
+        return ((self.shaft, self.direction * self.torque_at(x.angle(self.shaft))),)
+
+    def ledger(self, x) -> dict:
+        return {self.work_term: self.direction * self.work_to(x.angle(self.shaft))}
+
+    def outputs(self, x) -> dict:
+        return {self.column: self.torque_at(x.angle(self.shaft))}
 
     @staticmethod
     def fields_from(spec) -> dict:

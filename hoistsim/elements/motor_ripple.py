@@ -15,24 +15,9 @@ class MotorRipple(AbstractRipple):
     """
 
     section: ClassVar[str] = "motor.ripple"
+    shaft: ClassVar[str] = "motor"
+    direction: ClassVar[float] = 1.0
+    work_term: ClassVar[str] = "motor_ripple_work"
     ledger_kinds: ClassVar[dict] = {"motor_ripple_work": "work"}
+    column: ClassVar[str] = "ripple_torque"
     columns: ClassVar[dict] = {"ripple_torque": ("N*m", "motor torque ripple, added to the characteristic")}
-
-    @classmethod
-    def from_spec(cls, spec, scenario) -> "MotorRipple":
-        return cls(**cls.fields_from(spec))
-
-    def angles(self) -> tuple:
-        return ("motor",)
-
-    def kinks(self, x) -> dict:
-        return {"knots": self.knots_passed(x.angle("motor"))} if self.kink_names() else {}
-
-    def torques(self, x) -> tuple:
-        return (("motor", self.torque_at(x.angle("motor"))),)
-
-    def ledger(self, x) -> dict:
-        return {"motor_ripple_work": self.work_to(x.angle("motor"))}
-
-    def outputs(self, x) -> dict:
-        return {"ripple_torque": self.torque_at(x.angle("motor"))}

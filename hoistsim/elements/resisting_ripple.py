@@ -15,25 +15,10 @@ class ResistingRipple(AbstractRipple):
     """
 
     section: ClassVar[str] = "drum.resisting_ripple"
+    shaft: ClassVar[str] = "drum"
+    direction: ClassVar[float] = -1.0
+    work_term: ClassVar[str] = "resisting_ripple_work"
     ledger_kinds: ClassVar[dict] = {"resisting_ripple_work": "work"}
+    column: ClassVar[str] = "resisting_ripple_torque"
     columns: ClassVar[dict] = {"resisting_ripple_torque": ("N*m", "resisting torque ripple on the drum shaft, "
                                                                   "positive against the lift")}
-
-    @classmethod
-    def from_spec(cls, spec, scenario) -> "ResistingRipple":
-        return cls(**cls.fields_from(spec))
-
-    def angles(self) -> tuple:
-        return ("drum",)
-
-    def kinks(self, x) -> dict:
-        return {"knots": self.knots_passed(x.angle("drum"))} if self.kink_names() else {}
-
-    def torques(self, x) -> tuple:
-        return (("drum", -self.torque_at(x.angle("drum"))),)
-
-    def ledger(self, x) -> dict:
-        return {"resisting_ripple_work": -self.work_to(x.angle("drum"))}
-
-    def outputs(self, x) -> dict:
-        return {"resisting_ripple_torque": self.torque_at(x.angle("drum"))}
