@@ -73,7 +73,7 @@ def write_runs(path, runs, *, command: str = "", parameters: dict | None = None)
             f.attrs["format_version"] = 1
             for index, run in enumerate(runs):
                 _write_run(f.create_group(f"runs/{index}"), run)
-            _write_summary(f, [run.summary for run in runs], parameters or {})
+            _write_summary(f, [run.summary for run in runs], parameters or {}, _summary_units(runs[0].scenario))
             _write_scenario(f, runs[0].scenario, command)
 
 
@@ -87,7 +87,7 @@ def write_sweep(path, result, *, command: str = "") -> None:
             f.attrs["format"] = "hoistsim-runs"
             f.attrs["format_version"] = 1
             f.attrs["summary_only"] = True
-            _write_summary(f, result.summaries, result.parameters)
+            _write_summary(f, result.summaries, result.parameters, _summary_units(result.scenario))
             _write_scenario(f, result.scenario, command)
 
 
@@ -139,15 +139,21 @@ def _write_events(group: h5py.Group, events: dict) -> None:
     data.dims[0].attach_scale(index)
 
 
-_SUMMARY_UNITS = {
-    "lockup_time": "s", "slip_duration": "s", "slip_energy": "J", "peak_clutch_torque": "N*m",
-    "peak_slip_speed": "rad/s", "lowest_load_position": "m", "final_motor_speed": "rad/s",
-    "final_drum_speed": "rad/s", "final_load_position": "m", "load_lifted": "1", "lock_events": "1",
-    "unlock_events": "1", "energy_residual": "J", "energy_relative_residual": "1",
-}
+# Summary columns the host adds to the elements' own (which declare their units).
+_HOST_SUMMARY_UNITS = {"lock_events": "1", "unlock_events": "1", "energy_residual": "J",
+                       "energy_relative_residual": "1"}
 
 
-def _write_summary(f: h5py.File, rows: list[dict], parameters: dict) -> None:
+def _summary_units(scenario) -> dict[str, str]:
+    """Units of every summary column: as the scene's elements declare them, yes/no values as 1."""
+    from .assemble import machine_elements
+    from .core.layout import Layout
+
+    declared = Layout(machine_elements(scenario)).summaries
+    return {**{k: "1" if u == "bool" else u for k, u in declared.items()}, **_HOST_SUMMARY_UNITS}
+
+
+def _write_summary(f: h5py.File, rows: list[dict], parameters: dict, units: dict[str, str]) -> None:
     """One row per run; swept keys become columns of their SI values (NaN for tables)."""
     fields = [("label", _TEXT)] + [(k, "f8") for k in parameters] + [
         (k, "f8" if isinstance(v, float) else "i8") for k, v in rows[0].items() if k != "label"]
@@ -158,7 +164,7 @@ def _write_summary(f: h5py.File, rows: list[dict], parameters: dict) -> None:
     for key, kind in fields[1 + len(parameters):]:
         table[key] = np.asarray([row[key] for row in rows], dtype=kind)
     data = f.create_dataset("summary", data=table)
-    data.attrs["units"] = ", ".join(f"{k}: {u}" for k, u in _SUMMARY_UNITS.items())
+    data.attrs["units"] = ", ".join(f"{k}: {u}" for k, u in units.items())
     data.attrs["swept_keys"] = json.dumps(list(parameters))
     index = f.create_dataset("run", data=np.arange(len(rows)))
     index.attrs["units"] = "1"

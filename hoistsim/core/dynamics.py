@@ -241,14 +241,11 @@ class Instant:
     accelerations and coupling torques are worked out on demand.
     """
 
-    def __init__(self, layout: Layout, t, y, modes=None, table=None, segment=None, observing=True,
-                 reply: Response | None = None):
+    def __init__(self, layout: Layout, t, y, modes=None, table=None, reply: Response | None = None):
         self.layout = layout
         self.t = t
         self.y = y
         self.modes = modes
-        self.segment = segment
-        self.observing = observing
         self._table = table
         self._reply = reply
         self._solved = None
@@ -351,7 +348,7 @@ def keep_momentum(layout: Layout, y, stuck):
 def vector_field(t, y, args):
     """dy/dt: the bodies' accelerations, then every element's state rates."""
     layout = args.layout
-    x = Instant(layout, t, y, args.modes, args.segment.table, args.segment, args.observing, args.reply)
+    x = Instant(layout, t, y, args.modes, args.segment.table, args.reply)
     rates = list(x.accelerations) + [0.0] * (layout.size - len(layout.bodies))
     for element in layout.elements:
         for name, rate in element.rates(x).items():

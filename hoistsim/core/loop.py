@@ -110,7 +110,7 @@ class _Carry(eqx.Module):
 
 
 def _instant(plan: Plan, segment: Segment, t, y, modes, reply=None) -> Instant:
-    return Instant(plan.layout, t, y, modes, segment.table, segment, reply=reply)
+    return Instant(plan.layout, t, y, modes, segment.table, reply=reply)
 
 
 def _reductions(plan: Plan, x: Instant) -> dict:

@@ -58,7 +58,7 @@ def _instant(t, y, args) -> Instant:
     shared = args.__dict__.get("_guard_instant")
     if shared is not None and shared.t is t and shared.y is y:
         return shared
-    x = Instant(args.layout, t, y, args.modes, args.segment.table, args.segment, args.observing, args.reply)
+    x = Instant(args.layout, t, y, args.modes, args.segment.table, args.reply)
     args.__dict__["_guard_instant"] = x
     return x
 
@@ -154,7 +154,7 @@ def candidates_at_boundary(layout: Layout, segment, y, speed_scale):
     return jnp.stack(modes) if modes else jnp.zeros((0,), int), candidates
 
 
-def settle(layout: Layout, segment, t, y, modes, candidates, observing=True):
+def settle(layout: Layout, segment, t, y, modes, candidates):
     """The static check: which candidates stay stuck, which slip (and which way).
 
     All candidates are tried stuck, with their speeds met (momentum kept); the
@@ -165,7 +165,7 @@ def settle(layout: Layout, segment, t, y, modes, candidates, observing=True):
     met = keep_momentum(layout, y, candidates)
     couplings = layout.coupling_elements
     for _ in [c for c in couplings if c.can_slip]:  # only those can be let go
-        x = Instant(layout, t, met, modes, segment.table, segment, observing)
+        x = Instant(layout, t, met, modes, segment.table)
         excess = []
         for k, coupling in enumerate(couplings):
             torque = x.coupling_torques[k]
@@ -193,5 +193,5 @@ def transition_kind(previous, new):
 def margin(layout: Layout, segment, t, y, modes, k):
     """Capacity less |torque| of coupling k were it stuck at (t, y), the others as they are (N*m)."""
     coupling = layout.coupling_elements[k]
-    x = Instant(layout, t, y, modes.at[k].set(STUCK), segment.table, segment)
+    x = Instant(layout, t, y, modes.at[k].set(STUCK), segment.table)
     return coupling.capacity(x) - jnp.abs(x.coupling_torques[k])
