@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import jax
 import numpy as np
 
@@ -116,11 +118,36 @@ def build_plan(scenario: Scenario, summary_only: bool = False) -> tuple[Plan, np
     return plan, grid
 
 
-def loop_sizes(plan: Plan, max_switches: int) -> tuple[int, int]:
-    """Static sizes of the loop: passes allowed and event rows kept."""
-    # each pass ends at a boundary, a switch or an observation (as many allowed as switches);
-    # a switch may log one row per coupling
+def loop_sizes(plan: Plan, max_switches: int, log_size: int | None = None) -> tuple[int, int]:
+    """Static sizes of the loop: passes allowed and event rows kept.
+
+    Each pass ends at a boundary, a switch or an observation (as many allowed
+    as switches), a switch may log one row per coupling.  A machine with cycles
+    (a period of its own) has these budgets per cycle, and rows for each cycle:
+    as many cycles are expected as the fastest speed scale turns in the
+    duration, twice over.  ``log_size`` asks for more rows (a run that logged
+    more than it could keep is run again with room for them all).
+    """
     boundaries = int(plan.boundaries.shape[0])
     couplings = max(1, sum(isinstance(e, AbstractCoupling) for e in plan.elements))
     kinks = KINK_BUDGET * max_switches if any(e.kink_names() for e in plan.elements) else 0
-    return boundaries + 2 * max_switches + kinks + 2, (couplings + 1) * max_switches + 2 * boundaries + 4
+    passes = boundaries + 2 * max_switches + kinks + 2
+    rows = (couplings + 1) * max_switches + 2 * boundaries + 4
+    periods = [float(e.cycle_angle()) for e in plan.elements if e.cycles]
+    if periods:
+        turned = float(plan.duration) * max(float(plan.speed_scale), abs(float(plan.initial_state[0])), 1.0)
+        cycles = _power_of_two(2.0 * turned / min(periods) + 8)
+        passes += cycles * (2 * max_switches + kinks)
+        rows += cycles * ROWS_PER_CYCLE
+    if log_size is not None:
+        rows = max(rows, _power_of_two(log_size))
+    return passes, rows
+
+
+# Rows a cycle is expected to log at first (its end, a few extremes, a few switches); more, and the run
+# is repeated with room for what it logged.
+ROWS_PER_CYCLE = 32
+
+
+def _power_of_two(n: float) -> int:
+    return 1 << max(0, math.ceil(math.log2(max(n, 1.0))))

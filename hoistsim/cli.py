@@ -123,7 +123,7 @@ def run(scenario, output, overrides, sweeps, summary_only):
 
     from . import _jax
     from .output import write_runs
-    from .report import summary_table
+    from .report import periodic_table, summary_table
     from .simulation import SimulationError, simulate
     from .sweeps import sweep
 
@@ -136,17 +136,26 @@ def run(scenario, output, overrides, sweeps, summary_only):
         if scenario.sweep or summary_only:
             result = sweep(scenario, summary_only=summary_only, progress=_progress_printer())
             summaries, write = result.summaries, functools.partial(result.to_hdf5, target, command=command)
+            warnings = result.warnings
         else:  # one run: the plain compiled loop, kept in the persistent cache
             one = simulate(scenario)
             summaries, write = [one.summary], functools.partial(write_runs, target, [one], command=command)
+            warnings = one.warnings
     except SimulationError as exc:
         _fail(str(exc), RUN_FAILED)
+    for warning in warnings[:5]:
+        click.echo(f"hoistsim: warning: {warning}", err=True)
+    if len(warnings) > 5:
+        click.echo(f"hoistsim: warning: ... and {len(warnings) - 5} more runs like these", err=True)
     try:
         write()
     except OSError as exc:
         _fail(f"{output}: cannot write: {exc.strerror or exc}")
     elapsed = time.perf_counter() - started
     click.echo(summary_table(summaries))
+    if "irregularity" in summaries[0]:
+        click.echo("periodic regime of the motor shaft:")
+        click.echo(periodic_table(summaries))
     count = len(summaries)
     click.echo(f"wrote {output} ({count} run{'s' if count != 1 else ''}"
                f"{', summaries only' if summary_only else ''}, {elapsed:.2f} s)")
@@ -214,6 +223,73 @@ def statics(scenario, as_json, overrides):
 
 
 @main.command()
+@click.argument("scenario", type=click.Path(dir_okay=False))
+@click.option("--irregularity", required=True, type=float, metavar="DELTA",
+              help="Degree of irregularity to meet, (w_max - w_min) / w_mean, e.g. 0.01.")
+@click.option("--json", "as_json", is_flag=True, help="Print the answers as a JSON object (SI units).")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a scenario key.")
+@click.option("--density", metavar="QUANTITY", help='Rim material, e.g. "7200 kg/m^3": also size a rim.')
+@click.option("--width", metavar="QUANTITY", help='Rim width (axial), e.g. "8 cm": gives the outer diameter.')
+@click.option("--outer-diameter", metavar="QUANTITY", help='Rim outer diameter, e.g. "60 cm": gives the width.')
+@click.option("--inner-diameter", metavar="QUANTITY", default="0 m", show_default=True,
+              help="Rim inner diameter (0: a solid disc).")
+@click.option("--plot", "figure", type=click.Path(dir_okay=False), metavar="FIG.png",
+              help="Also draw delta against flywheel inertia, simulated and by Tredgold.")
+@debug_option
+@_guarded
+def flywheel(scenario, irregularity, as_json, overrides, density, width, outer_diameter, inner_diameter, figure):
+    """Size a flywheel for SCENARIO's machine: Tredgold's, and the one with which the simulation meets DELTA.
+
+    The flywheel goes on flywheel.shaft (the motor shaft if the scenario has none) and replaces the
+    scenario's own; the machine must have a periodic regime (a ripple or a slider-crank).
+    """
+    import json
+
+    from . import _jax, units
+    from .periodic.flywheel import rim, size_flywheel
+    from .scenario import load_scenario
+
+    if figure is not None and Path(figure).suffix.lower() not in (".png", ".svg", ".pdf"):
+        _fail(f"{figure}: the figure must be .png, .svg or .pdf")
+    scenario = load_scenario(scenario, overrides=list(overrides))
+
+    def quantity(option, value, dimension):
+        try:
+            return units.to_si(value, dimension)
+        except ValueError as exc:
+            raise ScenarioError(option, str(exc)) from None
+
+    rim_sizes = None
+    if density is not None:
+        rim_sizes = {"density": quantity("--density", density, units.DENSITY),
+                     "inner_diameter": quantity("--inner-diameter", inner_diameter, units.LENGTH),
+                     "width": None if width is None else quantity("--width", width, units.LENGTH),
+                     "outer_diameter": None if outer_diameter is None else quantity("--outer-diameter",
+                                                                                      outer_diameter, units.LENGTH)}
+        rim(1.0, **{k: v for k, v in rim_sizes.items()})  # checks the options before any run
+    elif width is not None or outer_diameter is not None:
+        _fail("--width and --outer-diameter need --density (the rim's material)")
+    _jax.enable_compilation_cache()
+    started = time.perf_counter()
+    sizing = size_flywheel(scenario, irregularity)
+    if rim_sizes is not None:
+        sizing.rim = rim(sizing.flywheel_inertia, **rim_sizes)
+    elapsed = time.perf_counter() - started
+    if figure is not None:
+        from .plotting_periodic import flywheel_figure
+
+        flywheel_figure(sizing, figure, title=scenario.name)
+    if as_json:
+        click.echo(json.dumps(sizing.as_dict(), indent=2))
+    else:
+        from .report import flywheel_table
+
+        click.echo(flywheel_table(scenario.name, sizing, elapsed))
+    if figure is not None:
+        click.echo(f"wrote {figure}", err=as_json)
+
+
+@main.command()
 @click.option("--smoke", is_flag=True, help="A few tolerances on one scene (seconds), nothing written.")
 @click.option("-o", "--output", "output", default="benchmarks/results", show_default=True,
               type=click.Path(file_okay=False), help="Folder for work_precision.csv and .png.")
@@ -265,6 +341,8 @@ def _read(reader, path):
 def plot(results, output):
     """Plot speed and clutch-slip histories of every run in RESULTS (an HDF5 file).
 
+    A machine with a periodic regime also gets OUTPUT's name + "_periodic": the
+    turning-moment diagram and the speed over a period (of the first run).
     A sweep also gets a second figure, OUTPUT's name + "_summary": lock-up time,
     clutch heat, peak torque and lowest load position against the swept value.
     A summary-only file gets that figure alone, as OUTPUT.

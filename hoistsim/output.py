@@ -6,6 +6,7 @@ Layout (the contract's names; see README):
                    so ``xarray.open_dataset(path, group="runs/0", engine="h5netcdf")``
                    reads it with time as the coordinate
     /runs/<i>/events   compound table (time, kind, element, torque_margin, mode_after)
+    /runs/<i>/periods/ the periodic regime, one row per whole period (machines with a ripple or a slider-crank)
     /summary       one row per run
     /scenario      the scenario text, with provenance attributes
 """
@@ -120,6 +121,54 @@ def _write_run(group: h5py.Group, run) -> None:
             data.attrs["long_name"] = run.descriptions[name]
         data.dims[0].attach_scale(time)
     _write_events(group, run.events)
+    if run.periodic is not None:
+        _write_periods(group.create_group("periods"), run.periodic.regime)
+        if run.periodic.diagram is not None:
+            _write_diagram(group.create_group("turning_moment"), run.periodic.diagram)
+
+
+def _write_diagram(group: h5py.Group, diagram) -> None:
+    """Tredgold's turning-moment diagram of the analysed regime, on the dimension ``angle``."""
+    angle = group.create_dataset("angle", data=diagram.angle)
+    angle.attrs["units"] = "rad"
+    angle.attrs["long_name"] = "motor angle from the start of the first analysed period"
+    angle.make_scale("angle")
+    for name, values, units, text in (
+            ("driving_torque", diagram.driving, "N*m", "driving torque M'_m at the motor shaft, at the mean speed"),
+            ("resisting_torque", diagram.resisting, "N*m",
+             "resisting torque M'_r at the motor shaft (inertia torques of reciprocating parts at the mean speed)"),
+            ("energy", diagram.energy, "J", "integral of (M'_m - M'_r) over the angle from the period's start")):
+        data = group.create_dataset(name, data=values)
+        data.attrs["units"] = units
+        data.attrs["long_name"] = text
+        data.dims[0].attach_scale(angle)
+    for key in ("mean_speed", "inertia", "energy_fluctuation", "min_speed_angle", "max_speed_angle",
+                "work_residual", "irregularity"):
+        group.attrs[key] = getattr(diagram, key)
+
+
+def _write_periods(group: h5py.Group, regime) -> None:
+    """The periodic regime, one row per whole period: a dataset per column on the dimension ``period``."""
+    from .periodic.regime import PERIOD_DESCRIPTIONS
+
+    table = regime.table
+    group.attrs["period"] = regime.period
+    group.attrs["period_units"] = "rad"
+    group.attrs["settling_tolerance"] = regime.tolerance
+    group.attrs["settled"] = regime.settled
+    group.attrs["message"] = regime.message
+    index = group.create_dataset("period", data=table["period"])
+    index.attrs["units"] = "1"
+    index.attrs["long_name"] = PERIOD_DESCRIPTIONS["period"]
+    index.make_scale("period")
+    for name, values in table.items():
+        if name == "period":
+            continue
+        data = group.create_dataset(name, data=values)
+        data.attrs["units"] = regime.units[name]
+        data.attrs["long_name"] = PERIOD_DESCRIPTIONS.get(name, f"{name.removesuffix('_per_period')} "
+                                                                "gained in the period (J)")
+        data.dims[0].attach_scale(index)
 
 
 def _write_events(group: h5py.Group, events: dict) -> None:
@@ -149,7 +198,10 @@ def _summary_units(scenario) -> dict[str, str]:
     from .assemble import machine_elements
     from .core.layout import Layout
 
-    declared = Layout(machine_elements(scenario)).summaries
+    from .periodic.analysis import summary_units
+
+    layout = Layout(machine_elements(scenario))
+    declared = {**layout.summaries, **summary_units(layout)}
     return {**{k: "1" if u == "bool" else u for k, u in declared.items()}, **_HOST_SUMMARY_UNITS}
 
 
@@ -190,7 +242,12 @@ def read_runs(path) -> list[dict]:
     with h5py.File(path, "r") as f:
         for key in sorted(f.get("runs", {}), key=int):
             group = f["runs"][key]
-            run = {name: group[name][()] for name in group if name not in ("events", "event")}
+            run = {name: group[name][()] for name in group
+                   if name not in ("events", "event") and isinstance(group[name], h5py.Dataset)}
+            for name in group:  # the periodic regime's tables, with their attributes
+                if isinstance(group[name], h5py.Group):
+                    run[name] = {k: v[()] for k, v in group[name].items()}
+                    run[name]["attrs"] = dict(group[name].attrs)
             run["events"] = group["events"][()]
             run["attrs"] = {k: v for k, v in group.attrs.items()}
             runs.append(run)

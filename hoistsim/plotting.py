@@ -35,6 +35,15 @@ def plot_file(path, output) -> list[str]:
         fig.savefig(output, dpi=150, bbox_inches="tight")
         plt.close(fig)
         written.append(str(output))
+    periodic = [run for run in runs if "turning_moment" in run]
+    if periodic:  # the first run's periodic regime: its turning-moment diagram and speed over a period
+        from .plotting_periodic import periodic_figure
+
+        target = output.with_name(output.stem + "_periodic" + output.suffix)
+        fig = periodic_figure(periodic[0], plt)
+        fig.savefig(target, dpi=150, bbox_inches="tight")
+        plt.close(fig)
+        written.append(str(target))
     if len(summaries) > 1 or not runs:
         target = output.with_name(output.stem + "_summary" + output.suffix) if runs else output
         fig = summary_figure(summaries, swept, plt)

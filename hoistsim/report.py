@@ -64,6 +64,56 @@ def summary_table(summaries: list[dict], head: int = 12, tail: int = 6) -> str:
     return text
 
 
+PERIODIC_COLUMNS = [  # (summary key, header, scale)
+    ("mean_speed", "mean [rpm]", 30 / math.pi),
+    ("max_speed", "max [rpm]", 30 / math.pi),
+    ("min_speed", "min [rpm]", 30 / math.pi),
+    ("irregularity", "delta", 1.0),
+    ("irregularity_tredgold", "delta Tredgold", 1.0),
+    ("energy_fluctuation", "dE_max [J]", 1.0),
+    ("energy_fluctuation_tredgold", "dE_max Tredgold [J]", 1.0),
+    ("settling_periods", "settled after [periods]", 1),
+]
+
+
+def periodic_table(summaries: list[dict], head: int = 12, tail: int = 6) -> str:
+    """The periodic regime of each run (motor shaft, analysed periods), Tredgold beside the simulation."""
+    shown = summaries if len(summaries) <= head + tail else summaries[:head] + summaries[-tail:]
+    rows = [[s["label"]] + [fmt(s[key] * scale if scale != 1 else s[key]) for key, _, scale in PERIODIC_COLUMNS]
+            for s in shown]
+    return table(["run"] + [header for _, header, _ in PERIODIC_COLUMNS], rows)
+
+
+def flywheel_table(name: str, sizing, elapsed: float) -> str:
+    """The flywheel command's answers, one per line."""
+    motor = "at the motor shaft"
+    on = f"on the {sizing.shaft} shaft"
+    rows = [
+        ["target delta", "degree of irregularity to meet", fmt(sizing.irregularity), "-"],
+        ["w_m", "mean speed (mean over angle), no flywheel", fmt(sizing.mean_speed * 30 / math.pi), "rpm"],
+        ["dE_max", "largest energy fluctuation, Tredgold", fmt(sizing.energy_fluctuation), "J"],
+        ["delta_0", "delta without a flywheel: simulated", fmt(sizing.irregularity_without_flywheel), "-"],
+        ["delta_0,T", "delta without a flywheel: Tredgold", fmt(sizing.irregularity_tredgold_without_flywheel), "-"],
+        ["I_machine", f"machine's own constant inertia {motor}", fmt(sizing.machine_inertia), "kg*m^2"],
+        ["I_T", f"whole inertia Tredgold asks for {motor}", fmt(sizing.required_inertia_tredgold), "kg*m^2"],
+        ["I_f,T", f"Tredgold's flywheel {on}", fmt(sizing.flywheel_inertia_tredgold), "kg*m^2"],
+        ["delta(I_f,T)", "delta simulated with Tredgold's flywheel",
+         fmt(sizing.irregularity_with_tredgold_flywheel, 6), "-"],
+        ["I_f", f"flywheel with which the simulation meets the target, {on}", fmt(sizing.flywheel_inertia, 6),
+         "kg*m^2"],
+        ["delta(I_f)", "delta simulated with it (check)", fmt(sizing.irregularity_with_flywheel, 6), "-"],
+    ]
+    if sizing.rim is not None:
+        r = sizing.rim
+        rows += [["D_o", "rim outer diameter", fmt(r["outer_diameter"] * 1e3), "mm"],
+                 ["D_i", "rim inner diameter", fmt(r["inner_diameter"] * 1e3), "mm"],
+                 ["s", "rim width", fmt(r["width"] * 1e3), "mm"],
+                 ["m", f"rim mass at {fmt(r['density'])} kg/m^3", fmt(r["mass"]), "kg"]]
+    runs = len(sizing.candidates)
+    return (f"{name}: flywheel for delta = {fmt(sizing.irregularity)} ({runs} runs simulated, {elapsed:.2f} s)\n"
+            + table(["symbol", "quantity", "value", "unit"], rows, align="llrl"))
+
+
 def reduced_model_table(scenario) -> str:
     """The machine as the simulator sees it: each body's inertia, then the two-shaft numbers of exercise 6."""
     from .assemble import machine_elements

@@ -32,6 +32,7 @@ class RunResult:
     ledger: dict = field(default_factory=dict)
     descriptions: dict[str, str] = field(default_factory=dict)
     stats: dict = field(default_factory=dict)
+    periodic: object = None  # hoistsim.periodic.analysis.Periodic, for a machine with a periodic regime
 
     def __getitem__(self, name: str) -> np.ndarray:
         return self.time if name == "time" else self.series[name]
@@ -58,6 +59,13 @@ class RunResult:
     def slip_energy(self) -> float:
         """Energy dissipated in the clutch over the run (J)."""
         return float(self.series["clutch_energy"][-1])
+
+    @property
+    def warnings(self) -> list[str]:
+        """What the user should know about this run that is not a failure (a regime that has not settled)."""
+        if self.periodic is not None and not self.periodic.regime.settled:
+            return [f"{self.label or self.name}: {self.periodic.regime.message}"]
+        return []
 
     @property
     def energy_balance(self) -> dict[str, float]:

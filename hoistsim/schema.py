@@ -210,6 +210,25 @@ class FlywheelSpec(Section):
         return math.pi * self.density * self.width * (outer**4 - inner**4) / 2.0
 
 
+class ReciprocatingSpec(Section):
+    """A slider-crank on the motor shaft: its reciprocating mass has an inertia that varies with angle."""
+
+    mass: u.quantity(u.MASS, gt=0.0)
+    crank_radius: u.quantity(u.LENGTH, gt=0.0)
+    rod_length: u.quantity(u.LENGTH, gt=0.0)
+
+    @model_validator(mode="after")
+    def _rod_longer_than_crank(self):
+        if self.rod_length <= self.crank_radius:
+            raise ScenarioError(".rod_length", f"must be longer than the crank ({self.crank_radius:g} m), "
+                                f"got {self.rod_length:g} m: the rod could not follow the crank")
+        return self
+
+
+class PeriodicSpec(Section):
+    periods: u.whole("periods") = 5  # analysed once the regime has settled
+
+
 class BrakeSpec(Section):
     release_time: u.quantity(u.TIME, ge=0.0)  # the holding brake frees the drum at this time
 
@@ -250,6 +269,8 @@ class Scenario(Section):
     gravity: u.quantity(u.ACCELERATION, ge=0.0) = 9.81
     initial: InitialSpec = InitialSpec()
     flywheel: FlywheelSpec | None = None
+    reciprocating: ReciprocatingSpec | None = None
+    periodic: PeriodicSpec | None = None
     brake: BrakeSpec | None = None
     bearings: BearingsSpec | None = None
     simulation: SimulationSpec
@@ -271,6 +292,15 @@ class Scenario(Section):
         if self.brake is not None and self.initial.steady_lift:
             raise ScenarioError("initial.steady_lift", "a steady lift cannot start with the brake holding the drum")
         return self
+
+    @property
+    def periodic_regime(self) -> PeriodicSpec | None:
+        """How to report the periodic regime: ``periodic:`` as given, its defaults where an element
+        makes the machine periodic (a ripple, a slider-crank), None for a machine that is not."""
+        if self.periodic is not None:
+            return self.periodic
+        periodic = (self.motor.ripple, self.drum.resisting_ripple, self.reciprocating)
+        return PeriodicSpec() if any(part is not None for part in periodic) else None
 
     @property
     def text(self) -> str:

@@ -13,6 +13,7 @@ from .core.element import MODE_NAMES
 from .core.layout import SWITCH_KINDS
 from .core.loop import CHATTERING, OK, SOLVER_FAILED, STATUS_TEXT, compiled_run
 from .core.readout import Readout
+from .periodic.analysis import periodic_regime
 from .results import RunResult
 from .scenario import Scenario
 
@@ -26,10 +27,14 @@ def simulate(scenario: Scenario, label: str = "") -> RunResult:
     plan, grid = build_plan(scenario)
     sim = scenario.simulation
     sizes = loop_sizes(plan, sim.max_switches)
-    run = _jax.executable(compiled_run(sim.solver, *sizes), plan, name=f"run-{sim.solver}-{sizes}")
-    started = _time.perf_counter()
-    raw = Readout(plan.layout, jax.device_get(run(plan)))
-    elapsed = _time.perf_counter() - started
+    while True:
+        run = _jax.executable(compiled_run(sim.solver, *sizes), plan, name=f"run-{sim.solver}-{sizes}")
+        started = _time.perf_counter()
+        raw = Readout(plan.layout, jax.device_get(run(plan)))
+        elapsed = _time.perf_counter() - started
+        if not raw.log_overflowed:
+            break
+        sizes = loop_sizes(plan, sim.max_switches, log_size=raw.event_count + 1)  # room for every row
     if raw.status != OK:
         raise SimulationError(failure_message(scenario, raw))
     return run_result(scenario, label, grid, raw, elapsed)
@@ -63,11 +68,13 @@ def run_result(scenario: Scenario, label: str, grid: np.ndarray, raw: Readout, e
     times = times[order]
     keep = np.append(times[1:] != times[:-1], True)
     series = {name: values[order][keep] for name, values in series.items()}
-    switches = ~np.isin(kinds, layout.observation_kinds)  # observations are rows, not events
+    # observations and the ends of cycles are rows, not events
+    switches = ~np.isin(kinds, layout.observation_kinds + [kind for _, _, kind in layout.cycles])
     modes = np.asarray(raw.raw.event_modes[: raw.event_count])
     mode_after = [MODE_NAMES[int(modes[i, layout.coupling_index(e)])] if e in layout.coupling_names else ""
                   for i, e in enumerate(elements)]
     columns = layout.columns()
+    periodic = periodic_regime(scenario, raw)
     return RunResult(
         scenario=scenario,
         label=label,
@@ -82,7 +89,8 @@ def run_result(scenario: Scenario, label: str, grid: np.ndarray, raw: Readout, e
             "torque_margin": margins[switches],
             "mode_after": np.asarray(mode_after, dtype=object)[switches],
         },
-        values=raw.summary(),
+        values={**raw.summary(), **(periodic.values() if periodic is not None else {})},
+        periodic=periodic,
         ledger=raw.ledger(),
         stats={**raw.stats, "wall_time": elapsed},
     )

@@ -22,6 +22,7 @@ from . import _jax
 from .assemble import build_plan, loop_sizes
 from .core.loop import OK, SOLVERS, Plan, _run
 from .core.readout import Readout
+from .periodic.analysis import periodic_regime
 from .results import RunResult, summarize
 from .scenario import Scenario, sweep_values
 from .simulation import SimulationError, failure_message, run_result, simulate
@@ -43,6 +44,7 @@ class SweepResult:
     summaries: list[dict]
     runs: list[RunResult] | None = None
     stats: dict = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)  # runs whose periodic regime did not settle, say
 
     def __len__(self) -> int:
         return len(self.labels)
@@ -66,8 +68,9 @@ def sweep(scenario: Scenario, *, summary_only: bool = False, chunk_size: int | N
     scenarios = [one for _, one in pairs]
     keys = list(scenario.sweep or {})
     started = time.perf_counter()
+    warnings: list[str] = []
     outcome = simulate_many(scenarios, labels, summary_only=summary_only, chunk_size=chunk_size,
-                            progress=progress)
+                            progress=progress, warnings=warnings)
     runs = None if summary_only else outcome
     summaries = outcome if summary_only else [run.summary for run in outcome]
     return SweepResult(
@@ -78,6 +81,7 @@ def sweep(scenario: Scenario, *, summary_only: bool = False, chunk_size: int | N
         summaries=summaries,
         runs=runs,
         stats={"wall_time": time.perf_counter() - started, "runs": len(labels)},
+        warnings=warnings,
     )
 
 
@@ -92,8 +96,12 @@ def swept_number(scenario: Scenario, key: str) -> float:
 
 
 def simulate_many(scenarios: list[Scenario], labels: list[str], *, summary_only: bool = False,
-                  chunk_size: int | None = None, progress=None) -> list:
-    """RunResults (or, with ``summary_only``, summary dicts) for many scenarios, in their order."""
+                  chunk_size: int | None = None, progress=None, warnings: list | None = None) -> list:
+    """RunResults (or, with ``summary_only``, summary dicts) for many scenarios, in their order.
+
+    A machine with a periodic regime keeps its event rows even for summaries:
+    its regime is read from them.  ``warnings`` collects what the runs warn of.
+    """
     plans = [build_plan(s, summary_only=summary_only) for s in scenarios]
     out: list = [None] * len(scenarios)
     done = 0
@@ -102,37 +110,53 @@ def simulate_many(scenarios: list[Scenario], labels: list[str], *, summary_only:
         group = _padded_tables(group)
         first = scenarios[indices[0]]
         max_switches = max(scenarios[i].simulation.max_switches for i in indices)
-        sizes = loop_sizes(group[0], max_switches)
-        if summary_only:  # the summary needs no event rows, only their counts
+        sizes = tuple(max(n) for n in zip(*(loop_sizes(plan, max_switches) for plan in group)))
+        periodic = any(e.cycles for e in group[0].elements)
+        lean = summary_only and not periodic
+        if lean:  # the summary needs no event rows, only their counts
             sizes = (sizes[0], 1)
         rows = int(group[0].grid.shape[0])
         chunk = chunk_size or _chunk_for(rows, group[0].layout.size, len(indices))
-        run = None
+        layout = group[0].layout
+        run, built = None, None
         for start in range(0, len(indices), chunk):
             part = indices[start:start + chunk]
             batch = group[start:start + chunk]
             batch = batch + [batch[-1]] * (chunk - len(batch))  # a full chunk: one compiled shape
             stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *batch)
-            if run is None:
-                run = _jax.executable(compiled_batch(first.simulation.solver, *sizes, not summary_only), stacked,
-                                      name=f"sweep-{first.simulation.solver}-{sizes}-{summary_only}")
-            t0 = time.perf_counter()
-            raw = jax.device_get(run(stacked))
-            elapsed = (time.perf_counter() - t0) / len(part)
-            layout = group[0].layout
+            while True:
+                if built != sizes:
+                    run = _jax.executable(compiled_batch(first.simulation.solver, *sizes, not lean), stacked,
+                                          name=f"sweep-{first.simulation.solver}-{sizes}-{lean}")
+                    built = sizes
+                t0 = time.perf_counter()
+                raw = jax.device_get(run(stacked))
+                elapsed = (time.perf_counter() - t0) / len(part)
+                logged = max(Readout(layout, raw, lane=k).event_count for k in range(len(part)))
+                if lean or logged <= sizes[1]:
+                    break
+                sizes = loop_sizes(group[0], max_switches, log_size=logged + 1)  # room for every row
             for k, i in enumerate(part):
                 one = Readout(layout, raw, lane=k)
                 if one.status != OK:
-                    if summary_only:  # the lean run kept no event rows: run it alone to say what happened
+                    if lean:  # the lean run kept no event rows: run it alone to say what happened
                         try:
                             simulate(scenarios[i])
                         except SimulationError as exc:
                             raise SimulationError(f"{labels[i] or scenarios[i].name}: {exc}") from None
                     raise SimulationError(f"{labels[i] or scenarios[i].name}: " + failure_message(scenarios[i], one))
                 if summary_only:
-                    out[i] = summarize(labels[i], one.summary(), one.ledger(), one.count("lock"), one.count("unlock"))
+                    values = one.summary()
+                    regime = periodic_regime(scenarios[i], one) if periodic else None
+                    if regime is not None:
+                        values.update(regime.values())
+                        if not regime.regime.settled and warnings is not None:
+                            warnings.append(f"{labels[i] or scenarios[i].name}: {regime.regime.message}")
+                    out[i] = summarize(labels[i], values, one.ledger(), one.count("lock"), one.count("unlock"))
                 else:
                     out[i] = run_result(scenarios[i], labels[i], plans[i][1], one, elapsed)
+                    if warnings is not None:
+                        warnings.extend(out[i].warnings)
             done += len(part)
             if progress is not None:
                 progress(done, len(scenarios))

@@ -71,10 +71,14 @@ def solve_stuck(matrix, columns, stuck):
 
 
 class Bodies:
-    """The bodies' inertias and the couplings' rows of G (their shafts' speed ratios), by equal energy."""
+    """The bodies' inertias and the couplings' rows of G (their shafts' speed ratios), by equal energy.
 
-    def __init__(self, layout: Layout):
+    ``y``: the state, needed only where an inertia varies with an angle.
+    """
+
+    def __init__(self, layout: Layout, y=None):
         self.layout = layout
+        self.y = y
         count = len(layout.bodies)
         self.ends = []  # (body a, ratio a, body b or None, ratio b) of each coupling
         self.rows = []  # G, one row per coupling over the bodies; 0.0 where it does not touch a body
@@ -97,7 +101,22 @@ class Bodies:
             for shaft, value in element.inertias():
                 body, ratio = self.layout.shaft(shaft, element)
                 inertia[body] = inertia[body] + value * ratio**2
+        for element, shaft, value, _ in self.varying():
+            body, ratio = self.layout.shaft(shaft, element)
+            inertia[body] = inertia[body] + value * ratio**2
         return inertia
+
+    def varying(self) -> list:
+        """(element, shaft, I, dI/dangle) of every inertia that varies with an angle, at the state y
+        (none without a state: the bodies' constant inertia alone)."""
+        if not self.layout.inertia_varies or self.y is None:
+            return []
+
+        def angle(shaft):
+            return self.y[self.layout.state_index(angle_state(shaft))]
+
+        return [(e, shaft, value, slope) for e in self.layout.elements if e.inertia_varies
+                for shaft, value, slope in e.varying_inertias(angle)]
 
     def relative(self, k, values):
         """Coupling k's relative speed (or acceleration) for body speeds (or accelerations)."""
@@ -166,9 +185,12 @@ def _divided(values, inertia):
     return [0.0 if _absent(f) else f / m for f, m in zip(values, inertia)]
 
 
-def solve_response(layout: Layout, stuck) -> Response:
-    """The linear map of :class:`Response` for a set of stuck couplings (one masked solve per unit torque)."""
-    bodies = Bodies(layout)
+def solve_response(layout: Layout, stuck, y=None) -> Response:
+    """The linear map of :class:`Response` for a set of stuck couplings (one masked solve per unit torque).
+
+    ``y``: the state, where an inertia varies with an angle.
+    """
+    bodies = Bodies(layout, y)
     nb, nc = len(bodies.inertia), len(bodies.rows)
     never_slips = [not e.can_slip for e in layout.coupling_elements]  # their sigma is always zero
 
@@ -204,9 +226,12 @@ TABULATED_COUPLINGS = 4
 
 
 def response_table(layout: Layout) -> Response | None:
-    """The response for every stuck set (entries stacked over 2^couplings), or None if too many."""
+    """The response for every stuck set (entries stacked over 2^couplings), or None if too many.
+
+    None too where an inertia varies: the response then changes with the state.
+    """
     nc = len(layout.couplings)
-    if nc > TABULATED_COUPLINGS:
+    if nc > TABULATED_COUPLINGS or layout.inertia_varies:
         return None
     replies = [solve_response(layout, [jnp.asarray(bool(index >> k & 1)) for k in range(nc)])
                for index in range(2**nc)]
@@ -214,7 +239,7 @@ def response_table(layout: Layout) -> Response | None:
                         *replies)
 
 
-def response(layout: Layout, modes) -> Response:
+def response(layout: Layout, modes, y=None) -> Response:
     """The bodies' response for these modes: picked from ``layout.responses`` when the run tabulated it.
 
     The pick is a tree of selects on the couplings' stuck bits, not a gather:
@@ -222,7 +247,7 @@ def response(layout: Layout, modes) -> Response:
     """
     stuck = [modes[k] == STUCK for k in range(len(layout.couplings))]
     if layout.responses is None:
-        return solve_response(layout, stuck)
+        return solve_response(layout, stuck, y)
 
     def pick(entry):
         options = [entry[i] for i in range(entry.shape[0])]
@@ -250,7 +275,7 @@ class Instant:
         self._reply = reply
         self._solved = None
         self.body_speeds = [y[i] for i in range(len(layout.bodies))]
-        self.bodies = Bodies(layout)
+        self.bodies = Bodies(layout, y)
         self.rows = self.bodies.rows
 
     # ------------------------------------------------------------------ reading by name
@@ -291,7 +316,7 @@ class Instant:
     @property
     def reply(self) -> Response:
         if self._reply is None:
-            self._reply = response(self.layout, self.modes)
+            self._reply = response(self.layout, self.modes, self.y)
         return self._reply
 
     def body_torques(self):
@@ -327,6 +352,13 @@ class Instant:
     def kinetic_energy(self):
         return sum((0.5 * m * v**2 for m, v in zip(self.bodies.inertia, self.body_speeds)), 0.0)
 
+    def kinetic_power(self):
+        """d/dt of the kinetic energy (W): I w w' for each body, and 1/2 I' w^3 where an inertia varies."""
+        power = sum((m * v * a for m, v, a in zip(self.bodies.inertia, self.body_speeds, self.accelerations)), 0.0)
+        for _, shaft, _, slope in self.bodies.varying():
+            power = power + 0.5 * slope * self.speed(shaft) ** 3
+        return power
+
 
 def keep_momentum(layout: Layout, y, stuck):
     """Speeds after the ``stuck`` couplings lock: the nearest in kinetic energy, momentum kept.
@@ -334,7 +366,7 @@ def keep_momentum(layout: Layout, y, stuck):
     v+ = v - M^-1 G_s^T mu with (G_s M^-1 G_s^T) mu = G_s v: the impulses of the
     locking couplings, and nothing else, change the speeds.
     """
-    bodies = Bodies(layout)
+    bodies = Bodies(layout, y)
     if not bodies.rows:
         return y
     speeds = [y[i] for i in range(len(bodies.inertia))]

@@ -16,6 +16,11 @@ Contributions, all read at trace time (``x`` is the machine at one instant,
 - ``bodies()``: new bodies, name -> initial speed (rad/s);
 - ``shafts()``: new shafts tied to others, name -> (shaft it turns with, speed ratio);
 - ``inertias()``: (shaft, kg*m^2) pairs;
+- ``varying_inertias(angle)``: (shaft, I, dI/dangle) triples for an inertia that
+  varies with the angle of its shaft (``angle(shaft)``, rad), only with
+  ``inertia_varies`` True; the element also gives the -1/2 I' w^2 torque that
+  goes with it (the equation of motion of a varying inertia), and the core
+  solves the bodies' response at each use instead of once per pass;
 - ``torques(x)``: (shaft, N*m) pairs, positive in the shaft's positive sense;
 - ``states()`` / ``rates(x)``: named states with initial values, and their rates;
 - ``angles()``: shafts whose angle the element reads (``x.angle(shaft)``, rad, 0 at
@@ -35,6 +40,12 @@ Contributions, all read at trace time (``x`` is the machine at one instant,
   table's knot in angle): the integration stops at the next whole number either
   way and restarts there, as at a scheduled boundary in time, so no step
   straddles a knot;
+- ``cycles``: kinks that mark the end of a cycle of the machine (kink name ->
+  event kind): each crossing is recorded as a row of that kind, and the budgets
+  of switches, observations and kinks start again, so a machine that switches a
+  few times every cycle (periodic stick-slip) runs for as many cycles as it
+  likes while one that switches without end inside a cycle is chattering;
+  ``cycle_angle()`` says how far (rad) its shafts turn in a cycle, for sizing the loop;
 - ``extremes(x)``: running reductions for the summary, name -> (reduction, value)
   with reduction one of "max", "min", "first" (the first time the value is true),
   "duration" (time spent while it is true; constant between switches);
@@ -81,6 +92,8 @@ class AbstractElement:
     observation_kinds: ClassVar[tuple[str, ...]] = ()  # guards recorded as rows
     summaries: ClassVar[dict[str, str]] = {}  # summary name -> units
     ledger_kinds: ClassVar[dict[str, str]] = {}  # energy term -> "work", "loss" or "potential"
+    cycles: ClassVar[dict[str, str]] = {}  # kink -> event kind recorded where it is crossed
+    inertia_varies: ClassVar[bool] = False  # brings varying_inertias
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -93,6 +106,9 @@ class AbstractElement:
         return {}
 
     def inertias(self) -> tuple:
+        return ()
+
+    def varying_inertias(self, angle) -> tuple:
         return ()
 
     def torques(self, x) -> tuple:
@@ -127,6 +143,9 @@ class AbstractElement:
 
     def kinks(self, x) -> dict:
         return {}
+
+    def cycle_angle(self):
+        return None
 
     def extremes(self, x) -> dict:
         return {}

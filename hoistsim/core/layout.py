@@ -68,6 +68,10 @@ class Layout:
         self.event_kinds = list(SWITCH_KINDS)
         for element in elements:
             self.event_kinds += [k for k in element.event_kinds if k not in self.event_kinds]
+        # kinks that close a cycle: (element index, kink, event kind)
+        self.cycles = [(i, kink, kind) for i, e in enumerate(elements) for kink, kind in e.cycles.items()]
+        self.event_kinds += [kind for _, _, kind in self.cycles if kind not in self.event_kinds]
+        self.inertia_varies = any(e.inertia_varies for e in elements)
         self.observation_kinds = ["slip_peak"] if any(e.can_slip for e in self.coupling_elements) else []
         for element in elements:
             self.observation_kinds += [k for k in element.observation_kinds

@@ -104,6 +104,7 @@ class _Carry(eqx.Module):
     log: jax.Array  # (rows, LOG_FIELDS + states + couplings): one buffer, one write per event (see _record)
     observations: jax.Array
     kinks: jax.Array  # passes ended at a kink
+    cycle_start: jax.Array  # switches, observations and kinks when the last cycle began (see AbstractElement.cycles)
     step_cap: jax.Array  # s: the largest step allowed (inf but while re-solving a missed crossing)
     fired: dict  # observation and valley guards -> whether one ended the last pass
     extremes: dict  # running reductions of the run, for its summary (exact: every extremum is a row)
@@ -184,8 +185,12 @@ def _scheduled_switches(plan: Plan, segment: Segment, c: _Carry, columns: bool) 
     return _record_transitions(plan, segment, c, c.at_boundary, c.t, c.y, before, new_modes, columns)
 
 
-def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit, columns: bool) -> _Carry:
-    """A guard fired at (t, y): lock, reverse or unlock with the matching reset, or an observation."""
+def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit, columns: bool,
+                 coinciding: dict) -> _Carry:
+    """A guard fired at (t, y): lock, reverse or unlock with the matching reset, or an observation.
+
+    ``coinciding``: knots reached at (t, y) along with the guard that fired.
+    """
     layout = plan.layout
     # At most one guard fires at a time (diffrax reports the first): one row for any observation.
     observed, kind, element = jnp.zeros((), bool), NO_EVENT, -1
@@ -200,8 +205,17 @@ def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit
                               jnp.zeros((), bool))
     kinked = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in switching.guards(layout) if r == "kink"],
                               jnp.zeros((), bool))
+    # A cycle's end: a row of its kind, and the budgets start again.
+    cycled = jnp.zeros((), bool)
+    for index, kink, kind in layout.cycles:
+        names = [f"{layout.sections[index]}.{kink}{side}" for side in "+-"]
+        crossed = functools.reduce(jnp.logical_or, [masks[n] | coinciding[n] for n in names])
+        c = _record(c, crossed, t, layout.kind_code(kind), index, y, c.modes, jnp.nan)
+        cycled = cycled | crossed
     c = eqx.tree_at(lambda k: (k.observations, k.kinks), c,
                     (c.observations + (observed | valley), c.kinks + kinked))
+    now = jnp.stack([c.switches, c.observations, c.kinks])
+    c = eqx.tree_at(lambda k: k.cycle_start, c, jnp.where(cycled, now, c.cycle_start))
     hit = hit & ~observed & ~valley & ~kinked
     # Sides that meet move on together (momentum kept); a coupling whose
     # capacity is exceeded slips the way its torque pushes.
@@ -220,9 +234,16 @@ def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit
                        (jnp.where(hit, new_y, c.y), jnp.where(hit, new_modes, c.modes)))
 
 
+def _in_cycle(c: _Carry):
+    """Switches, observations and kinks since the current cycle began (the whole run if none)."""
+    spent = jnp.stack([c.switches, c.observations, c.kinks]) - c.cycle_start
+    return spent[0], spent[1], spent[2]
+
+
 def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, reply):
-    observing = c.observations < plan.max_switches
-    kinking = c.kinks < KINK_BUDGET * plan.max_switches
+    _, observations, kinks = _in_cycle(c)
+    observing = observations < plan.max_switches
+    kinking = kinks < KINK_BUDGET * plan.max_switches
     anchors = switching.kink_anchors(plan.layout, _instant(plan, segment, c.t, c.y, c.modes, reply))
     args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply,
                 {name: jnp.zeros(()) for name in c.fired}, kinking, anchors)
@@ -231,14 +252,17 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
                for _, name, g in guards if name in c.fired}
     event = diffrax.Event(cond_fn=[g for _, _, g in guards], root_finder=CrossingBisection(), direction=False)
     save_times = jnp.clip(plan.grid, c.t, segment.end)
-    return diffrax.diffeqsolve(
+    pass_args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, offsets, kinking, anchors)
+    # The guards other than switches where the pass starts (those above zero are armed).
+    armed = {name: g(c.t, c.y, pass_args) for role, name, g in guards if role != "switch"}
+    return pass_args, armed, diffrax.diffeqsolve(
         diffrax.ODETerm(vector_field),
         solver,
         t0=c.t,
         t1=segment.end,
         dt0=None,
         y0=c.y,
-        args=Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, offsets, kinking, anchors),
+        args=pass_args,
         # Two save lists: after an event diffrax writes the final value right after
         # the last grid value it kept, so the end of the solve gets a list of its own.
         saveat=diffrax.SaveAt(subs=[diffrax.SubSaveAt(ts=save_times), diffrax.SubSaveAt(t1=True)]),
@@ -255,12 +279,13 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     guards = switching.guards(layout)
     segment = segment_from(plan.elements, plan.boundaries, plan.duration, c.t)
     c = _scheduled_switches(plan, segment, c, columns)
-    reply = response(layout, c.modes)
+    # one response per pass while the modes hold; none where an inertia varies (worked out at each use)
+    reply = None if layout.inertia_varies else response(layout, c.modes)
     c = _note(plan, segment, c, c.t, c.y, c.modes, reply)
     durations = {name: value for name, (kind, value) in
                  _reductions(plan, _instant(plan, segment, c.t, c.y, c.modes, reply)).items() if kind == "duration"}
     start_t, start_y = c.t, c.y
-    sol = _solve_segment(plan, segment, c, solver, guards, reply)
+    pass_args, armed, sol = _solve_segment(plan, segment, c, solver, guards, reply)
 
     (_, (t_end,)), (grid_values, (y_end,)) = sol.ts, sol.ys
     hit = sol.result == diffrax.RESULTS.event_occurred
@@ -275,6 +300,19 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
         if coupling.can_slip:
             wrong = slip_sign(c.modes[k]) * end.relative_speed(coupling.section) < 0
             missed = missed | (masks[f"{coupling.section}.slip_valley"] & wrong)
+    # Another guard (not a switch) already past its zero where the located one fired: both crossed in
+    # the last step and diffrax located the first in list order, not the earliest.  Solve the pass
+    # again with shorter steps, so that each crossing has a step of its own.  A guard past zero by
+    # round-off only (a knot coordinate by less than the knot resolution, any other by 1e-9 of its
+    # value at the start) crossed with the located one: roots that coincide cannot be parted.
+    overtaken, at_end = jnp.zeros((), bool), {}
+    for role, name, g in guards:
+        if role != "switch":
+            at_end[name] = g(t_end, y_end, pass_args)
+            resolution = switching.KNOT_RESOLUTION if role == "kink" else 1e-9 * jnp.abs(armed[name])
+            overtaken = overtaken | ((armed[name] > 0.0) & ~masks[name] & (at_end[name] < -resolution))
+    cap = jnp.minimum(c.step_cap, t_end - start_t) / 8.0
+    missed = missed | (hit & overtaken)
     kept = ~missed
     masks = {name: m & kept for name, m in masks.items()}
     rows = (plan.grid >= c.t) & (plan.grid < t_end) & kept
@@ -292,15 +330,19 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
         (extremes, grid_state, grid_modes, c.steps + sol.stats["num_steps"],
          c.rejected + sol.stats["num_rejected_steps"], c.segments + 1, {name: masks[name] for name in c.fired}),
     )
+    # a knot reached together with the located guard (a period that ends on a table's knot) is reached
+    coinciding = {name: (armed[name] > 0.0) & (at_end[name] <= switching.KNOT_RESOLUTION) & kept
+                  for role, name, _ in guards if role == "kink"}
     c = _apply_event(plan, segment, eqx.tree_at(lambda k: k.y, c, y_end), t_end, y_end, masks, hit & kept,
-                     columns)
+                     columns, coinciding)
     c = _note(plan, segment, c, t_reached, c.y, c.modes)
-    status = jnp.where(failed, SOLVER_FAILED, jnp.where(c.switches > plan.max_switches, CHATTERING, c.status))
+    switches, _, _ = _in_cycle(c)
+    status = jnp.where(failed, SOLVER_FAILED, jnp.where(switches > plan.max_switches, CHATTERING, c.status))
     return eqx.tree_at(
         lambda k: (k.t, k.at_boundary, k.status, k.step_cap),
         c,
         (t_reached, kept & (~hit | (t_end >= segment.end)), status,
-         jnp.where(missed, (t_end - start_t) / 8.0, jnp.inf)),
+         jnp.where(missed, cap, jnp.inf)),
     )
 
 
@@ -329,6 +371,7 @@ def _run(plan: Plan, solver, max_segments: int, log_size: int, columns: bool = T
         log=jnp.full((log_size, LOG_FIELDS + (size if columns else 0) + couplings), nan),
         observations=jnp.array(0),
         kinks=jnp.array(0),
+        cycle_start=jnp.zeros((3,), int),
         step_cap=jnp.full((), jnp.inf),
         fired={name: jnp.array(False) for role, name, _ in switching.guards(layout) if role in ("observe", "valley")},
         extremes=_initial_extremes(plan),

@@ -92,6 +92,22 @@ class Readout:
         times = np.asarray(self.raw.event_times[:n], dtype=float)
         return times[:, 0], kinds, elements, times[:, 1]
 
+    def event_rows(self) -> dict[str, np.ndarray]:
+        """Every logged row (events and observations, in time order): its time and kind, each
+        output column and each state by name."""
+        n = self.event_count
+        times, kinds, _, _ = self.events()
+        values = np.asarray(self.raw.event_columns)[:, :n]
+        rows = {name: values[i] for i, name in enumerate(self.layout.columns())}
+        state = np.asarray(self.raw.event_state)[:n]
+        rows.update({name: state[:, i] for i, name in enumerate(self.layout.state_names)})
+        return {"time": times, "kind": kinds, **rows}
+
+    @property
+    def log_overflowed(self) -> bool:
+        """Whether the run logged more rows than its log could keep (run it again with more)."""
+        return self.event_count > np.asarray(self.raw.event_times).shape[-2]
+
     def count(self, kind: str) -> int:
         """How many events of a kind the run had (known even when the log kept no rows)."""
         return int(self.raw.kind_counts[self.layout.kind_code(kind)]) if kind in self.layout.event_kinds else 0

@@ -20,8 +20,10 @@ from .holding_brake import HoldingBrake as HoldingBrake
 from .linear_motor import LinearMotor as LinearMotor
 from .motor_ripple import MotorRipple as MotorRipple
 from .motor_table import TableMotor as TableMotor
+from .periodic_regime import PeriodicRegime as PeriodicRegime
 from .resisting_ripple import ResistingRipple as ResistingRipple
 from .rigid_load import RigidLoad as RigidLoad
+from .slider_crank import SliderCrank as SliderCrank
 
 # Scenario section (dotted within another) -> its element, or the variant's name -> element for a
 # section with variants.
@@ -35,8 +37,10 @@ REGISTRY: dict[str, object] = {
     "drum.resisting_ripple": ResistingRipple,
     "load": RigidLoad,
     "flywheel": Flywheel,
+    "reciprocating": SliderCrank,
     "brake": HoldingBrake,
     "bearings": DrumShaftLoads,
+    "periodic_regime": PeriodicRegime,  # scenario.periodic_regime: given, or implied by a ripple
 }
 
 

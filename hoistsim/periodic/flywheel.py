@@ -1,0 +1,238 @@
+"""The flywheel that keeps a machine's degree of irregularity at a target: Tredgold's, and the simulation's.
+
+Tredgold: I_required = Delta E_max / (w_m^2 delta), the flywheel what it adds
+to the machine's own constant inertia (both at the motor shaft; a flywheel on
+the drum is worth r^2 times its inertia there, r = w_drum / w_motor).
+
+The simulation: the flywheel whose run meets delta exactly, a root of
+delta(I) - target bracketed and narrowed by batches of candidate flywheels,
+each batch one vectorised call of the compiled loop.  delta falls as 1/(I_own
++ I): so 1/delta is nearly linear in I, and the last step interpolates 1/delta
+linearly between the two candidates that bracket the target; one more run
+checks it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import ScenarioError
+from ..schema import FlywheelSpec, InitialSpec
+from ..simulation import simulate
+from ..sweeps import simulate_many
+
+# Candidates per vectorised call, and narrowing calls before the interpolation.
+CANDIDATES = 16
+NARROWINGS = 2
+
+
+@dataclass
+class Sizing:
+    """What the flywheel command answers (SI units), and the candidates it simulated."""
+
+    shaft: str
+    irregularity: float  # the target
+    mean_speed: float  # rad/s at the motor shaft, from the run without a flywheel
+    energy_fluctuation: float  # J, Tredgold's Delta E_max
+    machine_inertia: float  # kg*m^2 at the motor shaft: the machine's own constant inertia
+    required_inertia_tredgold: float  # kg*m^2 at the motor shaft: the whole inertia Tredgold asks for
+    flywheel_inertia_tredgold: float  # kg*m^2 on the flywheel's shaft
+    flywheel_inertia: float  # kg*m^2 on the flywheel's shaft: the simulation meets the target with it
+    irregularity_with_tredgold_flywheel: float
+    irregularity_with_flywheel: float  # the check run's delta with ``flywheel_inertia``
+    irregularity_without_flywheel: float
+    irregularity_tredgold_without_flywheel: float
+    shaft_ratio: float  # the flywheel shaft's speed per unit motor speed
+    candidates: np.ndarray = field(default_factory=lambda: np.zeros(0))  # kg*m^2 on the flywheel's shaft
+    candidate_irregularity: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    rim: dict | None = None
+
+    def irregularity_tredgold(self, flywheel_inertia):
+        """Tredgold's delta with a flywheel of this inertia on its shaft."""
+        whole = self.machine_inertia + np.asarray(flywheel_inertia) * self.shaft_ratio**2
+        return self.energy_fluctuation / (whole * self.mean_speed**2)
+
+    def as_dict(self) -> dict:
+        out = {
+            "shaft": self.shaft,
+            "irregularity": self.irregularity,
+            "mean_speed": self.mean_speed,
+            "energy_fluctuation": self.energy_fluctuation,
+            "machine_inertia": self.machine_inertia,
+            "required_inertia_tredgold": self.required_inertia_tredgold,
+            "flywheel_inertia_tredgold": self.flywheel_inertia_tredgold,
+            "flywheel_inertia": self.flywheel_inertia,
+            "irregularity_with_tredgold_flywheel": self.irregularity_with_tredgold_flywheel,
+            "irregularity_with_flywheel": self.irregularity_with_flywheel,
+            "irregularity_without_flywheel": self.irregularity_without_flywheel,
+            "irregularity_tredgold_without_flywheel": self.irregularity_tredgold_without_flywheel,
+        }
+        if self.rim is not None:
+            out["rim"] = self.rim
+        return out
+
+
+def with_flywheel(scenario, shaft: str, inertia: float, start: dict | None = None):
+    """The scenario with its flywheel replaced by one of this inertia on ``shaft``.
+
+    ``start``: the bare run's regime (mean speed, the mean of Tredgold's
+    energy curve, the machine's inertia and its gear ratio, a duration): the
+    run then starts on Tredgold's periodic orbit for this flywheel, where the
+    speed at a period's start satisfies 1/2 I w^2 = 1/2 I w_m^2 + E(0) - mean(E),
+    E(0) = 0, so that only what the motor's characteristic changes is left to
+    settle, and lasts long enough for that (see :func:`_settling_duration`).
+    """
+    update = {"flywheel": FlywheelSpec(shaft=shaft, inertia=float(inertia)), "sweep": None}
+    if start is not None:
+        whole = start["inertia"] + float(inertia) * start["shaft_ratio"] ** 2
+        speed = math.sqrt(max(start["mean_speed"] ** 2 - 2 * start["energy_mean"] / whole, 0.0))
+        update["initial"] = InitialSpec(motor_speed=speed, drum_speed=speed * start["drum_ratio"])
+        update["simulation"] = scenario.simulation.model_copy(update={"duration": start["duration"]})
+    return scenario.model_copy(update=update)
+
+
+def _settling_duration(scenario, bare, shaft_ratio: float, inertias) -> float:
+    """A duration in which every candidate settles, from how fast the bare run's transient died away.
+
+    Its changes from period to period shrank by a factor q each period: a time
+    constant tau_0 = -T / ln q.  A flywheel makes the machine's inertia, and so
+    the time constant, (I_machine + I r^2) / I_machine times larger; a run that
+    starts on Tredgold's orbit has a small transient left, which three time
+    constants leave far below the settling tolerance.
+    """
+    values, table = bare.values, bare.periodic.regime.table
+    own = values["inertia_tredgold"]
+    period_time = values["period"] / values["mean_speed"]
+    changes = np.abs(np.diff(table["mean_speed"])) / values["mean_speed"]
+    useful = changes > bare.periodic.regime.tolerance / 100  # above round-off
+    shrink = changes[1:][useful[1:] & useful[:-1]] / changes[:-1][useful[1:] & useful[:-1]]
+    q = float(np.clip(np.median(shrink), 0.01, 0.99)) if shrink.size else 0.5
+    tau = -period_time / math.log(q)
+    longest = max((own + float(i) * shaft_ratio**2) / own for i in inertias)
+    analysed = (scenario.periodic_regime.periods + 3) * period_time
+    return 3.0 * tau * longest + analysed
+
+
+def _irregularities(scenario, shaft: str, inertias, start: dict | None = None) -> tuple[list[dict], np.ndarray]:
+    """Run the scenario with each flywheel (one vectorised call): summaries, and delta (NaN: not settled)."""
+    inertias = [float(i) for i in inertias]
+    scenarios = [with_flywheel(scenario, shaft, i, start) for i in inertias]
+    # every call one chunk of the same width: one compiled program for all of them
+    summaries = simulate_many(scenarios, [f"{i:.6g} kg*m^2" for i in inertias], summary_only=True,
+                              chunk_size=CANDIDATES)
+    return summaries, np.asarray([s["irregularity"] for s in summaries], dtype=float)
+
+
+def _not_settled(scenario, inertia: float) -> ScenarioError:
+    return ScenarioError("simulation.duration", f"with a flywheel of {inertia:.6g} kg*m^2 the periodic regime does "
+                         f"not settle in the time allowed; raise simulation.duration (now "
+                         f"{scenario.simulation.duration:g} s: the run without a flywheel must settle in it)")
+
+
+def size_flywheel(scenario, irregularity: float) -> Sizing:
+    """Tredgold's flywheel and the simulation's for a degree of irregularity (see the module docstring)."""
+    if not 0.0 < irregularity < 1.0:
+        raise ScenarioError("--irregularity", f"must be between 0 and 1 (a fraction: 0.01 for 1 %), got {irregularity:g}")
+    if scenario.periodic_regime is None:
+        raise ScenarioError("motor.ripple", "the machine has no periodic regime to size a flywheel for: "
+                            "give motor.ripple, drum.resisting_ripple or reciprocating")
+    shaft = scenario.flywheel.shaft if scenario.flywheel is not None else "motor"
+    drum_ratio = scenario.gears.pinion_teeth / scenario.gears.wheel_teeth
+    ratio = 1.0 if shaft == "motor" else drum_ratio
+    bare = simulate(with_flywheel(scenario, shaft, 0.0))
+    if bare.periodic.diagram is None:
+        raise _not_settled(scenario, 0.0)
+    diagram = bare.periodic.diagram
+    values = bare.values
+    mean, energy, own = values["mean_speed"], values["energy_fluctuation_tredgold"], values["inertia_tredgold"]
+    required = energy / (irregularity * mean**2)
+    tredgold = max(0.0, (required - own) / ratio**2)
+    sizing = Sizing(shaft=shaft, irregularity=irregularity, mean_speed=mean, energy_fluctuation=energy,
+                    machine_inertia=own, required_inertia_tredgold=required, flywheel_inertia_tredgold=tredgold,
+                    flywheel_inertia=math.nan, irregularity_with_tredgold_flywheel=math.nan,
+                    irregularity_with_flywheel=math.nan, irregularity_without_flywheel=values["irregularity"],
+                    irregularity_tredgold_without_flywheel=values["irregularity_tredgold"], shaft_ratio=ratio)
+    delta0 = np.asarray([values["irregularity"]])
+    if delta0[0] <= irregularity:  # the machine meets the target on its own
+        sizing.flywheel_inertia = 0.0
+        sizing.irregularity_with_flywheel = float(delta0[0])
+    # first batch: Tredgold's flywheel and a spread about it (a damping motor needs less, a slipping clutch more)
+    scale = max(tredgold, own / ratio**2 * 1e-3)
+    candidates = [np.concatenate([[tredgold], scale * np.geomspace(1 / 4, 2, CANDIDATES - 1)])]
+    start = {"mean_speed": mean, "energy_mean": diagram.mean_energy, "inertia": own, "shaft_ratio": ratio,
+             "drum_ratio": drum_ratio, "duration": _settling_duration(scenario, bare, ratio, candidates[0])}
+    _, delta = _irregularities(scenario, shaft, candidates[0], start)
+    deltas = [delta]
+    sizing.irregularity_with_tredgold_flywheel = float(delta[0]) if tredgold > 0.0 else float(delta0[0])
+    if sizing.flywheel_inertia == 0.0:
+        return _with_curve(sizing, candidates, deltas, [0.0], delta0)
+    low, high = _bracket(np.concatenate([[0.0], candidates[0]]), np.concatenate([delta0, delta]), irregularity,
+                         scenario)
+    for _ in range(NARROWINGS):
+        trial = np.linspace(low[0], high[0], CANDIDATES + 2)[1:-1]
+        _, delta = _irregularities(scenario, shaft, trial, start)
+        candidates.append(trial)
+        deltas.append(delta)
+        inertias = np.concatenate([[low[0], high[0]], trial])
+        values = np.concatenate([[low[1], high[1]], delta])
+        low, high = _bracket(inertias, values, irregularity, scenario)
+    # 1/delta is close to linear in the flywheel's inertia: interpolate it, then check
+    inverse = (1 / low[1], 1 / high[1])
+    answer = low[0] + (1 / irregularity - inverse[0]) * (high[0] - low[0]) / (inverse[1] - inverse[0])
+    _, check = _irregularities(scenario, shaft, [answer], start)
+    sizing.flywheel_inertia = float(answer)
+    sizing.irregularity_with_flywheel = float(check[0])
+    return _with_curve(sizing, candidates, deltas, [answer], check)
+
+
+def _bracket(inertias, deltas, target, scenario):
+    """The two candidates either side of the target: (inertia, delta) with delta above, and below."""
+    order = np.argsort(inertias)
+    inertias, deltas = np.asarray(inertias)[order], np.asarray(deltas)[order]
+    unsettled = ~np.isfinite(deltas)
+    above = np.flatnonzero((deltas > target) & ~unsettled)
+    below = np.flatnonzero((deltas <= target) & ~unsettled)
+    if below.size == 0:
+        if unsettled.any():
+            raise _not_settled(scenario, float(inertias[unsettled][0]))
+        raise ScenarioError("--irregularity", f"even a flywheel of {inertias[-1]:.6g} kg*m^2 leaves delta at "
+                            f"{deltas[-1]:.4g}, above {target:g}: the target is out of reach of a flywheel "
+                            "(the motor's characteristic or the clutch limits it)")
+    j = below[0]
+    i = above[above < j][-1] if (above < j).any() else None
+    if i is None:
+        raise ScenarioError("--irregularity", f"delta is not above {target:g} even without a flywheel")
+    if unsettled[i:j + 1].any():
+        raise _not_settled(scenario, float(inertias[i:j + 1][unsettled[i:j + 1]][0]))
+    return (inertias[i], deltas[i]), (inertias[j], deltas[j])
+
+
+def _with_curve(sizing: Sizing, candidates, deltas, extra_inertias, extra_deltas) -> Sizing:
+    inertias = np.concatenate([*candidates, np.asarray(extra_inertias, float)])
+    values = np.concatenate([*deltas, np.asarray(extra_deltas, float)])
+    order = np.argsort(inertias)
+    sizing.candidates, sizing.candidate_irregularity = inertias[order], values[order]
+    return sizing
+
+
+def rim(inertia: float, density: float, *, width: float | None = None, outer_diameter: float | None = None,
+        inner_diameter: float = 0.0) -> dict:
+    """The rim (or disc, inner diameter 0) of this inertia: I = pi rho s (R_o^4 - R_i^4) / 2.
+
+    Give the width to get the outer diameter, or the outer diameter to get the width.
+    """
+    inner = 0.5 * inner_diameter
+    if (width is None) == (outer_diameter is None):
+        raise ScenarioError("--width", "give either --width or --outer-diameter with --density")
+    if width is not None:
+        outer = (2 * inertia / (math.pi * density * width) + inner**4) ** 0.25
+    else:
+        outer = 0.5 * outer_diameter
+        if outer <= inner:
+            raise ScenarioError("--outer-diameter", f"must exceed the inner diameter ({inner_diameter:g} m)")
+        width = 2 * inertia / (math.pi * density * (outer**4 - inner**4))
+    return {"density": density, "outer_diameter": 2 * outer, "inner_diameter": inner_diameter, "width": width,
+            "mass": density * math.pi * (outer**2 - inner**2) * width, "inertia": inertia}
