@@ -240,8 +240,9 @@ def statics(scenario, as_json, overrides):
 def flywheel(scenario, irregularity, as_json, overrides, density, width, outer_diameter, inner_diameter, figure):
     """Size a flywheel for SCENARIO's machine: Tredgold's, and the one with which the simulation meets DELTA.
 
-    The flywheel goes on flywheel.shaft (the motor shaft if the scenario has none) and replaces the
-    scenario's own; the machine must have a periodic regime (a ripple or a slider-crank).
+    The flywheel goes on flywheel.shaft (the motor shaft if the scenario has none).  The machine is
+    first run as given, with its own flywheel if it has one (it must reach its periodic regime: give a
+    flywheel for a machine that does not run without); the answers replace that flywheel.
     """
     import json
 

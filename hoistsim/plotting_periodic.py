@@ -27,7 +27,7 @@ def turning_moment_axes(ax, diagram: dict) -> None:
     driving, resisting = diagram["driving_torque"], diagram["resisting_torque"]
     theta1, theta2 = float(a["min_speed_angle"]), float(a["max_speed_angle"])
     ax.plot(angle * DEG, driving, color=_DRIVING, lw=1.6, label="driving torque M'_m (motor)")
-    ax.plot(angle * DEG, resisting, color=_RESISTING, lw=1.6, label="resisting torque M'_r (load, at w_m)")
+    ax.plot(angle * DEG, resisting, color=_RESISTING, lw=1.6, label="resisting torque M'_r (load; inertia torques of reciprocating parts at w_m)")
     inside = _in_turn(angle, theta1, theta2, period)
     surplus = inside & (driving >= resisting)
     ax.fill_between(angle * DEG, resisting, driving, where=surplus, color=_AREA, alpha=0.55, lw=0,
@@ -48,7 +48,6 @@ def turning_moment_axes(ax, diagram: dict) -> None:
                  f"Tredgold: delta = {float(a['irregularity']):.4g} with I = {float(a['inertia']):.4g} kg*m^2",
                  fontsize=10, loc="left")
     ax.grid(True, lw=0.4, alpha=0.6)
-    ax.legend(fontsize=8, loc="best", framealpha=0.9)
 
 
 def speed_over_period_axes(ax, run: dict) -> None:
@@ -92,7 +91,9 @@ def periodic_figure(run: dict, plt):
     top.set_xlabel("")
     name = str(run["attrs"].get("name", ""))
     fig.suptitle(f"{name}: periodic regime of the motor shaft", fontsize=11, x=0.01, ha="left")
-    fig.tight_layout()
+    # the diagram's legend below the figure, where it hides neither curve nor label
+    fig.legend(*top.get_legend_handles_labels(), loc="lower center", ncol=2, fontsize=8, frameon=False)
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
     return fig
 
 

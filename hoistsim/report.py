@@ -90,10 +90,11 @@ def flywheel_table(name: str, sizing, elapsed: float) -> str:
     on = f"on the {sizing.shaft} shaft"
     rows = [
         ["target delta", "degree of irregularity to meet", fmt(sizing.irregularity), "-"],
-        ["w_m", "mean speed (mean over angle), no flywheel", fmt(sizing.mean_speed * 30 / math.pi), "rpm"],
+        ["w_m", "mean speed (mean over angle)", fmt(sizing.mean_speed * 30 / math.pi), "rpm"],
         ["dE_max", "largest energy fluctuation, Tredgold", fmt(sizing.energy_fluctuation), "J"],
-        ["delta_0", "delta without a flywheel: simulated", fmt(sizing.irregularity_without_flywheel), "-"],
-        ["delta_0,T", "delta without a flywheel: Tredgold", fmt(sizing.irregularity_tredgold_without_flywheel), "-"],
+        ["I_f,0", f"the scenario's own flywheel {on}", fmt(sizing.flywheel_as_given), "kg*m^2"],
+        ["delta_0", "delta with it: simulated", fmt(sizing.irregularity_as_given), "-"],
+        ["delta_0,T", "delta with it: Tredgold", fmt(sizing.irregularity_tredgold_as_given), "-"],
         ["I_machine", f"machine's own constant inertia {motor}", fmt(sizing.machine_inertia), "kg*m^2"],
         ["I_T", f"whole inertia Tredgold asks for {motor}", fmt(sizing.required_inertia_tredgold), "kg*m^2"],
         ["I_f,T", f"Tredgold's flywheel {on}", fmt(sizing.flywheel_inertia_tredgold), "kg*m^2"],

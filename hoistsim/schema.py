@@ -293,6 +293,14 @@ class Scenario(Section):
             raise ScenarioError("initial.steady_lift", "a steady lift cannot start with the brake holding the drum")
         return self
 
+    @model_validator(mode="after")
+    def _periodic_parts_repeat(self):
+        if self.periodic_regime is not None:
+            from .periodic.period import machine_period_turns
+
+            machine_period_turns(self)  # periods must be exact fractions of a turn (a one-line error if not)
+        return self
+
     @property
     def periodic_regime(self) -> PeriodicSpec | None:
         """How to report the periodic regime: ``periodic:`` as given, its defaults where an element

@@ -204,6 +204,14 @@ CASES = [
     Case("ripple period not positive", "  radius_of_gyration: 15 cm\n",
          "  radius_of_gyration: 15 cm\n  ripple:\n    period: 0 deg\n    harmonics: [{order: 1, amplitude: 9 N*m}]\n",
          "motor.ripple.period", "period: 0", "must be positive"),
+    Case("rod not longer than the crank", None,
+         "reciprocating:\n  mass: 12 kg\n  crank_radius: 8 cm\n  rod_length: 8 cm\n",
+         "reciprocating.rod_length", "rod_length: 8 cm", "must be longer than the crank"),
+    Case("periodic periods not a whole number", None, "periodic:\n  periods: 2.5\n", "periodic.periods",
+         "periods: 2.5", "whole number"),
+    Case("ripple period off every fraction of a turn", "  radius_of_gyration: 15 cm\n",
+         "  radius_of_gyration: 15 cm\n  ripple:\n    period: 1 rad\n    harmonics: [{order: 1, amplitude: 9 N*m}]\n",
+         "motor.ripple.period", "period: 1 rad", "exact fractions of a turn"),
     Case("rim with the inner diameter not below the outer", None,
          "flywheel:\n  density: 7200 kg/m^3\n  outer_diameter: 1 m\n  inner_diameter: 1.2 m\n  width: 10 cm\n",
          "flywheel.inner_diameter", "inner_diameter", "must be less than outer_diameter"),
@@ -413,3 +421,37 @@ def test_real_console_script_has_no_traceback(tmp_path):
     assert proc.stderr == (f"hoistsim: error: {scenario}:{line}: clutch.static_friciton: unknown key "
                            "(did you mean clutch.static_friction?)\n")
     assert not output.exists()
+
+
+RIPPLE = "  ripple:\n    harmonics: [{order: 2, amplitude: 100 N*m}]\n"
+FLYWHEEL_CASES = [
+    # (id, options, scenario has a ripple, what the message must say)
+    ("target of zero", ["--irregularity", "0"], True, "--irregularity: must be between 0 and 1"),
+    ("target above one", ["--irregularity", "1.5"], True, "--irregularity: must be between 0 and 1"),
+    ("target not a number", ["--irregularity", "1%"], True, "'1%' is not a valid float"),
+    ("width without density", ["--irregularity", "0.01", "--width", "8 cm"], True, "need --density"),
+    ("density without a size", ["--irregularity", "0.01", "--density", "7200 kg/m^3"], True,
+     "--width: give either --width or --outer-diameter"),
+    ("density in the wrong unit", ["--irregularity", "0.01", "--density", "7 kg", "--width", "8 cm"], True,
+     "--density: expected a density"),
+    ("outer diameter inside the bore", ["--irregularity", "0.01", "--density", "7200 kg/m^3", "--outer-diameter",
+                                        "20 cm", "--inner-diameter", "30 cm"], True, "--outer-diameter: must exceed"),
+    ("machine with nothing periodic", ["--irregularity", "0.01"], False, "motor.ripple: the machine has no periodic"),
+]
+
+
+@pytest.mark.parametrize("options, ripple, words", [c[1:] for c in FLYWHEEL_CASES], ids=[c[0] for c in FLYWHEEL_CASES])
+def test_bad_flywheel_request_fails_cleanly(options, ripple, words, tmp_path, monkeypatch):
+    from hoistsim.periodic import flywheel
+
+    monkeypatch.setattr(flywheel, "simulate_many", lambda *a, **k: pytest.fail("a bad request reached the runs"))
+    text = BASE.replace("  radius_of_gyration: 15 cm\n", "  radius_of_gyration: 15 cm\n" + RIPPLE) if ripple else BASE
+    scenario = tmp_path / "scenario.yaml"
+    scenario.write_text(text, encoding="utf-8")
+    figure = tmp_path / "delta.png"
+    result, lines = _run_cli(["flywheel", str(scenario), "--plot", str(figure), *options])
+    assert result.exit_code == 2, (result.exit_code, result.output, result.exception)
+    assert len(lines) == 1 and lines[0].startswith("hoistsim: error: "), lines
+    assert words in lines[0], lines[0]
+    assert "Traceback" not in result.output and result.stdout == ""
+    assert not figure.exists()

@@ -302,17 +302,18 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
             missed = missed | (masks[f"{coupling.section}.slip_valley"] & wrong)
     # Another guard (not a switch) already past its zero where the located one fired: both crossed in
     # the last step and diffrax located the first in list order, not the earliest.  Solve the pass
-    # again with shorter steps, so that each crossing has a step of its own.  A guard past zero by
-    # round-off only (a knot coordinate by less than the knot resolution, any other by 1e-9 of its
-    # value at the start) crossed with the located one: roots that coincide cannot be parted.
+    # again with shorter steps (at most three times), so that each crossing has a step of its own.
+    # A guard only just past zero crossed with the located one, as far as a row can tell: a knot
+    # coordinate by less than the knot resolution; an observation by less than 1e-4 of its value at
+    # the start, a root so close that the row already there misses its extreme by ~1e-8.
     overtaken, at_end = jnp.zeros((), bool), {}
     for role, name, g in guards:
         if role != "switch":
             at_end[name] = g(t_end, y_end, pass_args)
-            resolution = switching.KNOT_RESOLUTION if role == "kink" else 1e-9 * jnp.abs(armed[name])
+            resolution = switching.KNOT_RESOLUTION if role == "kink" else 1e-4 * jnp.abs(armed[name])
             overtaken = overtaken | ((armed[name] > 0.0) & ~masks[name] & (at_end[name] < -resolution))
     cap = jnp.minimum(c.step_cap, t_end - start_t) / 8.0
-    missed = missed | (hit & overtaken)
+    missed = missed | (hit & overtaken & (cap * 8.0**3 >= t_end - start_t))
     kept = ~missed
     masks = {name: m & kept for name, m in masks.items()}
     rows = (plan.grid >= c.t) & (plan.grid < t_end) & kept

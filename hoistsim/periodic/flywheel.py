@@ -35,7 +35,7 @@ class Sizing:
 
     shaft: str
     irregularity: float  # the target
-    mean_speed: float  # rad/s at the motor shaft, from the run without a flywheel
+    mean_speed: float  # rad/s at the motor shaft, from the run of the machine as given
     energy_fluctuation: float  # J, Tredgold's Delta E_max
     machine_inertia: float  # kg*m^2 at the motor shaft: the machine's own constant inertia
     required_inertia_tredgold: float  # kg*m^2 at the motor shaft: the whole inertia Tredgold asks for
@@ -43,8 +43,9 @@ class Sizing:
     flywheel_inertia: float  # kg*m^2 on the flywheel's shaft: the simulation meets the target with it
     irregularity_with_tredgold_flywheel: float
     irregularity_with_flywheel: float  # the check run's delta with ``flywheel_inertia``
-    irregularity_without_flywheel: float
-    irregularity_tredgold_without_flywheel: float
+    flywheel_as_given: float  # kg*m^2: the scenario's own flywheel (0 without one)
+    irregularity_as_given: float  # the machine as the scenario gives it: simulated ...
+    irregularity_tredgold_as_given: float  # ... and by Tredgold
     shaft_ratio: float  # the flywheel shaft's speed per unit motor speed
     candidates: np.ndarray = field(default_factory=lambda: np.zeros(0))  # kg*m^2 on the flywheel's shaft
     candidate_irregularity: np.ndarray = field(default_factory=lambda: np.zeros(0))
@@ -67,8 +68,9 @@ class Sizing:
             "flywheel_inertia": self.flywheel_inertia,
             "irregularity_with_tredgold_flywheel": self.irregularity_with_tredgold_flywheel,
             "irregularity_with_flywheel": self.irregularity_with_flywheel,
-            "irregularity_without_flywheel": self.irregularity_without_flywheel,
-            "irregularity_tredgold_without_flywheel": self.irregularity_tredgold_without_flywheel,
+            "flywheel_as_given": self.flywheel_as_given,
+            "irregularity_as_given": self.irregularity_as_given,
+            "irregularity_tredgold_as_given": self.irregularity_tredgold_as_given,
         }
         if self.rim is not None:
             out["rim"] = self.rim
@@ -94,26 +96,29 @@ def with_flywheel(scenario, shaft: str, inertia: float, start: dict | None = Non
     return scenario.model_copy(update=update)
 
 
-def _settling_duration(scenario, bare, shaft_ratio: float, inertias) -> float:
-    """A duration in which every candidate settles, from how fast the bare run's transient died away.
+def _settling_duration(scenario, reference, given: float, shaft_ratio: float, inertias) -> float:
+    """A duration in which every candidate settles, from how fast the reference run's transient died away.
 
     Its changes from period to period shrank by a factor q each period: a time
-    constant tau_0 = -T / ln q.  A flywheel makes the machine's inertia, and so
-    the time constant, (I_machine + I r^2) / I_machine times larger; a run that
-    starts on Tredgold's orbit has a small transient left, which three time
-    constants leave far below the settling tolerance.
+    constant tau = -T / ln q.  Another flywheel makes the machine's inertia,
+    and so the time constant, (I_machine + I r^2) / (I_machine + I_given r^2)
+    times as large.  A run that starts on Tredgold's orbit is left with a
+    transient of about 1e-3 of the speed (what Tredgold's orbit misses), which
+    must shrink to the settling tolerance: ln(1e-3 / tolerance) time constants.
     """
-    values, table = bare.values, bare.periodic.regime.table
-    own = values["inertia_tredgold"]
+    values, table = reference.values, reference.periodic.regime.table
+    whole = values["inertia_tredgold"]
+    own = whole - given * shaft_ratio**2
     period_time = values["period"] / values["mean_speed"]
     changes = np.abs(np.diff(table["mean_speed"])) / values["mean_speed"]
-    useful = changes > bare.periodic.regime.tolerance / 100  # above round-off
+    useful = changes > reference.periodic.regime.tolerance / 100  # above round-off
     shrink = changes[1:][useful[1:] & useful[:-1]] / changes[:-1][useful[1:] & useful[:-1]]
     q = float(np.clip(np.median(shrink), 0.01, 0.99)) if shrink.size else 0.5
     tau = -period_time / math.log(q)
-    longest = max((own + float(i) * shaft_ratio**2) / own for i in inertias)
+    longest = max((own + float(i) * shaft_ratio**2) / whole for i in inertias)
     analysed = (scenario.periodic_regime.periods + 3) * period_time
-    return 3.0 * tau * longest + analysed
+    constants = math.log(max(1e-3 / reference.periodic.regime.tolerance, math.e))
+    return constants * tau * max(longest, 1.0) + analysed
 
 
 def _irregularities(scenario, shaft: str, inertias, start: dict | None = None) -> tuple[list[dict], np.ndarray]:
@@ -126,51 +131,63 @@ def _irregularities(scenario, shaft: str, inertias, start: dict | None = None) -
     return summaries, np.asarray([s["irregularity"] for s in summaries], dtype=float)
 
 
-def _not_settled(scenario, inertia: float) -> ScenarioError:
-    return ScenarioError("simulation.duration", f"with a flywheel of {inertia:.6g} kg*m^2 the periodic regime does "
-                         f"not settle in the time allowed; raise simulation.duration (now "
-                         f"{scenario.simulation.duration:g} s: the run without a flywheel must settle in it)")
+def _not_settled(scenario, inertia: float, reference: bool = False) -> ScenarioError:
+    if reference:
+        return ScenarioError("simulation.duration", f"the periodic regime of the machine as given (flywheel "
+                             f"{inertia:.6g} kg*m^2) has not settled within {scenario.simulation.duration:g} s: "
+                             "raise simulation.duration, or give a flywheel with which the machine runs "
+                             "(flywheel.inertia) to start from")
+    return ScenarioError("simulation.duration", f"with a flywheel of {inertia:.6g} kg*m^2 the periodic regime "
+                         f"does not settle in the time allowed; raise simulation.duration "
+                         f"(now {scenario.simulation.duration:g} s)")
 
 
 def size_flywheel(scenario, irregularity: float) -> Sizing:
-    """Tredgold's flywheel and the simulation's for a degree of irregularity (see the module docstring)."""
+    """Tredgold's flywheel and the simulation's for a degree of irregularity (see the module docstring).
+
+    The machine as given (with its own flywheel, if it has one) is run first:
+    its regime gives the mean speed, Tredgold's Delta E_max and how fast a
+    transient dies away; the machine's own inertia is its constant inertia
+    less that flywheel's.
+    """
     if not 0.0 < irregularity < 1.0:
         raise ScenarioError("--irregularity", f"must be between 0 and 1 (a fraction: 0.01 for 1 %), got {irregularity:g}")
     if scenario.periodic_regime is None:
         raise ScenarioError("motor.ripple", "the machine has no periodic regime to size a flywheel for: "
                             "give motor.ripple, drum.resisting_ripple or reciprocating")
     shaft = scenario.flywheel.shaft if scenario.flywheel is not None else "motor"
+    given = scenario.flywheel.moment_of_inertia if scenario.flywheel is not None else 0.0
     drum_ratio = scenario.gears.pinion_teeth / scenario.gears.wheel_teeth
     ratio = 1.0 if shaft == "motor" else drum_ratio
-    bare = simulate(with_flywheel(scenario, shaft, 0.0))
-    if bare.periodic.diagram is None:
-        raise _not_settled(scenario, 0.0)
-    diagram = bare.periodic.diagram
-    values = bare.values
-    mean, energy, own = values["mean_speed"], values["energy_fluctuation_tredgold"], values["inertia_tredgold"]
+    reference = simulate(with_flywheel(scenario, shaft, given))
+    if reference.periodic.diagram is None:
+        raise _not_settled(scenario, given, reference=True)
+    values = reference.values
+    mean, energy = values["mean_speed"], values["energy_fluctuation_tredgold"]
+    own = values["inertia_tredgold"] - given * ratio**2
     required = energy / (irregularity * mean**2)
     tredgold = max(0.0, (required - own) / ratio**2)
     sizing = Sizing(shaft=shaft, irregularity=irregularity, mean_speed=mean, energy_fluctuation=energy,
                     machine_inertia=own, required_inertia_tredgold=required, flywheel_inertia_tredgold=tredgold,
                     flywheel_inertia=math.nan, irregularity_with_tredgold_flywheel=math.nan,
-                    irregularity_with_flywheel=math.nan, irregularity_without_flywheel=values["irregularity"],
-                    irregularity_tredgold_without_flywheel=values["irregularity_tredgold"], shaft_ratio=ratio)
-    delta0 = np.asarray([values["irregularity"]])
-    if delta0[0] <= irregularity:  # the machine meets the target on its own
-        sizing.flywheel_inertia = 0.0
-        sizing.irregularity_with_flywheel = float(delta0[0])
+                    irregularity_with_flywheel=math.nan, flywheel_as_given=given,
+                    irregularity_as_given=values["irregularity"],
+                    irregularity_tredgold_as_given=values["irregularity_tredgold"], shaft_ratio=ratio)
+    known_inertia, known_delta = np.asarray([given]), np.asarray([values["irregularity"]])
     # first batch: Tredgold's flywheel and a spread about it (a damping motor needs less, a slipping clutch more)
     scale = max(tredgold, own / ratio**2 * 1e-3)
     candidates = [np.concatenate([[tredgold], scale * np.geomspace(1 / 4, 2, CANDIDATES - 1)])]
-    start = {"mean_speed": mean, "energy_mean": diagram.mean_energy, "inertia": own, "shaft_ratio": ratio,
-             "drum_ratio": drum_ratio, "duration": _settling_duration(scenario, bare, ratio, candidates[0])}
+    start = {"mean_speed": mean, "energy_mean": reference.periodic.diagram.mean_energy, "inertia": own,
+             "shaft_ratio": ratio, "drum_ratio": drum_ratio,
+             "duration": _settling_duration(scenario, reference, given, ratio, candidates[0])}
     _, delta = _irregularities(scenario, shaft, candidates[0], start)
     deltas = [delta]
-    sizing.irregularity_with_tredgold_flywheel = float(delta[0]) if tredgold > 0.0 else float(delta0[0])
-    if sizing.flywheel_inertia == 0.0:
-        return _with_curve(sizing, candidates, deltas, [0.0], delta0)
-    low, high = _bracket(np.concatenate([[0.0], candidates[0]]), np.concatenate([delta0, delta]), irregularity,
-                         scenario)
+    sizing.irregularity_with_tredgold_flywheel = float(delta[0])
+    if tredgold == 0.0 and delta[0] <= irregularity:  # the machine meets the target on its own
+        sizing.flywheel_inertia, sizing.irregularity_with_flywheel = 0.0, float(delta[0])
+        return _with_curve(sizing, candidates, deltas, known_inertia, known_delta)
+    low, high = _bracket(np.concatenate([known_inertia, candidates[0]]), np.concatenate([known_delta, delta]),
+                         irregularity, scenario)
     for _ in range(NARROWINGS):
         trial = np.linspace(low[0], high[0], CANDIDATES + 2)[1:-1]
         _, delta = _irregularities(scenario, shaft, trial, start)
@@ -185,7 +202,8 @@ def size_flywheel(scenario, irregularity: float) -> Sizing:
     _, check = _irregularities(scenario, shaft, [answer], start)
     sizing.flywheel_inertia = float(answer)
     sizing.irregularity_with_flywheel = float(check[0])
-    return _with_curve(sizing, candidates, deltas, [answer], check)
+    return _with_curve(sizing, candidates, deltas, np.concatenate([known_inertia, [answer]]),
+                       np.concatenate([known_delta, check]))
 
 
 def _bracket(inertias, deltas, target, scenario):
@@ -204,7 +222,8 @@ def _bracket(inertias, deltas, target, scenario):
     j = below[0]
     i = above[above < j][-1] if (above < j).any() else None
     if i is None:
-        raise ScenarioError("--irregularity", f"delta is not above {target:g} even without a flywheel")
+        raise ScenarioError("--irregularity", f"delta is already below {target:g} with the smallest flywheel tried "
+                            f"({inertias[0]:.6g} kg*m^2)")
     if unsettled[i:j + 1].any():
         raise _not_settled(scenario, float(inertias[i:j + 1][unsettled[i:j + 1]][0]))
     return (inertias[i], deltas[i]), (inertias[j], deltas[j])

@@ -4,7 +4,7 @@ A torque periodic in the motor angle (period Theta_m) and one periodic in the
 drum angle (Theta_r, brought to the motor shaft through the gear's exact
 fraction of teeth) repeat together only after Theta = k_m Theta_m = k_r Theta_r
 with k_m, k_r coprime integers.  Periods are read as exact fractions of a turn
-(any whole number of tenths of a degree, or finer), so the multiple is exact.
+(whole numbers of 1e-4 deg), so the multiple is exact.
 """
 
 from __future__ import annotations
@@ -15,17 +15,17 @@ from fractions import Fraction
 from ..errors import ScenarioError
 
 TURN = 2 * math.pi
-# Finest fraction of a turn a period is read as (1e-4 deg); a period off every such fraction is refused.
-LARGEST_DENOMINATOR = 3_600_000
+# Periods are read as whole numbers of this fraction of a degree (a period off every one is refused).
+STEPS_PER_DEGREE = 10_000
 
 
 def turns(angle: float, key: str) -> Fraction:
-    """An angle (rad) as an exact fraction of a turn."""
-    exact = Fraction(angle / TURN).limit_denominator(LARGEST_DENOMINATOR)
-    if not math.isclose(float(exact) * TURN, angle, rel_tol=1e-9):
-        raise ScenarioError(key, f"{math.degrees(angle):.12g} deg is not a whole number of 1e-4 deg; "
-                            "the machine's period needs periods that are exact fractions of a turn")
-    return exact
+    """An angle (rad) as an exact fraction of a turn: a whole number of 1e-4 deg."""
+    steps = math.degrees(angle) * STEPS_PER_DEGREE
+    if abs(steps - round(steps)) > 1e-5:  # round-off of a period given in deg is far smaller
+        raise ScenarioError(key, f"{math.degrees(angle):.12g} deg is not a whole number of 1e-4 deg; the "
+                            "machine's period needs periods that are exact fractions of a turn (give them in deg)")
+    return Fraction(round(steps), 360 * STEPS_PER_DEGREE)
 
 
 def common_multiple(a: Fraction, b: Fraction) -> Fraction:

@@ -139,6 +139,14 @@ def constant_inertia(elements) -> float:
     return float(_inertia_at_motor(elements))
 
 
+def _root(f, a: float, b: float) -> float:
+    """The root of f in [a, b]; an end where f is already at zero (to round-off) is the root."""
+    fa, fb = f(a), f(b)
+    if fa * fb > 0:  # both ends on one side by round-off: the root sits at the nearer end
+        return a if abs(fa) < abs(fb) else b
+    return brentq(f, a, b, xtol=1e-15, rtol=1e-15)
+
+
 def diagram(elements, start_state, time: float, speed: float, period: float) -> Diagram:
     """The turning-moment diagram over one period from a state (angles where the period starts)."""
     start_state = np.asarray(start_state, dtype=np.float64)
@@ -163,13 +171,12 @@ def diagram(elements, start_state, time: float, speed: float, period: float) -> 
         passed = np.flatnonzero(np.floor(u[1:] + 1e-12) != np.floor(u[:-1] + 1e-12))
         for i in passed:
             target = np.floor(u[i + 1] + 1e-12)
-            points.append([brentq(lambda a: float(at(a)[2][0, k]) - target, grid[i], grid[i + 1],
-                                  xtol=1e-15, rtol=1e-15)])
+            points.append([_root(lambda a: float(at(a)[2][0, k]) - target, grid[i], grid[i + 1])])
     edges = np.unique(np.concatenate([np.atleast_1d(np.asarray(p, float)) for p in points]))
     # crossings of the two curves: the extremes of E
     torque = net(edges)
     sign = np.sign(torque)
-    crossings = [brentq(lambda a: float(net(a)[0]), edges[i], edges[i + 1], xtol=1e-15, rtol=1e-15)
+    crossings = [_root(lambda a: float(net(a)[0]), edges[i], edges[i + 1])
                  for i in np.flatnonzero(sign[:-1] * sign[1:] < 0)]
     edges = np.unique(np.concatenate([edges, crossings]))
     left, width = edges[:-1], np.diff(edges)
