@@ -15,6 +15,7 @@ from click.testing import CliRunner
 from conftest import core
 
 from hoistsim import simulation
+from hoistsim.periodic import flywheel  # imported before any test patches the simulation away
 from hoistsim.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -442,8 +443,6 @@ FLYWHEEL_CASES = [
 
 @pytest.mark.parametrize("options, ripple, words", [c[1:] for c in FLYWHEEL_CASES], ids=[c[0] for c in FLYWHEEL_CASES])
 def test_bad_flywheel_request_fails_cleanly(options, ripple, words, tmp_path, monkeypatch):
-    from hoistsim.periodic import flywheel
-
     monkeypatch.setattr(flywheel, "simulate_many", lambda *a, **k: pytest.fail("a bad request reached the runs"))
     text = BASE.replace("  radius_of_gyration: 15 cm\n", "  radius_of_gyration: 15 cm\n" + RIPPLE) if ripple else BASE
     scenario = tmp_path / "scenario.yaml"

@@ -5,11 +5,12 @@ to the machine's own constant inertia (both at the motor shaft; a flywheel on
 the drum is worth r^2 times its inertia there, r = w_drum / w_motor).
 
 The simulation: the flywheel whose run meets delta exactly, a root of
-delta(I) - target bracketed and narrowed by batches of candidate flywheels,
-each batch one vectorised call of the compiled loop.  delta falls as 1/(I_own
-+ I): so 1/delta is nearly linear in I, and the last step interpolates 1/delta
-linearly between the two candidates that bracket the target; one more run
-checks it.
+delta(I) - target bracketed by candidate flywheels, each batch of them one
+vectorised call of the compiled loop.  delta falls as 1/(I_own + I), so 1/delta
+is nearly linear in I: interpolating it between the two candidates that
+bracket the target is already close; a second batch, spread a few parts in a
+thousand about that answer, brackets it tightly for the final interpolation,
+and a third run checks it.  Three calls of 8 runs.
 """
 
 from __future__ import annotations
@@ -21,12 +22,14 @@ import numpy as np
 
 from ..errors import ScenarioError
 from ..schema import FlywheelSpec, InitialSpec
-from ..simulation import simulate
+from .. import simulation
 from ..sweeps import simulate_many
 
-# Candidates per vectorised call, and narrowing calls before the interpolation.
-CANDIDATES = 16
-NARROWINGS = 2
+# Candidates per vectorised call.  The first call spreads them over SPREAD times Tredgold's flywheel
+# (the wider WIDE_SPREAD if the target is not between them); the second spreads them REFINE either
+# side of the first interpolated answer; the third checks the answer.
+CANDIDATES = 8
+SPREAD, WIDE_SPREAD, REFINE = (0.6, 1.6), (0.2, 5.0), 2e-3
 
 
 @dataclass
@@ -159,7 +162,7 @@ def size_flywheel(scenario, irregularity: float) -> Sizing:
     given = scenario.flywheel.moment_of_inertia if scenario.flywheel is not None else 0.0
     drum_ratio = scenario.gears.pinion_teeth / scenario.gears.wheel_teeth
     ratio = 1.0 if shaft == "motor" else drum_ratio
-    reference = simulate(with_flywheel(scenario, shaft, given))
+    reference = simulation.simulate(with_flywheel(scenario, shaft, given))
     if reference.periodic.diagram is None:
         raise _not_settled(scenario, given, reference=True)
     values = reference.values
@@ -174,35 +177,41 @@ def size_flywheel(scenario, irregularity: float) -> Sizing:
                     irregularity_as_given=values["irregularity"],
                     irregularity_tredgold_as_given=values["irregularity_tredgold"], shaft_ratio=ratio)
     known_inertia, known_delta = np.asarray([given]), np.asarray([values["irregularity"]])
-    # first batch: Tredgold's flywheel and a spread about it (a damping motor needs less, a slipping clutch more)
     scale = max(tredgold, own / ratio**2 * 1e-3)
-    candidates = [np.concatenate([[tredgold], scale * np.geomspace(1 / 4, 2, CANDIDATES - 1)])]
-    start = {"mean_speed": mean, "energy_mean": reference.periodic.diagram.mean_energy, "inertia": own,
-             "shaft_ratio": ratio, "drum_ratio": drum_ratio,
-             "duration": _settling_duration(scenario, reference, given, ratio, candidates[0])}
-    _, delta = _irregularities(scenario, shaft, candidates[0], start)
-    deltas = [delta]
-    sizing.irregularity_with_tredgold_flywheel = float(delta[0])
-    if tredgold == 0.0 and delta[0] <= irregularity:  # the machine meets the target on its own
-        sizing.flywheel_inertia, sizing.irregularity_with_flywheel = 0.0, float(delta[0])
-        return _with_curve(sizing, candidates, deltas, known_inertia, known_delta)
-    low, high = _bracket(np.concatenate([known_inertia, candidates[0]]), np.concatenate([known_delta, delta]),
-                         irregularity, scenario)
-    for _ in range(NARROWINGS):
-        trial = np.linspace(low[0], high[0], CANDIDATES + 2)[1:-1]
+    candidates, deltas, start = [], [], None
+    for low_factor, high_factor in (SPREAD, WIDE_SPREAD):
+        # Tredgold's flywheel and a spread about it (a damping motor needs less, reciprocating parts more)
+        trial = np.concatenate([[tredgold], scale * np.geomspace(low_factor, high_factor, CANDIDATES - 1)])
+        start = {"mean_speed": mean, "energy_mean": reference.periodic.diagram.mean_energy, "inertia": own,
+                 "shaft_ratio": ratio, "drum_ratio": drum_ratio,
+                 "duration": _settling_duration(scenario, reference, given, ratio, trial)}
         _, delta = _irregularities(scenario, shaft, trial, start)
         candidates.append(trial)
         deltas.append(delta)
-        inertias = np.concatenate([[low[0], high[0]], trial])
-        values = np.concatenate([[low[1], high[1]], delta])
-        low, high = _bracket(inertias, values, irregularity, scenario)
-    # 1/delta is close to linear in the flywheel's inertia: interpolate it, then check
-    inverse = (1 / low[1], 1 / high[1])
-    answer = low[0] + (1 / irregularity - inverse[0]) * (high[0] - low[0]) / (inverse[1] - inverse[0])
-    _, check = _irregularities(scenario, shaft, [answer], start)
-    sizing.flywheel_inertia = float(answer)
+        if np.nanmin(delta) <= irregularity < np.nanmax(np.concatenate([known_delta, delta])):
+            break
+    sizing.irregularity_with_tredgold_flywheel = float(deltas[0][0])
+    if tredgold == 0.0 and deltas[0][0] <= irregularity:  # the machine meets the target on its own
+        sizing.flywheel_inertia, sizing.irregularity_with_flywheel = 0.0, float(deltas[0][0])
+        return _with_curve(sizing, candidates, deltas, known_inertia, known_delta)
+
+    def answer():
+        """1/delta is close to linear in the flywheel's inertia: interpolate it between the bracket."""
+        low, high = _bracket(np.concatenate([known_inertia, *candidates]), np.concatenate([known_delta, *deltas]),
+                             irregularity, scenario)
+        inverse = (1 / low[1], 1 / high[1])
+        return low[0] + (1 / irregularity - inverse[0]) * (high[0] - low[0]) / (inverse[1] - inverse[0])
+
+    first = answer()
+    trial = first * (1 + REFINE * np.linspace(-1, 1, CANDIDATES))
+    _, delta = _irregularities(scenario, shaft, trial, start)
+    candidates.append(trial)
+    deltas.append(delta)
+    final = answer()
+    _, check = _irregularities(scenario, shaft, [final], start)
+    sizing.flywheel_inertia = float(final)
     sizing.irregularity_with_flywheel = float(check[0])
-    return _with_curve(sizing, candidates, deltas, np.concatenate([known_inertia, [answer]]),
+    return _with_curve(sizing, candidates, deltas, np.concatenate([known_inertia, [final]]),
                        np.concatenate([known_delta, check]))
 
 
