@@ -143,19 +143,27 @@ def first_settled(table: dict, tolerance: float) -> int | None:
     is left of the transient: a transient that dies away by a factor q each
     period still has q / (1 - q) times its last change to go, so a slow one
     (a heavy flywheel on a soft motor) must shrink further before it counts as
-    settled.  A change below a hundredth of the tolerance is round-off.
+    settled.  Changes within the tolerance that do not shrink, or that flip
+    sign from one period to the next, are not a transient but the
+    integration's drift or noise: settled.  A change below a hundredth of the
+    tolerance is settled too.
     """
     stats = np.stack([table["mean_speed"], table["max_speed"], table["min_speed"]], axis=1)
     if stats.shape[0] < 2:
         return None
-    change = np.max(np.abs(np.diff(stats, axis=0)), axis=1) / np.abs(table["mean_speed"][1:])
+    steps = np.diff(stats, axis=0) / np.abs(table["mean_speed"][1:, None])
+    change = np.max(np.abs(steps), axis=1)
     for k, now in enumerate(change):
         if now <= tolerance / 100:
             return k + 1
-        if now <= tolerance and k > 0 and change[k - 1] > 0:
-            shrink = min(now / change[k - 1], 0.999)
-            if now * shrink / (1 - shrink) <= tolerance:
-                return k + 1
+        if now > tolerance or k == 0 or change[k - 1] == 0:
+            continue
+        shrink = now / change[k - 1]
+        if shrink >= 1.0 or np.all(steps[k] * steps[k - 1] <= 0):
+            return k + 1  # not shrinking, or turned back: the integration's drift or noise, not a transient
+        shrink = min(shrink, 0.999)
+        if now * shrink / (1 - shrink) <= tolerance:
+            return k + 1
     return None
 
 
