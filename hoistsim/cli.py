@@ -31,6 +31,20 @@ class _Failure(Exception):
         self.status = status
 
 
+# Names a results file may take: what HDF5 and netCDF-4 readers (h5py, xarray) expect.
+RESULT_SUFFIXES = (".h5", ".hdf5", ".nc")
+
+
+def _scenario(path, overrides=(), sweeps=()):
+    """Load and validate a scenario; what it accepted but may not mean is said on stderr, one line each."""
+    from .scenario import load_scenario
+
+    scenario = load_scenario(path, overrides=list(overrides), sweeps=list(sweeps))
+    for warning in scenario.warnings:
+        click.echo(f"hoistsim: warning: {warning}", err=True)
+    return scenario
+
+
 def _fail(message: str, status: int = BAD_INPUT):
     raise _Failure(message, status)
 
@@ -113,11 +127,11 @@ def main():
 @_guarded
 def run(scenario, output, overrides, sweeps, summary_only):
     """Simulate SCENARIO (every sweep value, when it has a sweep) and write OUTPUT."""
-    from .scenario import load_scenario
-
     scenario_path = scenario
-    scenario = load_scenario(scenario_path, overrides=list(overrides), sweeps=list(sweeps))
+    scenario = _scenario(scenario_path, overrides, sweeps)
     target = Path(output)
+    if target.suffix.lower() not in RESULT_SUFFIXES:
+        _fail(f"{output}: results are HDF5: name the file .h5, .hdf5 or .nc")
     if not target.parent.exists() and str(target.parent):
         _fail(f"{output}: the folder {target.parent} does not exist")
 
@@ -187,10 +201,10 @@ def _progress_printer():
 def check(scenario, overrides):
     """Validate SCENARIO and print the reduced model, without simulating."""
     from .report import reduced_model_table
-    from .scenario import load_scenario, sweep_values
+    from .scenario import sweep_values
 
     scenario_path = scenario
-    scenario = load_scenario(scenario_path, overrides=list(overrides))
+    scenario = _scenario(scenario_path, overrides)
     runs = sweep_values(scenario)
     click.echo(reduced_model_table(scenario))
     click.echo(f"{scenario_path}: valid ({len(runs)} run{'s' if len(runs) != 1 else ''})")
@@ -207,10 +221,9 @@ def statics(scenario, as_json, overrides):
     import json
 
     from .report import fmt, table
-    from .scenario import load_scenario
     from .statics import answers
 
-    scenario = load_scenario(scenario, overrides=list(overrides))
+    scenario = _scenario(scenario, overrides)
     rows = answers(scenario)
     if as_json:
         click.echo(json.dumps({a.key: a.value for a in rows}, indent=2))
@@ -248,11 +261,10 @@ def flywheel(scenario, irregularity, as_json, overrides, density, width, outer_d
 
     from . import _jax, units
     from .periodic.flywheel import rim, size_flywheel
-    from .scenario import load_scenario
 
     if figure is not None and Path(figure).suffix.lower() not in (".png", ".svg", ".pdf"):
         _fail(f"{figure}: the figure must be .png, .svg or .pdf")
-    scenario = load_scenario(scenario, overrides=list(overrides))
+    scenario = _scenario(scenario, overrides)
 
     def quantity(option, value, dimension):
         try:

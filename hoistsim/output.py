@@ -42,11 +42,20 @@ def atomic_path(path):
         yield Path(tmp)
         with open(tmp, "rb+") as handle:  # make the bytes durable before they take the name
             os.fsync(handle.fileno())
+        # mkstemp creates the file readable by its owner alone; a results file is for colleagues
+        # too, as any file this user creates: the mode the umask allows
+        os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, target)
     except BaseException:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
         raise
+
+
+def _umask() -> int:
+    mask = os.umask(0)  # the only way to read it is to set it: put it straight back
+    os.umask(mask)
+    return mask
 
 
 def provenance() -> dict[str, str]:

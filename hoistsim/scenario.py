@@ -84,6 +84,29 @@ def _check_tree(data: dict, model: type[BaseModel], path: tuple, tree: Any, sour
         _check_tree(value, sub, (*path, key), tree, source)
 
 
+def bare_angles(data: dict, model: type[BaseModel], path: tuple, tree: Any, source: str) -> list[str]:
+    """Warnings for angles and angular speeds given as bare numbers (read as rad and rad/s).
+
+    A bare 300 on no_load_speed is 300 rad/s, 2865 rpm: accepted (SI is the
+    rule), but said, with the key and where it is.
+    """
+    notes = []
+    for key, value in data.items():
+        field = model.model_fields.get(key)
+        sub = _model_of(model, key)
+        if field is None:
+            continue
+        if sub is not None and isinstance(value, dict):
+            notes += bare_angles(value, sub, (*path, key), tree, source)
+            continue
+        dimension = u.dimension_of(field)
+        note = u.bare_number_note(value, dimension) if dimension is not None else None
+        if note:
+            line = _line_of(tree, (*path, key))
+            notes.append(str(ScenarioError(".".join((*path, key)), note, source=source, line=line)))
+    return notes
+
+
 _SWEEP_EXAMPLE = ("like 'clutch.engagement_force: [1000 N, 2000 N]' or "
                   "'clutch.engagement_force: {from: 1000 N, to: 9000 N, count: 9}'")
 
@@ -205,6 +228,7 @@ def scenario_from_text(text: str, source: str = "<scenario>",
     scenario._raw = raw
     scenario._text = text
     scenario._source = source
+    scenario._warnings = bare_angles(raw, Scenario, (), tree, source)
     return scenario
 
 

@@ -283,6 +283,12 @@ class Scenario(Section):
     _sweep_values: dict = PrivateAttr(default_factory=dict)  # key -> values, ranges expanded
     _sweep_labels: dict = PrivateAttr(default_factory=dict)  # key -> each value as the user reads it
     _sweep_runs: list = PrivateAttr(default_factory=list)  # validated runs of a one-key sweep
+    _warnings: list = PrivateAttr(default_factory=list)  # what was accepted but may not be meant
+
+    @property
+    def warnings(self) -> list[str]:
+        """One line each: values accepted that may not say what was meant (a bare number on a speed)."""
+        return list(self._warnings)
 
     @model_validator(mode="after")
     def _brake_holds_still_drum(self):

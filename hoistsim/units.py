@@ -22,7 +22,7 @@ import math
 import re
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Annotated, Any
+from typing import Annotated, Any, get_args
 
 import pint
 from pydantic import BaseModel, BeforeValidator, ConfigDict
@@ -287,7 +287,28 @@ def quantity(dimension: Dimension, hint: str = "", **limits: float):
     def convert(value: Any) -> float:
         return check_range(to_si(value, dimension), value, dimension, hint=hint, **limits)
 
-    return Annotated[float, BeforeValidator(convert)]
+    # the dimension rides along as metadata, for checks that read the schema (bare angles, speeds)
+    return Annotated[float, BeforeValidator(convert), dimension]
+
+
+def dimension_of(field) -> Dimension | None:
+    """The dimension of a quantity field of the schema (a pydantic FieldInfo), or None.
+
+    An optional quantity (``quantity(...) | None``) keeps it inside the union's first member.
+    """
+    found = next((m for m in field.metadata if isinstance(m, Dimension)), None)
+    for member in get_args(field.annotation):
+        found = found or next((m for m in getattr(member, "__metadata__", ()) if isinstance(m, Dimension)), None)
+    return found
+
+
+def bare_number_note(value: float, dimension: Dimension) -> str | None:
+    """What a bare number means for an angle or an angular speed, where the unit is easily forgotten."""
+    if not dimension.radians or isinstance(value, bool) or not isinstance(value, (int, float)) or value == 0:
+        return None
+    shown = value * (30 / math.pi if dimension.shown_in == "rpm" else 180 / math.pi)
+    return (f"the bare number {value:g} is read as {value:g} {dimension.si_unit} ({shown:.4g} {dimension.shown_in}); "
+            f"write the unit, like {dimension.example}, to say which you mean")
 
 
 def whole(what: str, minimum: int = 1):

@@ -89,6 +89,7 @@ def test_chattering_is_a_one_line_error(tmp_path):
     ["run", "DIR", "-o", "out.h5"],
     ["run", "SCENARIO"],
     ["run", "SCENARIO", "-o", "DIR"],
+    ["run", "SCENARIO", "-o", "out.png"],  # results are HDF5, whatever the name says
     ["frobnicate"],
 ])
 def test_usage_errors_are_one_line(tmp_path, args):
@@ -98,7 +99,7 @@ def test_usage_errors_are_one_line(tmp_path, args):
     assert proc.returncode == 2
     lines = proc.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("hoistsim: error:"), proc.stderr
-    assert not (tmp_path / "out.h5").exists()
+    assert not (tmp_path / "out.h5").exists() and not (tmp_path / "out.png").exists()
 
 
 def _short_runback(out, env, cwd) -> h5py.File:

@@ -454,3 +454,20 @@ def test_bad_flywheel_request_fails_cleanly(options, ripple, words, tmp_path, mo
     assert words in lines[0], lines[0]
     assert "Traceback" not in result.output and result.stdout == ""
     assert not figure.exists()
+
+
+def test_a_bare_number_on_a_speed_is_read_as_si_and_said(tmp_path, monkeypatch):
+    """300 on no_load_speed is 300 rad/s (2865 rpm): accepted, SI being the rule, with one line naming the
+    key, its file and line, how it was read, and how to write a unit; a number with its unit is silent."""
+    monkeypatch.setattr(simulation, "simulate", lambda *a, **k: pytest.fail("check must not simulate"))
+    scenario = tmp_path / "scenario.yaml"
+    text = BASE.replace("no_load_speed: 300 rpm", "no_load_speed: 31.4")
+    scenario.write_text(text, encoding="utf-8")
+    result, lines = _run_cli(["check", str(scenario)])
+    assert result.exit_code == 0, result.output
+    line = _line_of(text, "no_load_speed")
+    assert lines == [f"hoistsim: warning: {scenario}:{line}: motor.no_load_speed: the bare number 31.4 is read as "
+                     "31.4 rad/s (299.8 rpm); write the unit, like '300 rpm', to say which you mean"]
+    scenario.write_text(BASE, encoding="utf-8")
+    result, lines = _run_cli(["check", str(scenario)])
+    assert result.exit_code == 0 and lines == []

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import os
 import signal
+import stat
 import subprocess
 import sys
 import textwrap
@@ -126,3 +127,17 @@ def test_run_to_xarray_has_time_coordinate_and_units(braked_run):
     assert ds["slip_speed"].dims == ("time",) and ds["time"].attrs["units"] == "s"
     assert ds["brake_torque"].attrs["units"] == "N*m"
     np.testing.assert_array_equal(ds["motor_speed"].values, braked_run["motor_speed"])
+
+
+@pytest.mark.parametrize("umask", [0o022, 0o077, 0o002])
+def test_a_written_file_has_the_mode_the_umask_allows(tmp_path, umask):
+    """Results are written to a temporary file and renamed: the rename must not keep mkstemp's 0600."""
+    from hoistsim.output import atomic_path
+
+    old = os.umask(umask)
+    try:
+        with atomic_path(tmp_path / "out.h5") as path:
+            path.write_bytes(b"results")
+    finally:
+        os.umask(old)
+    assert stat.S_IMODE((tmp_path / "out.h5").stat().st_mode) == 0o666 & ~umask
