@@ -221,10 +221,12 @@ def statics(scenario, as_json, overrides):
     import json
 
     from .report import fmt, table
-    from .statics import answers
+    from .statics import answers, warnings
 
     scenario = _scenario(scenario, overrides)
     rows = answers(scenario)
+    for warning in warnings(scenario):
+        click.echo(f"hoistsim: warning: {warning}", err=True)
     if as_json:
         click.echo(json.dumps({a.key: a.value for a in rows}, indent=2))
         return

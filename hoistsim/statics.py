@@ -42,6 +42,23 @@ def least_force_for_start(scenario: Scenario) -> float:
     return peak / (d.static_friction * d.clutch_constant)
 
 
+def warnings(scenario: Scenario) -> list[str]:
+    """What makes some answers meaningless for this scenario: a load the motor or the clutch cannot hold."""
+    d = Machine.from_scenario(scenario).reduced()
+    force = holding_force(scenario)
+    capacity = d.static_capacity(force)
+    mass = scenario.load.mass
+    out = []
+    if d.load_torque >= d.stall_torque:
+        out.append(f"load.mass: {mass:g} kg puts {d.load_torque:.4g} N*m on the motor shaft, more than the motor's "
+                   f"stall torque ({d.stall_torque:.4g} N*m): no engagement force lifts it, and the least start "
+                   "force (least_force_for_start) only says when the clutch would not slip")
+    if capacity <= d.load_torque:
+        out.append(f"clutch.engagement_force: at {force:g} N the clutch holds {capacity:.4g} N*m, less than the "
+                   f"load's {d.load_torque:.4g} N*m: the load runs back whatever the motor does")
+    return out
+
+
 def answers(scenario: Scenario) -> list[Answer]:
     machine = Machine.from_scenario(scenario)
     clutch, gears = machine.clutch, machine.gears

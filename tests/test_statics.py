@@ -120,3 +120,20 @@ def test_bearing_columns_only_with_the_bearings_section():
     bare = simulate(scene(duration="0.2 s"))
     assert not any(name.startswith(("bearing", "tooth", "rope")) for name in bare.series)
     assert bare["clutch_mode"][0] == LOCKED
+
+
+def test_statics_warns_of_a_load_the_motor_or_the_clutch_cannot_hold():
+    """1400 kg puts 518.8 N*m on the motor shaft, more than C0 = 500 N*m: the least start force is still
+    computed (3217.9 N), but a run at 3300 N runs back; the command says so, on stderr."""
+    from hoistsim.statics import warnings
+
+    heavy = load_scenario(SCENARIOS / "exercise6_direct_start.yaml", overrides=["load.mass=1400 kg"])
+    said = warnings(heavy)
+    assert len(said) == 2 and said[0].startswith("load.mass: 1400 kg puts 518.8 N*m")
+    assert said[1].startswith("clutch.engagement_force: at 3201 N the clutch holds 499.9 N*m")
+    assert warnings(load_scenario(SCENARIOS / "exercise6_direct_start.yaml")) == []
+    result = CliRunner().invoke(main, ["statics", str(SCENARIOS / "exercise6_direct_start.yaml"), "--json",
+                                       "--set", "load.mass=1400 kg"])
+    assert result.exit_code == 0
+    assert result.stderr.count("hoistsim: warning: ") == 2
+    assert "least_force_for_start" in result.stdout
