@@ -319,23 +319,35 @@ def bench(smoke, output):
 
 @main.command()
 @click.argument("results", type=click.Path(dir_okay=False))
-@click.option("--csv", "as_csv", is_flag=True, help="Every summary column as CSV on stdout (SI units).")
+@click.option("--csv", "as_csv", is_flag=True,
+              help="Every summary column as CSV on stdout: a header row, a units row, then the runs (SI).")
+@click.option("--columns", metavar="NAME,NAME,...", help="The summary columns to show, in this order.")
 @debug_option
 @_guarded
-def compare(results, as_csv):
-    """Compare the runs of RESULTS (an HDF5 file): one row per run, the summary as columns."""
-    from .output import read_summary
-    from .report import summary_table
+def compare(results, as_csv, columns):
+    """Compare the runs of RESULTS (an HDF5 file): one row per run, the summary as columns.
+
+    By default as many columns as fit 120 characters, the questions first (lock-up, heat, torque,
+    where the load went); units under the names.
+    """
+    from .output import read_summary, read_summary_units
+    from .report import compare_table
 
     rows = _read(read_summary, results)
+    units = _read(read_summary_units, results)
     if as_csv:
         import csv
 
-        writer = csv.DictWriter(sys.stdout, fieldnames=list(rows[0]), lineterminator="\n")
-        writer.writeheader()
-        writer.writerows(rows)
+        writer = csv.writer(sys.stdout, lineterminator="\n")
+        writer.writerow(list(rows[0]))
+        writer.writerow([units.get(name, "") for name in rows[0]])
+        writer.writerows([list(row.values()) for row in rows])
         return
-    click.echo(summary_table(rows, head=len(rows), tail=0))
+    chosen = [c.strip() for c in columns.split(",") if c.strip()] if columns else None
+    try:
+        click.echo(compare_table(rows, units, chosen))
+    except ValueError as exc:
+        _fail(f"--columns: {exc}")
 
 
 def _read(reader, path):

@@ -225,6 +225,9 @@ def _write_summary(f: h5py.File, rows: list[dict], parameters: dict, units: dict
     for key, kind in fields[1 + len(parameters):]:
         table[key] = np.asarray([row[key] for row in rows], dtype=kind)
     data = f.create_dataset("summary", data=table)
+    from .scenario import key_units
+
+    units = {**{key: key_units(key) for key in parameters}, **units}  # the swept keys' SI units first
     data.attrs["units"] = ", ".join(f"{k}: {u}" for k, u in units.items())
     data.attrs["swept_keys"] = json.dumps(list(parameters))
     index = f.create_dataset("run", data=np.arange(len(rows)))
@@ -261,6 +264,14 @@ def read_runs(path) -> list[dict]:
             run["attrs"] = {k: v for k, v in group.attrs.items()}
             runs.append(run)
     return runs
+
+
+def read_summary_units(path) -> dict[str, str]:
+    """Each /summary column's units (the swept keys' are SI; "" where none is recorded)."""
+    with h5py.File(path, "r") as f:
+        text = f["summary"].attrs.get("units", "")
+    text = text.decode() if isinstance(text, bytes) else str(text)
+    return dict(item.split(": ", 1) for item in text.split(", ") if ": " in item)
 
 
 def read_summary(path) -> list[dict]:

@@ -115,6 +115,47 @@ def flywheel_table(name: str, sizing, elapsed: float) -> str:
             + table(["symbol", "quantity", "value", "unit"], rows, align="llrl"))
 
 
+# What `compare` shows first: the questions a designer compares runs by.
+COMPARE_FIRST = ["lockup_time", "slip_energy", "peak_clutch_torque", "lowest_load_position", "final_load_position",
+                 "mean_speed", "irregularity", "irregularity_tredgold", "lock_events", "energy_relative_residual"]
+
+
+def compare_table(rows: list[dict], units: dict[str, str], columns: list[str] | None = None,
+                  width: int = 120) -> str:
+    """The runs of a file as rows, chosen columns (names, then units, as headers), within ``width``.
+
+    Without ``columns``: the label, the swept keys, then COMPARE_FIRST and the rest of the summary,
+    as many as fit; a last line says how many were left out and how to see them.
+    """
+    names = list(rows[0])
+    swept = [n for n in names if "." in n and n != "label"]  # swept keys (dotted) come before the summary
+    chosen = columns or ["label", *swept, *[n for n in COMPARE_FIRST if n in names],
+                         *[n for n in names if n not in COMPARE_FIRST and n not in swept and n != "label"]]
+    unknown = [n for n in chosen if n not in names]
+    if unknown:
+        raise ValueError(f"no column {unknown[0]!r} in this file (columns: {', '.join(names)})")
+
+    def cell(value):
+        return value if isinstance(value, str) else fmt(value)
+
+    shown, used = [], 0
+    for name in chosen:
+        cells = [name, units.get(name, ""), *(cell(r[name]) for r in rows)]
+        need = max(len(c) for c in cells) + (2 if shown else 0)
+        if columns is None and shown and used + need > width:
+            break
+        shown.append(name)
+        used += need
+    unit_row = [f"[{units[n]}]" if units.get(n) else "" for n in shown]
+    names, rule, under, *body = table(shown, [unit_row] + [[cell(r[n]) for n in shown] for r in rows]).split("\n")
+    text = "\n".join([names, under.rstrip(), rule, *body])  # the units under the names, above the rule
+    left = len(chosen) - len(shown)
+    if left:
+        text += (f"\n({left} more column{'s' if left != 1 else ''}: --columns NAME,NAME,... to choose them, "
+                 "--csv for all)")
+    return text
+
+
 def reduced_model_table(scenario) -> str:
     """The machine as the simulator sees it: each body's inertia, then the two-shaft numbers of exercise 6."""
     from .assemble import machine_elements

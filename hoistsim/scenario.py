@@ -44,6 +44,17 @@ def _model_of(section: type[BaseModel], name: str) -> type[Section] | None:
     return None
 
 
+def key_units(dotted: str) -> str:
+    """The SI unit a scenario key is stored in ("" for a pure number, a table or an unknown key)."""
+    model: type[BaseModel] | None = Scenario
+    *sections, leaf = dotted.split(".")
+    for part in sections:
+        model = _model_of(model, part) if model is not None else None
+    field = model.model_fields.get(leaf) if model is not None else None
+    dimension = u.dimension_of(field) if field is not None else None
+    return dimension.si_unit if dimension is not None else ""
+
+
 def _all_keys(model: type[BaseModel] = Scenario, prefix: str = "") -> list[str]:
     keys = []
     for name in model.model_fields:

@@ -350,7 +350,7 @@ def _to_force_table(value: Any) -> ForceTable:
     return ForceTable(times=times, forces=forces)
 
 
-EngagementForce = Annotated[ForceTable, BeforeValidator(_to_force_table)]
+EngagementForce = Annotated[ForceTable, BeforeValidator(_to_force_table), FORCE]  # swept as its force
 TorqueSpeedTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
     lambda value: value if isinstance(value, tuple) else torque_speed_table(value))]
 AngleTorqueTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(

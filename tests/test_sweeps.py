@@ -104,7 +104,14 @@ def test_cli_sweep_summary_only_compare_and_plot(tmp_path):
         assert f["summary"]["clutch.engagement_force"][-1] == pytest.approx(12000.0)
     table = CliRunner().invoke(main, ["compare", str(out)])
     assert table.exit_code == 0 and table.output.count("clutch.engagement_force=") == 64
+    lines = table.output.splitlines()
+    assert max(len(line) for line in lines) <= 120  # fits a terminal
+    assert lines[1].split()[:2] == ["[N]", "[s]"] and lines[-1].startswith("(") and "--columns" in lines[-1]
+    chosen = CliRunner().invoke(main, ["compare", str(out), "--columns", "label,slip_energy,lockup_time"])
+    assert chosen.output.splitlines()[0].split() == ["label", "slip_energy", "lockup_time"]
     rows = list(csv.DictReader(io.StringIO(CliRunner().invoke(main, ["compare", str(out), "--csv"]).output)))
+    units, rows = rows[0], rows[1:]  # a units row under the header
+    assert units["clutch.engagement_force"] == "N" and units["slip_energy"] == "J" and units["label"] == ""
     assert len(rows) == 64 and float(rows[0]["clutch.engagement_force"]) == pytest.approx(3000.0)
     figure = tmp_path / "big.png"
     plotted = CliRunner().invoke(main, ["plot", str(out), "-o", str(figure)])
