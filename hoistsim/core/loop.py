@@ -28,6 +28,7 @@ from .dynamics import Instant, Response, keep_momentum, response, response_table
 from .element import SLIP_BACKWARD, SLIP_FORWARD, STUCK
 from .layout import NO_EVENT, Layout
 from .columns import row_outputs, summary_values
+from .eventlog import LOG_FIELDS, record, unpack
 from .ledger import ledger_values
 from .readout import RawRun
 from .schedule import Segment, segment_from
@@ -101,7 +102,7 @@ class _Carry(eqx.Module):
     grid_modes: jax.Array
     log_count: jax.Array
     kind_counts: jax.Array  # events of each kind so far (Layout.event_kinds)
-    log: jax.Array  # (rows, LOG_FIELDS + states + couplings): one buffer, one write per event (see _record)
+    log: jax.Array  # (rows, LOG_FIELDS + states + couplings): one buffer, one write per event (see eventlog.record)
     observations: jax.Array
     kinks: jax.Array  # passes ended at a kink
     cycle_start: jax.Array  # switches, observations and kinks when the last cycle began (see AbstractElement.cycles)
@@ -132,27 +133,6 @@ def _note(plan: Plan, segment: Segment, c: _Carry, t, y, modes, reply=None) -> _
     return eqx.tree_at(lambda k: k.extremes, c, folded)
 
 
-# The event log's fields before the state and the modes: time, kind, element, torque margin.
-LOG_FIELDS = 4
-
-
-def _record(c: _Carry, when, t, kind, element, y, modes, margin=jnp.nan) -> _Carry:
-    """Append an event row when ``when`` holds (a masked write keeps the loop branch-free).
-
-    One row of one buffer: under vmap a write to a buffer indexed by a per-lane
-    count costs as much as the buffer, so one write beats one per field, and a
-    summary-only run keeps a log of one row and counts the events by kind.
-    """
-    i = jnp.minimum(c.log_count, c.log.shape[0] - 1)
-    # a lean log (summary-only runs) keeps no state: its rows are never output rows
-    state = y if c.log.shape[1] > LOG_FIELDS + modes.shape[0] else y[:0]
-    row = jnp.concatenate([jnp.stack([jnp.asarray(v, jnp.float64) for v in (t, kind, element, margin)]),
-                           state, modes.astype(jnp.float64)])
-    log = c.log.at[i].set(jnp.where(when, row, c.log[i]))
-    counts = c.kind_counts + (when & (jnp.arange(c.kind_counts.shape[0]) == kind))
-    return eqx.tree_at(lambda k: (k.log_count, k.kind_counts, k.log), c, (c.log_count + when, counts, log))
-
-
 def _record_transitions(plan: Plan, segment: Segment, c: _Carry, when, t, y, before, after,
                         columns: bool) -> _Carry:
     """One event row per coupling whose mode changed (if it reports its switches); count them."""
@@ -163,7 +143,7 @@ def _record_transitions(plan: Plan, segment: Segment, c: _Carry, when, t, y, bef
         kind = switching.transition_kind(before[k], after[k])
         happened = when & (kind != NO_EVENT)
         margin = switching.margin(layout, segment, t, y, after, k) if columns else jnp.nan
-        c = _record(c, happened, t, kind, index, y, after, margin)
+        c = record(c, happened, t, kind, index, y, after, margin)
         c = eqx.tree_at(lambda q: q.switches, c, c.switches + happened)
     return c
 
@@ -179,7 +159,7 @@ def _scheduled_switches(plan: Plan, segment: Segment, c: _Carry, columns: bool) 
     c = eqx.tree_at(lambda k: (k.y, k.modes), c, (jnp.where(c.at_boundary, decided_y, c.y), new_modes))
     for index, element in enumerate(layout.elements):
         for kind, happens in element.boundary_events(c.t):
-            c = _record(c, c.at_boundary & happens, c.t, layout.kind_code(kind), index, c.y, new_modes, jnp.nan)
+            c = record(c, c.at_boundary & happens, c.t, layout.kind_code(kind), index, c.y, new_modes, jnp.nan)
     # The first decision (t = 0) sets the initial modes; it is not an event.
     before = jnp.where(c.segments == 0, -1, before)
     return _record_transitions(plan, segment, c, c.at_boundary, c.t, c.y, before, new_modes, columns)
@@ -200,7 +180,7 @@ def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit
             kind = jnp.where(masks[name], layout.kind_code(what), kind)
             element = jnp.where(masks[name], layout.sections.index(section), element)
             observed = observed | masks[name]
-    c = _record(c, observed, t, kind, element, y, c.modes, jnp.nan)
+    c = record(c, observed, t, kind, element, y, c.modes, jnp.nan)
     valley = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in switching.guards(layout) if r == "valley"],
                               jnp.zeros((), bool))
     kinked = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in switching.guards(layout) if r == "kink"],
@@ -210,7 +190,7 @@ def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit
     for index, kink, kind in layout.cycles:
         names = [f"{layout.sections[index]}.{kink}{side}" for side in "+-"]
         crossed = functools.reduce(jnp.logical_or, [masks[n] | coinciding[n] for n in names])
-        c = _record(c, crossed, t, layout.kind_code(kind), index, y, c.modes, jnp.nan)
+        c = record(c, crossed, t, layout.kind_code(kind), index, y, c.modes, jnp.nan)
         cycled = cycled | crossed
     c = eqx.tree_at(lambda k: (k.observations, k.kinks), c,
                     (c.observations + (observed | valley), c.kinks + kinked))
@@ -300,19 +280,9 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
         if coupling.can_slip:
             wrong = slip_sign(c.modes[k]) * end.relative_speed(coupling.section) < 0
             missed = missed | (masks[f"{coupling.section}.slip_valley"] & wrong)
-    # Another guard (not a switch) already past its zero where the located one fired: both crossed in
-    # the last step and diffrax located the first in list order, not the earliest.  Solve the pass
-    # again with shorter steps (at most three times), so that each crossing has a step of its own.
-    # A guard only just past zero crossed with the located one, as far as a row can tell: a knot
-    # coordinate by less than the knot resolution; an observation by less than 1e-4 of its value at
-    # the start, a root so close that the row already there misses its extreme by ~1e-8.
-    overtaken, at_end = jnp.zeros((), bool), {}
-    for role, name, g in guards:
-        if role != "switch":
-            at_end[name] = g(t_end, y_end, pass_args)
-            resolution = switching.KNOT_RESOLUTION if role == "kink" else 1e-4 * jnp.abs(armed[name])
-            overtaken = overtaken | ((armed[name] > 0.0) & ~masks[name] & (at_end[name] < -resolution))
+    overtaken, coinciding = switching.crossed_together(guards, pass_args, t_end, y_end, armed, masks)
     cap = jnp.minimum(c.step_cap, t_end - start_t) / 8.0
+    # the pass is solved again with shorter steps (at most three times), so that each crossing has a step
     missed = missed | (hit & overtaken & (cap * 8.0**3 >= t_end - start_t))
     kept = ~missed
     masks = {name: m & kept for name, m in masks.items()}
@@ -331,9 +301,7 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
         (extremes, grid_state, grid_modes, c.steps + sol.stats["num_steps"],
          c.rejected + sol.stats["num_rejected_steps"], c.segments + 1, {name: masks[name] for name in c.fired}),
     )
-    # a knot reached together with the located guard (a period that ends on a table's knot) is reached
-    coinciding = {name: (armed[name] > 0.0) & (at_end[name] <= switching.KNOT_RESOLUTION) & kept
-                  for role, name, _ in guards if role == "kink"}
+    coinciding = {name: reached & kept for name, reached in coinciding.items()}
     c = _apply_event(plan, segment, eqx.tree_at(lambda k: k.y, c, y_end), t_end, y_end, masks, hit & kept,
                      columns, coinciding)
     c = _note(plan, segment, c, t_reached, c.y, c.modes)
@@ -389,11 +357,7 @@ def _run(plan: Plan, solver, max_segments: int, log_size: int, columns: bool = T
     grid_modes = jnp.where(last[:, None] & (status == OK), c.modes, c.grid_modes)
     scalars = [c.t, *summary_values(plan, c.extremes, c.y, c.modes), *ledger_values(layout, plan.initial_state),
                *ledger_values(layout, c.y)]
-    logged = jnp.arange(log_size) < c.log_count
-    codes = jnp.where(logged[:, None], c.log[:, 1:3], -1.0).astype(jnp.int32)
-    log_time, log_margin = c.log[:, 0], c.log[:, 3]
-    log_state = c.log[:, LOG_FIELDS: -couplings or None] if columns else jnp.zeros((log_size, 0))
-    log_modes = jnp.where(logged[:, None], c.log[:, c.log.shape[1] - couplings:], -1.0).astype(jnp.int32)
+    log_time, log_margin, codes, log_state, log_modes = unpack(c.log, c.log_count, couplings, columns)
     # the grid's rows and the events' through one evaluation (one copy of it in the program)
     outputs = row_outputs(plan, jnp.concatenate([plan.grid, log_time]), jnp.concatenate([grid_state, log_state]),
                           jnp.concatenate([grid_modes, log_modes])) if columns else jnp.zeros((0, rows + log_size))

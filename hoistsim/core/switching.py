@@ -126,6 +126,31 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
     return switch + observe + valley + kinks
 
 
+def crossed_together(guards, args, t, y, armed: dict, masks: dict):
+    """Which guards crossed zero in the same step as the one diffrax located at (t, y).
+
+    diffrax locates, of the guards that changed sign in a step, the first in
+    list order, not the earliest: another guard (not a switch) already past
+    its zero at the located root was *overtaken*, and the pass must be solved
+    again with shorter steps.  One only just past zero crossed with the located
+    one, as far as a row can tell: a knot coordinate by less than the knot
+    resolution; an observation by less than 1e-4 of its value where the pass
+    started (``armed``), a root so close that the row already there misses its
+    extreme by ~1e-8.  Returns (overtaken, the knots reached at (t, y) along
+    with the located guard: a period that ends on a table's knot is reached).
+    """
+    overtaken, coinciding = jnp.zeros((), bool), {}
+    for role, name, g in guards:
+        if role == "switch":
+            continue
+        value = g(t, y, args)
+        resolution = KNOT_RESOLUTION if role == "kink" else 1e-4 * jnp.abs(armed[name])
+        overtaken = overtaken | ((armed[name] > 0.0) & ~masks[name] & (value < -resolution))
+        if role == "kink":
+            coinciding[name] = (armed[name] > 0.0) & (value <= KNOT_RESOLUTION)
+    return overtaken, coinciding
+
+
 def kink_anchors(layout: Layout, x: Instant) -> dict:
     """Every knot coordinate at the start of a pass (see ``guards``)."""
     return {f"{e.section}.{kink}": value for e in layout.elements for kink, value in e.kinks(x).items()}

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.readout import Readout
-from .regime import Regime, analyse
+from .regime import Regime, analyse, period_marks
 from .tredgold import Diagram, diagram
 
 SUMMARY_UNITS = {
@@ -65,8 +65,7 @@ def periodic_regime(scenario, readout: Readout) -> Periodic | None:
     if not regime.settled:
         return Periodic(regime, None)
     # the diagram from where the first analysed period starts (the drum's angle there included)
-    marks = np.flatnonzero((rows["kind"] == "period") & (rows["motor_speed"] > 0))
-    start = marks[regime.settled_at]
+    start = period_marks(rows)[regime.settled_at]
     state = np.stack([rows[name][start] for name in layout.state_names])
     mean = float(np.mean(regime.table["mean_speed"][regime.analysed]))
     return Periodic(regime, diagram(layout.elements, state, float(rows["time"][start]), mean, period))

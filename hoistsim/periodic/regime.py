@@ -14,6 +14,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..core.layout import SWITCH_KINDS
+
 # Successive periods agree when their mean, maximum and minimum speeds differ by
 # less than this many times the run's rtol (relative to the mean speed): well
 # above the integration error, which would otherwise never let it settle, and
@@ -23,7 +25,6 @@ SETTLING_RTOL_FACTOR = 1000.0
 # ...and never less than this (an rtol near round-off).
 SETTLING_FLOOR = 1e-12
 
-SWITCH_KINDS = ("lock", "unlock", "reversal", "engage", "disengage")
 
 
 @dataclass
@@ -93,6 +94,11 @@ PERIOD_DESCRIPTIONS = {
 }
 
 
+def period_marks(rows: dict) -> np.ndarray:
+    """Indices of the rows where a period starts, turning forwards (each ends the one before)."""
+    return np.flatnonzero((rows["kind"] == "period") & (rows["motor_speed"] > 0))
+
+
 def period_table(rows: dict, period: float, loss_columns: list[str]) -> dict[str, np.ndarray]:
     """One entry per complete period between two period rows, from a run's rows (Readout.event_rows).
 
@@ -100,7 +106,7 @@ def period_table(rows: dict, period: float, loss_columns: list[str]) -> dict[str
     ``<name>_per_period`` (the heat a clutch makes each period of a periodic stick-slip).
     """
     kind = rows["kind"]
-    marks = np.flatnonzero((kind == "period") & (rows["motor_speed"] > 0))
+    marks = period_marks(rows)
     count = max(0, marks.size - 1)
     out: dict[str, list] = {name: [] for name in PERIOD_UNITS if name != "analysed"}
     out.update({f"{name}_per_period": [] for name in loss_columns})
