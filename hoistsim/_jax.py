@@ -5,6 +5,7 @@ Imported first by the package, so that every array hoistsim creates is float64.
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import hashlib
 import os
@@ -16,6 +17,10 @@ jax.config.update("jax_enable_x64", True)
 
 
 _executables: str | None = None  # folder of serialised executables, when the cache is on
+_loaded: dict = {}  # the executables this process has compiled or loaded, by file
+# Set by the command line: a context manager, given the program's name, that tells the user a
+# compilation is under way (it takes seconds, and the first run of a scene would otherwise sit silent).
+compile_notice = None
 
 
 def enable_compilation_cache() -> None:
@@ -87,12 +92,17 @@ def executable(jitted, *args, name: str):
     signature = repr((name, _program_origin(), jax.default_backend(), str(treedef),
                       [(getattr(x, "shape", ()), str(getattr(x, "dtype", type(x)))) for x in leaves]))
     path = os.path.join(_executables, hashlib.sha256(signature.encode()).hexdigest() + ".bin")
+    if path in _loaded:
+        return _loaded[path]
     try:
         with open(path, "rb") as handle:
-            return _falling_back(deserialize_and_load(*pickle.load(handle)), jitted, path)
+            _loaded[path] = _falling_back(deserialize_and_load(*pickle.load(handle)), jitted, path)
+            return _loaded[path]
     except Exception:  # absent, stale or unreadable: compile afresh
         pass
-    compiled = jitted.lower(*args).compile()
+    with compile_notice(name) if compile_notice is not None else contextlib.nullcontext():
+        compiled = jitted.lower(*args).compile()
+    _loaded[path] = compiled
     try:
         fd, tmp = tempfile.mkstemp(dir=_executables, suffix=".partial")
         with os.fdopen(fd, "wb") as handle:
@@ -117,6 +127,7 @@ def _falling_back(loaded, jitted, path):
                 os.unlink(path)
             except OSError:
                 pass
+            _loaded[path] = jitted
             return jitted(*args)
 
     return call

@@ -7,9 +7,11 @@ stderr; --debug shows the traceback.
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import os
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -142,6 +144,7 @@ def run(scenario, output, overrides, sweeps, summary_only):
     from .sweeps import sweep
 
     _jax.enable_compilation_cache()
+    _jax.compile_notice = _compiling
     command = "hoistsim run " + " ".join(
         [scenario_path, "-o", output, *(f"--set {o}" for o in overrides), *(f"--sweep {w}" for w in sweeps)]
         + (["--summary-only"] if summary_only else []))
@@ -173,6 +176,31 @@ def run(scenario, output, overrides, sweeps, summary_only):
     count = len(summaries)
     click.echo(f"wrote {output} ({count} run{'s' if count != 1 else ''}"
                f"{', summaries only' if summary_only else ''}, {elapsed:.2f} s)")
+
+
+@contextlib.contextmanager
+def _compiling(name: str):
+    """Say on stderr that a scene's solver is compiling: one line, and on a terminal the seconds as they pass."""
+    text = "hoistsim: compiling the solver for this scene's structure (once; later runs load it)"
+    if not sys.stderr.isatty():
+        click.echo(text, err=True)
+        yield
+        return
+    started = time.perf_counter()
+    done = threading.Event()
+
+    def tick() -> None:
+        while not done.wait(0.25):
+            click.echo(f"\r{text}: {time.perf_counter() - started:.0f} s", err=True, nl=False)
+
+    ticker = threading.Thread(target=tick, daemon=True)
+    ticker.start()
+    try:
+        yield
+    finally:
+        done.set()
+        ticker.join()
+        click.echo(f"\r{text}: done in {time.perf_counter() - started:.1f} s", err=True)
 
 
 def _progress_printer():
@@ -285,6 +313,7 @@ def flywheel(scenario, irregularity, as_json, overrides, density, width, outer_d
     elif width is not None or outer_diameter is not None:
         _fail("--width and --outer-diameter need --density (the rim's material)")
     _jax.enable_compilation_cache()
+    _jax.compile_notice = _compiling
     started = time.perf_counter()
     sizing = size_flywheel(scenario, irregularity)
     if rim_sizes is not None:

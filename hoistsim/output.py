@@ -248,20 +248,30 @@ def _write_scenario(f: h5py.File, scenario, command: str) -> None:
         data.attrs[key] = value
 
 
-def read_runs(path) -> list[dict]:
-    """Read the runs of a file back as dicts of numpy arrays (for plots and tables)."""
+def read_runs(path, columns=None, attributes=None) -> list[dict]:
+    """Read the runs of a file back as dicts of numpy arrays (for plots and tables).
+
+    ``columns``: the series to read (all when None); ``attributes``: the run
+    attributes to read past the first run (all when None; the first run's are
+    all read).  Events and the periodic regime's tables are always read.
+    """
     runs = []
     with h5py.File(path, "r") as f:
-        for key in sorted(f.get("runs", {}), key=int):
+        for index, key in enumerate(sorted(f.get("runs", {}), key=int)):
             group = f["runs"][key]
-            run = {name: group[name][()] for name in group
-                   if name not in ("events", "event") and isinstance(group[name], h5py.Dataset)}
-            for name in group:  # the periodic regime's tables, with their attributes
-                if isinstance(group[name], h5py.Group):
-                    run[name] = {k: v[()] for k, v in group[name].items()}
-                    run[name]["attrs"] = dict(group[name].attrs)
+            names = set(group)
+            wanted = names - {"events", "event"} if columns is None else names & set(columns)
+            run = {}
+            for name in wanted:
+                item = group[name]
+                if isinstance(item, h5py.Dataset):
+                    run[name] = item[()]
+            for name in names & {"periods", "turning_moment"}:  # the periodic regime's tables, with attributes
+                run[name] = {k: v[()] for k, v in group[name].items()}
+                run[name]["attrs"] = dict(group[name].attrs)
             run["events"] = group["events"][()]
-            run["attrs"] = {k: v for k, v in group.attrs.items()}
+            keep = None if index == 0 or attributes is None else attributes
+            run["attrs"] = {k: group.attrs[k] for k in (group.attrs if keep is None else keep) if k in group.attrs}
             runs.append(run)
     return runs
 

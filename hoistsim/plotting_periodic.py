@@ -106,7 +106,7 @@ def flywheel_figure(sizing, output, title: str = "") -> None:
 
     from matplotlib.ticker import ScalarFormatter
 
-    fig, (ax, ax_gap) = plt.subplots(2, 1, sharex=True, figsize=(8, 7), gridspec_kw={"height_ratios": [3, 1.4]})
+    fig, (ax, ax_gap) = plt.subplots(2, 1, sharex=True, figsize=(8, 7.6), height_ratios=[3, 1.4], layout="constrained")
     inertia, delta = sizing.candidates, sizing.candidate_irregularity
     shown = np.isfinite(delta) & (inertia > 0)
     span = np.geomspace(inertia[shown].min() / 1.5, inertia[shown].max() * 1.5, 300)
@@ -127,13 +127,15 @@ def flywheel_figure(sizing, output, title: str = "") -> None:
         axis.set_xscale("log")
         axis.grid(True, which="both", lw=0.4, alpha=0.5)
         axis.xaxis.set_major_formatter(ScalarFormatter())
+        axis.xaxis.set_minor_formatter(ScalarFormatter())
     ax.set_yscale("log")
     ax.yaxis.set_major_formatter(ScalarFormatter())
+    ax.yaxis.set_minor_formatter(ScalarFormatter())
     ax_gap.set_xlabel(f"flywheel inertia on the {sizing.shaft} shaft [kg*m^2]")
     ax.set_ylabel("degree of irregularity delta")
     ax.set_title(f"{title}: delta against flywheel inertia (w_m = {sizing.mean_speed * RPM:.5g} rpm)",
                  fontsize=11, loc="left")
-    ax.legend(fontsize=8, loc="lower left")
-    fig.tight_layout()
-    fig.savefig(output, dpi=150, bbox_inches="tight")
+    # below the panels, where it hides no point and no line
+    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncols=2, fontsize=8, frameon=False)
+    fig.savefig(output, dpi=150)
     plt.close(fig)

@@ -14,6 +14,7 @@ from conftest import ROOT, SCENARIOS
 from hoistsim.cli import main
 
 
+@pytest.mark.slow
 def test_cold_run_from_a_fresh_process(tmp_path):
     """`hoistsim run` as a user types it: exit 0, a table on stdout, the file in place."""
     out = tmp_path / "exercise6.h5"
@@ -28,6 +29,7 @@ def test_cold_run_from_a_fresh_process(tmp_path):
         assert f["runs/0"].attrs["lockup_time"] == 0.0  # 3201 N holds the stall torque: no slip
 
 
+@pytest.mark.slow
 def test_set_overrides_a_key_and_is_recorded(tmp_path):
     out = tmp_path / "slip.h5"
     result = CliRunner().invoke(main, ["run", str(SCENARIOS / "exercise6_direct_start.yaml"), "-o", str(out),
@@ -42,6 +44,7 @@ def test_set_overrides_a_key_and_is_recorded(tmp_path):
         assert "--set clutch.engagement_force" in text
 
 
+@pytest.mark.slow
 def test_sweep_section_gives_one_run_per_value(tmp_path):
     base = (SCENARIOS / "exercise6_direct_start.yaml").read_text()
     path = tmp_path / "sweep.yaml"
@@ -61,6 +64,7 @@ def test_check_prints_the_reduced_model():
     assert "J_b" in result.output and "2.141" in result.output and "valid" in result.output
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("suffix", [".png", ".svg"])
 def test_plot_writes_a_figure(tmp_path, suffix):
     out = tmp_path / "run.h5"
@@ -72,6 +76,7 @@ def test_plot_writes_a_figure(tmp_path, suffix):
     assert fig.stat().st_size > 10_000
 
 
+@pytest.mark.slow
 def test_chattering_is_a_one_line_error(tmp_path):
     base = (SCENARIOS / "exercise6_direct_start.yaml").read_text()
     table = ", ".join(f"[{k * 0.05} s, {9000 if k % 2 == 0 else 300} N]" for k in range(24))
@@ -92,6 +97,7 @@ def test_chattering_is_a_one_line_error(tmp_path):
     ["run", "SCENARIO", "-o", "out.png"],  # results are HDF5, whatever the name says
     ["frobnicate"],
 ])
+@pytest.mark.slow
 def test_usage_errors_are_one_line(tmp_path, args):
     args = [str(tmp_path) if a == "DIR" else str(SCENARIOS / "exercise6_direct_start.yaml") if a == "SCENARIO"
             else a for a in args]
@@ -102,28 +108,39 @@ def test_usage_errors_are_one_line(tmp_path, args):
     assert not (tmp_path / "out.h5").exists() and not (tmp_path / "out.png").exists()
 
 
-def _short_runback(out, env, cwd) -> h5py.File:
-    """Run half a second of the run-back scenario in a new process; the written file, open."""
+def _short_runback(out, env, cwd, notices=None) -> h5py.File:
+    """Run half a second of the run-back scenario in a new process; the written file, open.
+
+    ``notices``: a list that receives the lines of stderr saying a compilation is under way.
+    """
     proc = subprocess.run([sys.executable, "-m", "hoistsim.cli", "run", str(SCENARIOS / "runback_slipping_clutch.yaml"),
                            "-o", str(out), "--set", "simulation.duration=0.5 s"],
                           capture_output=True, text=True, env=env, cwd=cwd)
     assert proc.returncode == 0, proc.stderr
+    if notices is not None:
+        notices.append([line for line in proc.stderr.splitlines() if "compiling" in line])
     return h5py.File(out, "r")
 
 
+@pytest.mark.slow
 def test_second_run_loads_the_stored_executable(tmp_path):
-    """With the cache on, a run stores its compiled loop; the next process loads it and agrees bit for bit."""
+    """With the cache on, a run stores its compiled loop; the next process loads it and agrees bit for bit.
+
+    The first says on stderr, in one line, that it compiles; the second, loading, says nothing.
+    """
     env = dict(os.environ, HOISTSIM_CACHE_DIR=str(tmp_path / "cache"))
-    outputs = []
+    outputs, notices = [], []
     for i in range(2):
-        with _short_runback(tmp_path / f"run{i}.h5", env, ROOT) as f:
+        with _short_runback(tmp_path / f"run{i}.h5", env, ROOT, notices) as f:
             outputs.append(f["runs/0/slip_speed"][()])
+    assert notices == [["hoistsim: compiling the solver for this scene's structure (once; later runs load it)"], []]
     assert len(list((tmp_path / "cache" / "executables").glob("*.bin"))) == 1
     # JAX's own cache took the loop too: it refuses programs with host callbacks
     assert list((tmp_path / "cache").glob("jit__run-*"))
     assert (outputs[0] == outputs[1]).all()
 
 
+@pytest.mark.slow
 def test_a_changed_source_is_never_served_a_stored_program(tmp_path):
     """The cache key holds a digest of the package's source: edit the physics and the next run rebuilds."""
     import shutil

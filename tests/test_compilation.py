@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import pytest
 from scenes import scene
 
 from hoistsim import simulate
@@ -16,6 +17,7 @@ def test_new_parameter_values_do_not_recompile():
     assert loop.trace_count == before
 
 
+@pytest.mark.slow
 def test_force_table_values_do_not_recompile():
     simulate(scene(force=[["0 s", "0 N"], ["0.2 s", "4000 N"]], duration="1 s"))
     before = loop.trace_count

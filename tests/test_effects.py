@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import jax
 import numpy as np
+import pytest
 from scenes import scene
 
 from hoistsim import simulate
@@ -18,6 +19,7 @@ def _jaxpr_size(s) -> int:
     return len(str(jax.make_jaxpr(run)(plan)).splitlines())
 
 
+@pytest.mark.slow
 def test_scene_without_brake_has_no_brake_anywhere():
     bare = scene(force=[["0 s", "0 N"], ["0.3 s", "0 N"], ["0.3 s", "5000 N"]])
     assert not any(isinstance(e, HoldingBrake) for e in elements_for(bare))
@@ -34,6 +36,7 @@ def test_scene_without_brake_has_no_brake_anywhere():
     assert _jaxpr_size(bare) < _jaxpr_size(braked)
 
 
+@pytest.mark.slow
 def test_brake_contributes_boundary_event_and_outputs():
     s = scene(force=[["0 s", "0 N"], ["0.3 s", "0 N"], ["0.3 s", "5000 N"]], brake="0.5 s")
     (brake,) = [e for e in elements_for(s) if isinstance(e, HoldingBrake)]
@@ -52,6 +55,7 @@ def test_brake_contributes_boundary_event_and_outputs():
     assert np.all(run["brake_torque"][~held] == 0.0)
 
 
+@pytest.mark.slow
 def test_brake_released_at_start_is_an_event_at_zero():
     run = simulate(scene(force="5000 N", brake="0 s"))
     assert run.events["kind"][0] == "brake_release" and run.events["time"][0] == 0.0

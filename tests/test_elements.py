@@ -51,6 +51,7 @@ def _speeds(run):
 
 @pytest.mark.parametrize("shaft, section, key, base", [("motor", "motor", "inertia", 0.9),
                                                         ("drum", "drum", "inertia", 40.0)])
+@pytest.mark.slow
 def test_flywheel_equals_its_inertia_on_the_shaft(shaft, section, key, base):
     extra = 7.5
     with_flywheel = simulate(_scene(flywheel={"shaft": shaft, "inertia": f"{extra} kg*m^2"}))
@@ -62,6 +63,7 @@ def test_flywheel_equals_its_inertia_on_the_shaft(shaft, section, key, base):
     assert with_flywheel.energy_balance["relative_residual"] < 1e-8
 
 
+@pytest.mark.slow
 def test_rim_inertia_is_the_formula():
     rim = {"density": "7200 kg/m^3", "outer_diameter": "80 cm", "inner_diameter": "60 cm", "width": "12 cm"}
     s = _scene(flywheel=rim)
@@ -74,6 +76,7 @@ def test_rim_inertia_is_the_formula():
     np.testing.assert_allclose(simulate(s)["motor_speed"], direct["motor_speed"], rtol=0, atol=1e-12)
 
 
+@pytest.mark.slow
 def test_torque_speed_table_on_the_line_is_the_linear_motor():
     c0, w0 = 500.0, 300 * math.pi / 30
     rows = [[f"{float(w)!r} rad/s", f"{float(c0 * (1 - w / w0))!r} N*m"] for w in np.linspace(0.0, w0, 7)]
@@ -97,6 +100,7 @@ def test_table_is_continued_linearly_beyond_its_ends():
     np.testing.assert_allclose(np.asarray(motor.characteristic(speeds)), [140.0, 120.0, 90.0, 50.0, -40.0])
 
 
+@pytest.mark.slow
 def test_motor_off_meets_a_second_inertia_through_a_slipping_clutch():
     """Closed form: J_a w' = -T, J_b w' = T until the speeds meet."""
     w1, force = 30.0, 2000.0

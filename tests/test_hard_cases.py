@@ -16,6 +16,9 @@ from scenes import scene
 
 from hoistsim import exact_from_scenario, load_scenario, simulate
 
+# Slow: every hard case is a structure of its own, compiled for its fixture.
+pytestmark = pytest.mark.slow
+
 HARD = Path(__file__).parent / "hard"
 
 EXPECTED = {  # file -> the switches it must show (and the closed form must agree)

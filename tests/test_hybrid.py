@@ -13,6 +13,9 @@ from scenes import scene
 
 from hoistsim import exact_from_scenario, simulate
 
+# Slow: a compiled structure per scene; the quick loop keeps tests/test_properties.py's closed-form check.
+pytestmark = pytest.mark.slow
+
 SPEED_TOL = 1e-6  # rad/s
 TIME_TOL = 1e-8  # s
 ENERGY_TOL = 1e-8  # relative

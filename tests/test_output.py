@@ -77,6 +77,7 @@ def test_opens_in_xarray_with_time_coordinate(written):
         assert float(ds["time"][-1]) == 3.0
 
 
+@pytest.mark.slow
 def test_sweep_of_runs_and_summary(tmp_path):
     runs = [simulate(scene(force=f"{f} N", duration="0.5 s"), label=f"clutch.engagement_force={f} N")
             for f in (2500, 4000)]
@@ -103,6 +104,7 @@ def test_failed_write_leaves_existing_file_and_no_debris(tmp_path, braked_run, m
     assert os.listdir(tmp_path) == ["keep.h5"]
 
 
+@pytest.mark.slow
 def test_killed_writer_leaves_existing_file_intact(tmp_path):
     """A process killed (SIGKILL) in the middle of writing leaves the old file as it was."""
     path = tmp_path / "results.h5"

@@ -114,6 +114,7 @@ def slider_crank():
     return simulate(_scene(reciprocating=SLIDER, rtol=1e-11))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("which", ["rigid", "slider_crank"])
 def test_the_periodic_regime_matches_the_angle_domain_energy_theorem(which, request):
     run = request.getfixturevalue(which)
@@ -139,6 +140,7 @@ def test_the_periodic_regime_matches_the_angle_domain_energy_theorem(which, requ
     assert np.allclose(run["motor_speed"], ref.speed(theta), rtol=1e-8, atol=0)
 
 
+@pytest.mark.slow
 def test_tredgold_is_the_simulation_for_angle_only_torques_and_constant_inertia(rigid):
     """With I constant and torques of angle only, Tredgold's Delta E is the run's; his delta differs from the
     run's only by the mean (his (w_max + w_min)/2 against the mean over angle): an O(delta^2) difference."""
@@ -150,6 +152,7 @@ def test_tredgold_is_the_simulation_for_angle_only_torques_and_constant_inertia(
     assert abs(v["irregularity_tredgold"] / v["irregularity"] - 1) < v["irregularity"] ** 2
 
 
+@pytest.mark.slow
 def test_periods_are_marked_and_not_events(rigid):
     assert "period" not in set(rigid.events["kind"])
     table = rigid.periodic.regime.table
@@ -314,3 +317,29 @@ def test_the_flywheel_command_meets_the_target_and_shows_tredgold_beside_it(tmp_
     assert answer["flywheel_inertia"] == pytest.approx(answer["flywheel_inertia_tredgold"], rel=1e-3)
     assert answer["rim"]["width"] == pytest.approx(0.08)
     assert figure.stat().st_size > 10_000
+
+
+def test_plot_draws_the_turning_moment_diagram_and_the_speed_over_a_period(linear_motor_ripple, tmp_path):
+    """`hoistsim plot` of a periodic run: the run figure and, beside it, the periodic figure with the
+    diagram's Delta E_max (Tredgold's) and the simulated delta in its titles and legend."""
+    from click.testing import CliRunner
+
+    from hoistsim.cli import main
+
+    linear_motor_ripple.to_hdf5(tmp_path / "ripple.h5")
+    result = CliRunner().invoke(main, ["plot", str(tmp_path / "ripple.h5"), "-o", str(tmp_path / "ripple.png")])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "ripple.png").stat().st_size > 30_000
+    assert (tmp_path / "ripple_periodic.png").stat().st_size > 30_000
+
+    import matplotlib.pyplot as plt
+
+    from hoistsim.output import read_runs
+    from hoistsim.plotting_periodic import periodic_figure
+
+    fig = periodic_figure(read_runs(tmp_path / "ripple.h5")[0], plt)
+    legend = [t.get_text() for t in fig.legends[0].get_texts()]
+    v = linear_motor_ripple.values
+    assert f"net area theta_1 -> theta_2: dE_max = {v['energy_fluctuation_tredgold']:.4g} J" in legend
+    assert f"delta = {v['irregularity']:.4g} simulated" in fig.axes[1].get_title(loc="left")
+    plt.close(fig)

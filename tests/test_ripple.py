@@ -55,6 +55,7 @@ def _energy_reference(theta, motor_torque, mass, work):
     return np.sqrt(2 * energy / inertia)
 
 
+@pytest.mark.slow
 def test_motor_ripple_follows_the_energy_theorem():
     harmonics = [(3, 250.0, 0.0), (1, 120.0, math.radians(40))]
     period = 4 * math.pi  # a four-stroke engine: 720 deg
@@ -68,6 +69,7 @@ def test_motor_ripple_follows_the_energy_theorem():
     assert run.energy_balance["relative_residual"] < 1e-8
 
 
+@pytest.mark.slow
 def test_resisting_ripple_on_the_drum_follows_the_energy_theorem():
     # one drum turn as a table: a cam-like resisting torque, zero mean removed by nothing
     table = [[0.0, 0.0], [math.pi / 2, 900.0], [math.pi, 0.0], [3 * math.pi / 2, -300.0], [2 * math.pi, 0.0]]

@@ -82,6 +82,7 @@ def _steady_lift(mass_kg):
     return load_scenario(EXERCISE_FILE, overrides={"load.mass": f"{mass_kg} kg", "simulation.duration": "1 s"})
 
 
+@pytest.mark.slow
 def test_question_2_load_lifted_at_constant_speed_with_static_bearing_loads():
     exercise = as_dict(load_scenario(EXERCISE_FILE))
     mass = exercise["max_load_mass"] * (1 - 1e-9)
@@ -94,6 +95,7 @@ def test_question_2_load_lifted_at_constant_speed_with_static_bearing_loads():
         np.testing.assert_allclose(run[key], expected, rtol=1e-6, err_msg=key)
 
 
+@pytest.mark.slow
 def test_slightly_heavier_load_cannot_be_lifted():
     mass = as_dict(load_scenario(EXERCISE_FILE))["max_load_mass"] * (1 + 1e-3)
     run = simulate(_steady_lift(mass))
@@ -116,6 +118,7 @@ def test_peak_dynamic_bearing_loads_exceed_the_static_values():
     assert run["bearing_B"][-1] == pytest.approx(static["bearing_B"], rel=1e-3)
 
 
+@pytest.mark.slow
 def test_bearing_columns_only_with_the_bearings_section():
     bare = simulate(scene(duration="0.2 s"))
     assert not any(name.startswith(("bearing", "tooth", "rope")) for name in bare.series)

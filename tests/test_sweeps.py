@@ -26,6 +26,7 @@ def full():
     return sweep(load_scenario(SWEEP_FILE))
 
 
+@pytest.mark.slow
 def test_sweep_runs_equal_single_runs(full):
     """vmap changes nothing: each run of the sweep is the run simulated alone."""
     for (label, one), run in zip(sweep_values(full.scenario), full.runs):
@@ -37,6 +38,7 @@ def test_sweep_runs_equal_single_runs(full):
         assert list(run.events["kind"]) == list(alone.events["kind"])
 
 
+@pytest.mark.slow
 def test_summary_only_gives_the_same_summaries(full):
     brief = sweep(full.scenario, summary_only=True)
     assert brief.runs is None and brief.labels == full.labels
@@ -50,6 +52,7 @@ def test_summary_only_gives_the_same_summaries(full):
                 assert value == b[key], key
 
 
+@pytest.mark.slow
 def test_summaries_match_the_exact_solution():
     s = load_scenario(SWEEP_FILE, sweeps=["clutch.engagement_force=3 kN:12 kN:40"])
     result = sweep(s, summary_only=True)
@@ -67,6 +70,7 @@ def test_summaries_match_the_exact_solution():
     assert locks == sorted(locks, reverse=True)  # more force, earlier lock-up
 
 
+@pytest.mark.slow
 def test_new_sweep_values_do_not_recompile():
     s = load_scenario(SWEEP_FILE, sweeps=["clutch.engagement_force=4 kN:8 kN:16"])
     sweep(s, summary_only=True)
@@ -76,6 +80,7 @@ def test_new_sweep_values_do_not_recompile():
     assert loop.trace_count == before
 
 
+@pytest.mark.slow
 def test_two_keys_give_a_grid_and_tables_of_different_length_share_a_call():
     s = load_scenario(SWEEP_FILE, sweeps=["clutch.engagement_force=[5 kN, [[0 s, 0 N], [0.2 s, 8000 N]]]",
                                           "load.mass=200 kg,400 kg"], overrides={"simulation.duration": "0.5 s"})
@@ -86,6 +91,7 @@ def test_two_keys_give_a_grid_and_tables_of_different_length_share_a_call():
     assert np.isnan(result.parameters["clutch.engagement_force"][2])  # a table has no single value
 
 
+@pytest.mark.slow
 def test_chunks_do_not_change_answers():
     s = load_scenario(SWEEP_FILE, sweeps=["clutch.engagement_force=3 kN:12 kN:11"])
     a = sweep(s, summary_only=True, chunk_size=4)  # 3 chunks, the last padded
@@ -119,6 +125,7 @@ def test_cli_sweep_summary_only_compare_and_plot(tmp_path):
     assert figure.stat().st_size > 10_000  # a summary-only file: the summary figure alone
 
 
+@pytest.mark.slow
 def test_plot_of_a_sweep_writes_histories_and_summary(tmp_path):
     out = tmp_path / "sweep.h5"
     assert CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(out),
@@ -128,11 +135,13 @@ def test_plot_of_a_sweep_writes_histories_and_summary(tmp_path):
     assert (tmp_path / "f.svg").exists() and (tmp_path / "f_summary.svg").exists()
 
 
+@pytest.mark.slow
 def test_progress_only_on_a_terminal(tmp_path):
     result = CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(tmp_path / "x.h5"), "--summary-only"])
     assert result.exit_code == 0 and "runs (" not in result.output  # not a tty: no progress line
 
 
+@pytest.mark.slow
 def test_python_api_for_notebooks(tmp_path):
     result = sweep(scene(force="5000 N", motor_speed="300 rpm", duration="0.5 s"))
     assert len(result) == 1 and result.runs[0].summary["lock_events"] == 1
@@ -166,6 +175,7 @@ def test_range_in_a_file_needs_from_to_and_count(tmp_path):
     assert result.exit_code == 2 and f"range.yaml:{line}: sweep.clutch.engagement_force:" in result.output
 
 
+@pytest.mark.slow
 def test_an_observation_never_fires_again_at_its_own_restart():
     """The slip of this start settles towards a steady value, its rate passing through zero at 0.29 s.
 

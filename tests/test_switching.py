@@ -17,6 +17,7 @@ def oscillating_force(period=0.1, high=9000.0, low=300.0, cycles=12):
     return table
 
 
+@pytest.mark.slow
 def test_force_oscillating_across_the_threshold_matches_exact():
     s = scene(force=oscillating_force(), mass="300 kg", duration="1.2 s")
     run, exact = simulate(s), exact_from_scenario(s)
@@ -27,6 +28,7 @@ def test_force_oscillating_across_the_threshold_matches_exact():
     assert run.energy_balance["relative_residual"] < 1e-8
 
 
+@pytest.mark.slow
 def test_switch_cap_reports_chattering():
     s = scene(force=oscillating_force(), mass="300 kg", duration="1.2 s", max_switches=4)
     with pytest.raises(SimulationError, match="chatters: more than 4 mode switches"):

@@ -54,7 +54,9 @@ Contributions, all read at trace time (``x`` is the machine at one instant,
   ("bool" for a yes/no);
 - ``outputs(x)``: time series, described in ``columns`` (name -> (units, description));
   a column in units "1" is a flag or a mode, stored as a small integer;
-- ``speed_scale()``: a speed (rad/s) typical of the element, for the slip resolution.
+- ``speed_scale()``: a speed (rad/s) typical of the element, for the slip resolution;
+- ``panels``, ``shading``, ``summary_panels``, ``outcomes`` and ``headline(summary)``:
+  what the figures draw of it (:mod:`hoistsim.core.panel`), only where its columns are in the file.
 """
 
 from __future__ import annotations
@@ -94,10 +96,21 @@ class AbstractElement:
     ledger_kinds: ClassVar[dict[str, str]] = {}  # energy term -> "work", "loss" or "potential"
     cycles: ClassVar[dict[str, str]] = {}  # kink -> event kind recorded where it is crossed
     inertia_varies: ClassVar[bool] = False  # brings varying_inertias
+    # what it shows (hoistsim.core.panel): run-figure panels, shaded phases, summary-figure panels,
+    # kinds of run the summary figure marks apart
+    panels: ClassVar[tuple] = ()
+    shading: ClassVar[tuple] = ()
+    summary_panels: ClassVar[tuple] = ()
+    outcomes: ClassVar[tuple] = ()
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         pytree_dataclass(cls)
+
+    @classmethod
+    def headline(cls, summary: dict) -> str | None:
+        """What a run's figure title says of this part, from the run's summary (None: nothing)."""
+        return None
 
     def bodies(self) -> dict:
         return {}

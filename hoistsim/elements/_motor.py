@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import ClassVar
 
 from ..core.element import AbstractElement
+from ..core.panel import Trace, speed_panel
 
 
 class AbstractMotor(AbstractElement):
@@ -26,6 +27,7 @@ class AbstractMotor(AbstractElement):
         "motor_torque": ("N*m", "motor torque from its characteristic"),
         "motor_work": ("J", "work done by the motor so far"),
     }
+    panels: ClassVar[tuple] = (speed_panel(Trace("motor", "motor_speed")),)
 
     def characteristic(self, speed):
         """Motor torque (N*m) at shaft speed ``speed`` (rad/s)."""

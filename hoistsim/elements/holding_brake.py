@@ -7,6 +7,7 @@ from typing import ClassVar
 import jax.numpy as jnp
 
 from ..core.element import STUCK, AbstractCoupling
+from ..core.panel import Panel, Phase, Trace
 
 
 class HoldingBrake(AbstractCoupling):
@@ -27,6 +28,9 @@ class HoldingBrake(AbstractCoupling):
         "brake_torque": ("N*m", "torque the brake applies to the drum, positive holding the load up"),
         "brake_engaged": ("1", "1 while the brake holds the drum"),
     }
+    panels: ClassVar[tuple] = (Panel("brake", "brake torque [N*m]\n(at the drum)", 40,
+                                     (Trace("holding the load up", "brake_torque"),), zero_line=True, height=0.8),)
+    shading: ClassVar[tuple] = (Phase("brake holding", "brake_engaged", 1, "#8c510a", hatch="///"),)
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "HoldingBrake":

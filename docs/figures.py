@@ -1,0 +1,120 @@
+"""Regenerate the README's figures from the shipped scenarios, with the commands the README shows.
+
+    python docs/figures.py                      # every figure, into docs/ (about 6 minutes on 2 cores)
+    python docs/figures.py force_sweep ...      # only these
+    python docs/figures.py --output /tmp/figs   # somewhere else
+    python docs/figures.py --list               # the figures and what each runs
+
+Each figure is made by the command line (in this process, so the compiled
+solvers are shared): `hoistsim run` then `hoistsim plot`, `hoistsim flywheel
+--plot`, or the work-precision study's figure redrawn from its CSV (the study
+itself is `benchmarks/work_precision.py`, about 20 minutes).
+"""
+
+from __future__ import annotations
+
+import argparse
+import shutil
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENARIOS = ROOT / "scenarios"
+
+
+def _cli(*args: str) -> None:
+    from hoistsim.cli import main
+
+    try:
+        main.main(args=list(args), prog_name="hoistsim", standalone_mode=False)
+    except SystemExit as exc:  # the command line's own failures (exit 2, 3)
+        if exc.code:
+            raise RuntimeError(f"hoistsim {' '.join(args)}: exit {exc.code}") from None
+
+
+def _run_and_plot(scenario: str, keep: dict):
+    """`hoistsim run` and `hoistsim plot`; keep maps the plot's outputs (by suffix) to figure names."""
+    def make(output: Path, work: Path) -> list[Path]:
+        results, figure = work / "results.h5", work / "figure.png"
+        _cli("run", str(SCENARIOS / scenario), "-o", str(results))
+        _cli("plot", str(results), "-o", str(figure))
+        written = []
+        for suffix, name in keep.items():
+            shutil.copyfile(work / f"figure{suffix}.png", output / name)
+            written.append(output / name)
+        return written
+
+    return make
+
+
+def _flywheel(scenario: str, irregularity: str, name: str):
+    def make(output: Path, work: Path) -> list[Path]:
+        _cli("flywheel", str(SCENARIOS / scenario), "--irregularity", irregularity, "--plot", str(output / name))
+        return [output / name]
+
+    return make
+
+
+def _work_precision(output: Path, work: Path) -> list[Path]:
+    from hoistsim.study import read_csv, write_figure
+
+    results = ROOT / "benchmarks" / "results"
+    target = output / "work_precision.png" if output != ROOT / "docs" else results / "work_precision.png"
+    write_figure(read_csv(results / "work_precision.csv"), target)
+    return [target]
+
+
+# name -> (what it runs, how to make it); the README shows each under docs/ (work_precision: benchmarks/results/)
+FIGURES = {
+    "engage_at_speed_with_brake": ("hoistsim run + plot scenarios/engage_at_speed_with_brake.yaml",
+                                   _run_and_plot("engage_at_speed_with_brake.yaml",
+                                                 {"": "engage_at_speed_with_brake.png"})),
+    "force_sweep": ("hoistsim run + plot scenarios/force_sweep_engage_at_speed.yaml (10 forces)",
+                    _run_and_plot("force_sweep_engage_at_speed.yaml",
+                                  {"": "force_sweep.png", "_summary": "force_sweep_summary.png"})),
+    "slider_crank_periodic": ("hoistsim run + plot scenarios/slider_crank_press.yaml",
+                              _run_and_plot("slider_crank_press.yaml", {"_periodic": "slider_crank_periodic.png"})),
+    "engine_periodic": ("hoistsim run + plot scenarios/engine_hoist_flywheel.yaml (about 40 s)",
+                        _run_and_plot("engine_hoist_flywheel.yaml", {"_periodic": "engine_periodic.png"})),
+    "engine_flywheel": ("hoistsim flywheel scenarios/engine_hoist_flywheel.yaml --irregularity 0.02 (about 4 min)",
+                        _flywheel("engine_hoist_flywheel.yaml", "0.02", "engine_flywheel.png")),
+    "work_precision": ("the work-precision figure, redrawn from benchmarks/results/work_precision.csv",
+                       _work_precision),
+}
+
+
+def regenerate(names=None, output: Path = ROOT / "docs", progress=print) -> list[Path]:
+    """Make the named figures (all when None) in ``output``; returns the files written."""
+    names = list(FIGURES) if not names else list(names)
+    unknown = [n for n in names if n not in FIGURES]
+    if unknown:
+        raise KeyError(f"no figure named {', '.join(unknown)}: choose from {', '.join(FIGURES)}")
+    output = Path(output)
+    output.mkdir(parents=True, exist_ok=True)
+    written = []
+    for name in names:
+        started = time.perf_counter()
+        with tempfile.TemporaryDirectory() as work:
+            made = FIGURES[name][1](output, Path(work))
+        written += made
+        progress(f"{name}: {', '.join(str(p) for p in made)} ({time.perf_counter() - started:.1f} s)")
+    return written
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("names", nargs="*", help="figures to make (default: all)")
+    parser.add_argument("--output", default=str(ROOT / "docs"), help="folder for the figures (default docs/)")
+    parser.add_argument("--list", action="store_true", help="list the figures and what each runs")
+    args = parser.parse_args()
+    if args.list:
+        for figure, (what, _) in FIGURES.items():
+            print(f"{figure:28s} {what}")
+        sys.exit(0)
+    try:
+        regenerate(args.names, Path(args.output))
+    except (KeyError, RuntimeError) as exc:
+        print(f"figures: {exc.args[0]}", file=sys.stderr)
+        sys.exit(2)
