@@ -27,6 +27,7 @@ _EVENT_STYLE = {"lock": ("#1b7837", "-"), "unlock": ("#b2182b", "--"), "reversal
                 "brake_release": ("#8c510a", "-."), "engage": ("#2166ac", (0, (1, 1))),
                 "disengage": ("#2166ac", (0, (3, 1, 1, 1)))}
 _MARK_NAMES = {"lock": "clutch locks", "load_lowest": "lowest point"}
+_CURVE = "curve"  # the gid of a run's curve (not a zero line, an event line or a legend's sample)
 _LEGEND = dict(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False, borderaxespad=0.0)
 
 
@@ -115,7 +116,7 @@ def _draw_panel(ax, panel, runs, run_colours, mode, plt):
                     label = None
                 ax.plot(run["time"], values * panel.scale, color=colour, ls=trace.style,
                         lw=0.9 if trace.limit else 1.5, alpha=0.75 if trace.limit and mode == "few" else 1.0,
-                        label=label)
+                        label=label, gid=_CURVE)
             if mode == "few" and several and drawn:  # the runs' colours are in the top legend; here, which curve is which
                 ax.plot([], [], color="0.3", ls=trace.style, lw=0.9 if trace.limit else 1.5, label=trace.label)
         _marks(ax, trace, panel.scale, runs, run_colours, mode)
@@ -215,10 +216,24 @@ def _draw_events(axes, runs, run_colours, mode, quiet):
 
 
 def _no_round_off_zoom(ax):
-    """A quantity constant to round-off (a steady lift's speed) is shown flat, not as 1e-10 wiggles on an offset."""
-    low, high = ax.get_ylim()
+    """A quantity constant to round-off (a steady lift's speed, a locked clutch's slip) is shown flat.
+
+    Not as 1e-14 rpm wiggles on an offset scale: a range below a millionth of
+    the values, or values all below 1e-9 in the panel's units, is round-off.
+    """
+    from matplotlib.collections import LineCollection
+
+    drawn = [line.get_ydata() for line in ax.get_lines() if line.get_gid() == _CURVE]
+    drawn += [s[:, 1] for c in ax.collections if isinstance(c, LineCollection) for s in c.get_segments()]
+    values = np.concatenate([np.asarray(v, dtype=float).ravel() for v in drawn]) if drawn else np.zeros(1)
+    values = values[np.isfinite(values)]
+    if values.size == 0:
+        return
+    low, high = float(values.min()), float(values.max())
     centre = 0.5 * (low + high)
-    if high - low < 1e-6 * max(abs(low), abs(high)):
+    if max(abs(low), abs(high)) < 1e-9:
+        ax.set_ylim(-1.0, 1.0)
+    elif high - low < 1e-6 * max(abs(low), abs(high)):
         pad = 0.05 * abs(centre)
         ax.set_ylim(centre - pad, centre + pad)
     ax.ticklabel_format(axis="y", useOffset=False)

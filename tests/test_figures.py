@@ -219,3 +219,11 @@ def test_the_script_makes_the_periodic_figures(tmp_path):
     written = _figures_script().regenerate(["slider_crank_periodic", "engine_periodic"], tmp_path,
                                            progress=lambda text: None)
     assert [p.name for p in written] == ["slider_crank_periodic.png", "engine_periodic.png"]
+
+
+def test_round_off_is_drawn_flat_not_zoomed_into(results):
+    """A clutch locked throughout has a slip of zero to round-off: its panel shows a flat line at 0 on a
+    sensible scale, not 1e-14 rpm wiggles."""
+    fig, _ = _figure(results["exercise6_direct_start"])
+    assert _panels(fig)[1].get_ylim() == (-1.0, 1.0)
+    plt.close(fig)
