@@ -74,6 +74,7 @@ def test_friction_law_holds_at_every_row(s):
     assert np.all(run["slip_speed"][forward] >= -1e-9) and np.all(run["slip_speed"][backward] <= 1e-9)
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(st.floats(0.0, 800.0), st.floats(100.0, 300.0), st.floats(0.0, 1.0), st.floats(0.0, 1.0))
 def test_more_force_never_delays_lockup_nor_adds_heat(mass, motor_rpm, a, b):
