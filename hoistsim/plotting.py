@@ -8,7 +8,6 @@ of hoistsim never pays for it.
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 
@@ -95,11 +94,9 @@ def scenario_name(path) -> str:
 
 def swept_axis(path, summaries):
     """(name, values in display units, unit) of the first swept key with numbers, else the run index."""
-    import h5py
+    from .output import read_swept_keys
 
-    with h5py.File(path, "r") as f:
-        keys = json.loads(f["summary"].attrs.get("swept_keys", "[]"))
-    for key in keys:
+    for key in read_swept_keys(path):
         values = np.asarray([row[key] for row in summaries], dtype=float)
         if np.all(np.isfinite(values)):
             scale, unit = _DISPLAY_UNITS.get(key.rsplit(".", 1)[-1], (1.0, "SI"))

@@ -150,9 +150,9 @@ def _thin(t, y):
     size = -(-len(t) // THIN_TO)
     padded = np.concatenate([y, np.full(size * THIN_TO - len(y), y[-1])]).reshape(THIN_TO, size)
     offsets = np.arange(THIN_TO) * size
-    index = np.unique(np.concatenate([[0, len(t) - 1], offsets + padded.argmin(axis=1),
-                                      offsets + padded.argmax(axis=1)]))
-    index = index[index < len(t)]
+    index = np.sort(np.concatenate([[0, len(t) - 1], offsets + padded.argmin(axis=1),
+                                     offsets + padded.argmax(axis=1)]))
+    index = index[np.append(True, index[1:] != index[:-1]) & (index < len(t))]
     return t[index], y[index]
 
 
@@ -224,7 +224,7 @@ def _no_round_off_zoom(ax):
     from matplotlib.collections import LineCollection
 
     drawn = [line.get_ydata() for line in ax.get_lines() if line.get_gid() == _CURVE]
-    drawn += [s[:, 1] for c in ax.collections if isinstance(c, LineCollection) for s in c.get_segments()]
+    drawn += [c.get_datalim(ax.transData).intervaly for c in ax.collections if isinstance(c, LineCollection)]
     values = np.concatenate([np.asarray(v, dtype=float).ravel() for v in drawn]) if drawn else np.zeros(1)
     values = values[np.isfinite(values)]
     if values.size == 0:

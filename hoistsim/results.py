@@ -33,6 +33,24 @@ class RunResult:
     descriptions: dict[str, str] = field(default_factory=dict)
     stats: dict = field(default_factory=dict)
     periodic: object = None  # hoistsim.periodic.analysis.Periodic, for a machine with a periodic regime
+    grid: np.ndarray | None = None  # the output grid's times (rows of ``time`` that are not event instants)
+    # every exact instant, events and observations alike (time, kind, element, torque_margin, mode_after,
+    # category: "switch", "scheduled", "observation" or "cycle"); ``events`` keeps the switches and schedule
+    instants: dict | None = None
+
+    def grid_rows(self) -> np.ndarray:
+        """Indices of the output grid's rows in ``time`` (a grid time that is also an event time: its row)."""
+        grid = self.time if self.grid is None else self.grid
+        return np.searchsorted(self.time, grid)
+
+    def instant_rows(self) -> np.ndarray:
+        """Indices in ``time`` of the rows of ``instants`` (the state just after each)."""
+        return np.searchsorted(self.time, self.all_instants()["time"])
+
+    def all_instants(self) -> dict:
+        if self.instants is not None:
+            return self.instants
+        return {**self.events, "category": np.asarray(["switch"] * len(self.events["time"]), dtype=object)}
 
     def __getitem__(self, name: str) -> np.ndarray:
         return self.time if name == "time" else self.series[name]

@@ -292,9 +292,9 @@ def _check_sweep(raw: dict, key: str, values: list, tree: Any, source: str) -> l
         raise ScenarioError(f"sweep.{key}", f"needs a non-empty list of values, {_SWEEP_EXAMPLE}",
                             source=source, line=line)
     runs = []
+    base = {k: v for k, v in raw.items() if k != "sweep"}  # each run copies the scenario, not the whole sweep
     for i, value in enumerate(values):
-        one = _copy_plain(raw)
-        one.pop("sweep")
+        one = _copy_plain(base)
         _assign(one, key, value)
         try:
             runs.append(Scenario.model_validate(one))
@@ -372,11 +372,11 @@ def sweep_values(scenario: Scenario) -> list[tuple[str, Scenario]]:
             run._text, run._source = scenario.text, scenario.source
         return [(f"{key}={label}", run) for label, run in zip(scenario._sweep_labels[key], scenario._sweep_runs)]
     runs = []
+    base = {k: v for k, v in scenario._raw.items() if k != "sweep"}  # not the sweep's values, once per run
     indices = itertools.product(*(range(len(scenario._sweep_values[k])) for k in keys))
     for combo_index in indices:
         combo = [scenario._sweep_values[k][i] for k, i in zip(keys, combo_index)]
-        raw = scenario.raw
-        raw.pop("sweep", None)
+        raw = _copy_plain(base)
         for key, value in zip(keys, combo):
             _assign(raw, key, value)
         label = ", ".join(f"{k}={scenario._sweep_labels[k][i]}" for k, i in zip(keys, combo_index))

@@ -75,6 +75,9 @@ def run_result(scenario: Scenario, label: str, grid: np.ndarray, raw: Readout, e
                   for i, e in enumerate(elements)]
     columns = layout.columns()
     periodic = periodic_regime(scenario, raw)
+    cycles = [kind for _, _, kind in layout.cycles]
+    category = np.asarray(["observation" if k in layout.observation_kinds else "cycle" if k in cycles
+                           else "switch" if k in SWITCH_KINDS else "scheduled" for k in kinds], dtype=object)
     return RunResult(
         scenario=scenario,
         label=label,
@@ -91,6 +94,9 @@ def run_result(scenario: Scenario, label: str, grid: np.ndarray, raw: Readout, e
         },
         values={**raw.summary(), **(periodic.values() if periodic is not None else {})},
         periodic=periodic,
+        grid=np.asarray(grid),
+        instants={"time": event_time, "kind": kinds, "element": elements, "torque_margin": margins,
+                  "mode_after": np.asarray(mode_after, dtype=object), "category": category},
         ledger=raw.ledger(),
         stats={**raw.stats, "wall_time": elapsed},
     )

@@ -59,6 +59,31 @@ class SweepResult:
 
         write_sweep(path, self, command=command)
 
+    def to_xarray(self):
+        """The sweep as one xarray.Dataset, as its file opens: series on (run, time), the swept keys and
+        every summary value on (run), with units."""
+        import xarray as xr
+
+        from .output import _summary_units, stacked_series
+        from .scenario import key_units
+
+        units = _summary_units(self.scenario)
+        data = {"label": ("run", np.asarray(self.labels, dtype=object))}
+        for key, values in self.parameters.items():
+            data[key] = ("run", np.asarray(values, dtype=float), {"units": key_units(key)})
+        for key, values in self.summary.items():
+            if key != "label":
+                data[key] = ("run", values, {"units": units.get(key, "")})
+        coords = {"run": ("run", np.arange(len(self)))}
+        if self.runs is not None:
+            time, stacked = stacked_series(self.runs)
+            coords["time"] = ("time", time, {"units": "s"})
+            first = self.runs[0]
+            for name, values in stacked.items():
+                data[name] = (("run", "time"), values, {"units": first.units[name]})
+        return xr.Dataset(data, coords=coords, attrs={"name": self.scenario.name,
+                                                      "swept_keys": ", ".join(self.keys)})
+
 
 def sweep(scenario: Scenario, *, summary_only: bool = False, chunk_size: int | None = None,
           progress: Callable[[int, int], None] | None = None) -> SweepResult:

@@ -31,7 +31,9 @@ def results(tmp_path_factory):
             ("engage_at_speed_with_brake", "engage_at_speed_with_brake", []),
             ("exercise6_direct_start", "exercise6_direct_start", []),
             # question 2's case, with the direct start's structure (no new compilation): it slips and runs back
-            ("runback", "exercise6_direct_start", ["--set", "clutch.engagement_force=2000 N"])):
+            ("runback", "exercise6_direct_start", ["--set", "clutch.engagement_force=2000 N"]),
+            # the brake lets go before the clutch closes: the load falls, turns round and is lifted
+            ("turnaround", "engage_at_speed_with_brake", ["--set", "brake.release_time=0.3 s"])):
         files[name] = folder / f"{name}.h5"
         result = CliRunner().invoke(main, ["run", str(SCENARIOS / f"{scenario}.yaml"), "-o", str(files[name]),
                                            *options])
@@ -76,7 +78,8 @@ def test_one_run_shades_its_phases_and_marks_every_event_in_every_panel(results)
     top = [t.get_text() for t in panels[0].get_legend().get_texts()]
     for phase in ("clutch open", "clutch locked", "brake holding"):
         assert phase in top
-    events = {row["kind"].decode(): float(row["time"]) for row in runs[0]["events"]}
+    events = {row["kind"]: float(row["time"]) for row in runs[0]["events"]
+              if row["category"] in ("switch", "scheduled")}
     assert set(events) == {"engage", "brake_release", "lock"}
     for ax in panels:
         assert sorted(line.get_xdata()[0] for line in _vertical_lines(ax)) == sorted(events.values())
@@ -109,11 +112,17 @@ def test_legends_sit_beside_the_panels_not_on_the_data(results):
 
 
 def test_the_load_position_panel_marks_where_a_load_that_ran_back_turned(results):
-    fig, runs = _figure(results["runback"])
-    lowest = [float(r["time"]) for r in runs[0]["events"] if r["kind"] == b"load_lowest"]
+    fig, runs = _figure(results["turnaround"])
     load = _panels(fig)[3]
+    assert load.get_ylabel().startswith("load height")
     marked = [c for c in load.collections if c.get_label() == "lowest point"]
-    assert len(lowest) == len(marked[0].get_offsets()) if lowest else not marked
+    (time, height), = marked[0].get_offsets()
+    assert height == pytest.approx(runs[0]["attrs"]["lowest_load_position"], rel=1e-12) and height < -0.3
+    assert time == pytest.approx(1.1678, abs=1e-4)  # where the rope speed goes through zero
+    assert "load dips 0.353 m, ends +0.783 m" in fig._suptitle.get_text()
+    plt.close(fig)
+    fig, _ = _figure(results["runback"])  # a load that never turns round has no such mark
+    assert not [c for c in _panels(fig)[3].collections if c.get_label() == "lowest point"]
     plt.close(fig)
 
 

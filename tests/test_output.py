@@ -19,9 +19,10 @@ from scenes import scene
 from hoistsim import load_scenario, simulate
 from hoistsim.output import write_runs
 
-CONTRACT_SERIES = ["time", "motor_speed", "drum_speed", "slip_speed", "clutch_torque", "clutch_locked",
+CONTRACT_SERIES = ["motor_speed", "drum_speed", "slip_speed", "clutch_torque", "clutch_locked",
                    "engagement_force", "load_position", "load_velocity", "clutch_energy"]
-CONTRACT_ATTRS = ["name", "label", "parameters", "lockup_time", "slip_energy", "solver", "rtol", "atol"]
+CONTRACT_RUN_VARIABLES = ["label", "lockup_time", "slip_energy"]
+EVENT_COLUMNS = ["run", "time", "kind", "element", "torque_margin", "mode_after"]
 
 
 @pytest.fixture(scope="module")
@@ -37,23 +38,32 @@ def written(braked_run, tmp_path_factory):
 
 
 def test_file_has_contract_names_and_units(written, braked_run):
+    """Format 2: the series on (run, time), the run's numbers on (run), the instants in /runs/events."""
     with h5py.File(written, "r") as f:
-        group = f["runs/0"]
+        assert f.attrs["format_version"] == 2
+        group = f["runs"]
+        grid = group["time"][()]
+        assert np.all(np.diff(grid) > 0) and grid[-1] == 3.0 and grid.size == 3001  # the output grid only
         for name in CONTRACT_SERIES:
-            assert name in group, name
-            assert group[name].shape == group["time"].shape
+            assert group[name].shape == (1, grid.size), name
+        for name in CONTRACT_RUN_VARIABLES:
+            assert group[name].shape == (1,), name
         for name, data in group.items():
-            assert "units" in data.attrs, name
-        for attr in CONTRACT_ATTRS:
-            assert attr in group.attrs, attr
-        assert np.all(np.diff(group["time"][()]) > 0)
+            if isinstance(data, h5py.Dataset):
+                assert "units" in data.attrs, name
+        assert group["clutch_torque"].attrs["units"] == "N*m" and group["lockup_time"].attrs["units"] == "s"
+        assert group["lockup_time"][0] == pytest.approx(braked_run.lockup_time)
         assert json.loads(group.attrs["parameters"])["brake"]["release_time"] == 0.6
-        assert group.attrs["lockup_time"] == pytest.approx(braked_run.lockup_time)
-        events = group["events"][()]
-        kinds = [k.decode() if isinstance(k, bytes) else k for k in events["kind"]]
-        assert kinds == ["engage", "brake_release", "lock"]
-        assert events["time"][1] == 0.6
-        assert "units" in f["summary"].attrs and f["summary"].shape == (1,)
+        for attr in ("name", "solver", "rtol", "atol"):
+            assert attr in group.attrs, attr
+        events = group["events"]
+        for name in EVENT_COLUMNS:
+            assert name in events, name
+        switches = events["category"].asstr()[()] != "observation"
+        assert list(events["kind"].asstr()[()][switches]) == ["engage", "brake_release", "lock"]
+        assert events["time"][()][switches][1] == 0.6
+        observations = set(events["kind"].asstr()[()][~switches])
+        assert observations == {"slip_peak"}  # the slip's peak as the clutch closes, an exact instant
         scenario = f["scenario"]
         text = scenario[()].decode() if isinstance(scenario[()], bytes) else scenario[()]
         assert "release_time: 0.6 s" in text
@@ -61,20 +71,43 @@ def test_file_has_contract_names_and_units(written, braked_run):
             assert attr in scenario.attrs, attr
 
 
-def test_event_times_are_rows_of_the_series(written):
+def test_each_instant_carries_the_state_just_after_it(written, braked_run):
+    """The lock's row in the events table holds the speeds just after the lock: equal, no slip."""
     with h5py.File(written, "r") as f:
-        time = f["runs/0/time"][()]
-        for t in f["runs/0/events"]["time"]:
-            assert t in time
+        events = f["runs/events"]
+        kinds = list(events["kind"].asstr()[()])
+        lock = kinds.index("lock")
+        assert events["time"][lock] == pytest.approx(braked_run.lockup_time, abs=0)
+        assert events["slip_speed"][lock] == pytest.approx(0.0, abs=1e-9)
+        assert events["clutch_locked"][lock] == 1 and events["mode_after"].asstr()[lock] == "locked"
+        row = int(np.searchsorted(braked_run.time, events["time"][lock]))
+        assert events["motor_speed"][lock] == braked_run["motor_speed"][row]
 
 
-def test_opens_in_xarray_with_time_coordinate(written):
-    xr = pytest.importorskip("xarray")
-    with xr.open_dataset(written, group="runs/0", engine="h5netcdf") as ds:
-        assert "time" in ds.coords
-        assert ds["motor_speed"].dims == ("time",)
+def test_opens_in_xarray_as_one_dataset(written):
+    import xarray as xr
+
+    import hoistsim
+
+    with hoistsim.open_results(written) as ds:
+        assert ds["motor_speed"].dims == ("run", "time") and ds["lockup_time"].dims == ("run",)
         assert ds["clutch_torque"].attrs["units"] == "N*m"
         assert float(ds["time"][-1]) == 3.0
+        assert ds["clutch_locked"].dtype == np.int8  # a flag stays a flag
+        one = ds.sel(run=0)
+        assert float(one["lockup_time"]) > 1.0
+    with xr.open_dataset(written, group="runs/events", engine="h5netcdf") as events:
+        assert "lock" in list(events["kind"].values)
+
+
+def test_reading_back_gives_the_run_as_simulated(written, braked_run):
+    """The grid rows and the instants merge back into the run's own rows, value for value."""
+    from hoistsim.output import read_runs
+
+    (back,) = read_runs(written)
+    np.testing.assert_array_equal(back["time"], braked_run.time)
+    for name in ("motor_speed", "slip_speed", "clutch_torque", "brake_torque", "clutch_mode"):
+        np.testing.assert_array_equal(back[name], braked_run[name])
 
 
 @pytest.mark.slow
@@ -84,8 +117,8 @@ def test_sweep_of_runs_and_summary(tmp_path):
     path = tmp_path / "sweep.h5"
     write_runs(path, runs)
     with h5py.File(path, "r") as f:
-        assert sorted(f["runs"]) == ["0", "1"]
-        labels = [x.decode() if isinstance(x, bytes) else x for x in f["summary"]["label"]]
+        assert f["runs/motor_speed"].shape == (2, 101)  # 0.5 s on a 5 ms grid
+        labels = list(f["runs/label"].asstr()[()])
         assert labels == ["clutch.engagement_force=2500 N", "clutch.engagement_force=4000 N"]
 
 
@@ -97,7 +130,7 @@ def test_failed_write_leaves_existing_file_and_no_debris(tmp_path, braked_run, m
     def broken(*args, **kwargs):
         raise RuntimeError("disk fell off")
 
-    monkeypatch.setattr(output, "_write_summary", broken)
+    monkeypatch.setattr(output, "_write_instants", broken)
     with pytest.raises(RuntimeError):
         write_runs(path, [braked_run])
     assert path.read_bytes() == b"precious results"
@@ -115,7 +148,7 @@ def test_killed_writer_leaves_existing_file_intact(tmp_path):
         run = simulate(load_scenario({str(SCENARIOS / 'runback_slipping_clutch.yaml')!r}))
         def die(*args, **kwargs):
             os.kill(os.getpid(), signal.SIGKILL)   # half-way through the file
-        output._write_summary = die
+        output._write_instants = die
         output.write_runs({str(path)!r}, [run])
     """)
     proc = subprocess.run([sys.executable, "-c", script], capture_output=True)

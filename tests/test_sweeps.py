@@ -106,8 +106,9 @@ def test_cli_sweep_summary_only_compare_and_plot(tmp_path):
     assert result.exit_code == 0, result.output
     assert "64 runs" in result.output and "..." in result.output  # a long table is shortened
     with h5py.File(out, "r") as f:
-        assert "runs" not in f and f["summary"].shape == (64,)
-        assert f["summary"]["clutch.engagement_force"][-1] == pytest.approx(12000.0)
+        assert "time" not in f["runs"] and f["runs/lockup_time"].shape == (64,)  # no series, the run variables
+        assert f["runs/clutch.engagement_force"][-1] == pytest.approx(12000.0)
+        assert f["runs/clutch.engagement_force"].attrs["units"] == "N"
     table = CliRunner().invoke(main, ["compare", str(out)])
     assert table.exit_code == 0 and table.output.count("clutch.engagement_force=") == 64
     lines = table.output.splitlines()
@@ -147,6 +148,26 @@ def test_python_api_for_notebooks(tmp_path):
     assert len(result) == 1 and result.runs[0].summary["lock_events"] == 1
     result.to_hdf5(tmp_path / "one.h5")
     assert result.summary["slip_energy"].shape == (1,)
+
+
+@pytest.mark.slow
+def test_a_sweep_is_one_dataset_in_memory_and_in_its_file(tmp_path):
+    """SweepResult.to_xarray() and hoistsim.open_results() of its file hold the same (run, time) series
+    and (run) values; runs of different durations share one time axis, NaN where a run has no row."""
+    import hoistsim
+
+    base = load_scenario(SWEEP_FILE, sweeps=["simulation.duration=0.3 s,0.5 s"])
+    result = sweep(base)
+    result.to_hdf5(tmp_path / "two.h5")
+    memory = result.to_xarray()
+    with hoistsim.open_results(tmp_path / "two.h5") as ds:
+        assert ds["slip_speed"].dims == ("run", "time") and ds.sizes == {"run": 2, "time": 501}
+        np.testing.assert_array_equal(ds["slip_speed"].values, memory["slip_speed"].values)
+        np.testing.assert_array_equal(ds["simulation.duration"].values, [0.3, 0.5])
+        assert ds["simulation.duration"].attrs["units"] == "s" and ds["slip_energy"].attrs["units"] == "J"
+        assert np.isnan(ds["slip_speed"].values[0, 301:]).all() and np.isfinite(ds["slip_speed"].values[1]).all()
+        np.testing.assert_array_equal(ds["lockup_time"].values, memory["lockup_time"].values)
+        assert list(ds["label"].values) == list(memory["label"].values)
 
 
 @pytest.mark.parametrize("spec, words", [
