@@ -219,3 +219,30 @@ def test_an_observation_never_fires_again_at_its_own_restart():
     raw = jax.device_get(compiled_batch(s.simulation.solver, max_segments, 1, False)(batch))
     assert int(raw.counters[0, PASSES]) <= 4
     assert sweep(s, summary_only=True).summaries[0]["slip_duration"] == pytest.approx(2.0)
+
+
+def test_loading_a_sweep_costs_in_proportion_to_its_values(monkeypatch):
+    """Each run's scenario is copied without the sweep's other values: the copying grows linearly
+    with the number of values (it grew with its square: 1 000 force tables took 18 s to load)."""
+    from hoistsim import scenario as scenario_module
+    from hoistsim import yamlsource
+
+    copied = {"nodes": 0}
+    original = yamlsource.copy_plain
+
+    def counting(data):
+        copied["nodes"] += 1
+        return original(data)
+
+    monkeypatch.setattr(yamlsource, "copy_plain", counting)
+    monkeypatch.setattr(scenario_module, "_copy_plain", counting)
+    text = SWEEP_FILE.read_text().split("\nsweep:")[0]
+
+    def nodes(count):
+        copied["nodes"] = 0
+        tables = "".join(f"\n    - [[0 s, 0 N], [0.05 s, {3000 + 10 * i} N]]" for i in range(count))
+        scenario_module.scenario_from_text(text + "\nsweep:\n  clutch.engagement_force:" + tables + "\n")
+        return copied["nodes"]
+
+    small, large = nodes(40), nodes(160)
+    assert large < 4.2 * small  # four times the values, four times the copying (quadratic: ~14 times)
