@@ -125,9 +125,12 @@ def main():
                    "Twice: every combination.")
 @click.option("--summary-only", is_flag=True,
               help="Keep only each run's summary, no time series: for very large sweeps.")
+@click.option("--resume", is_flag=True,
+              help="Finish a sweep that was interrupted, keeping the chunks already written "
+                   "(the same scenario and options).")
 @debug_option
 @_guarded
-def run(scenario, output, overrides, sweeps, summary_only):
+def run(scenario, output, overrides, sweeps, summary_only, resume):
     """Simulate SCENARIO (every sweep value, when it has a sweep) and write OUTPUT."""
     scenario_path = scenario
     scenario = _scenario(scenario_path, overrides, sweeps)
@@ -148,11 +151,16 @@ def run(scenario, output, overrides, sweeps, summary_only):
     command = "hoistsim run " + " ".join(
         [scenario_path, "-o", output, *(f"--set {o}" for o in overrides), *(f"--sweep {w}" for w in sweeps)]
         + (["--summary-only"] if summary_only else []))
+    from .streaming import ResumeError
+
     started = time.perf_counter()
+    if resume and not (scenario.sweep or summary_only):
+        _fail("--resume: only a sweep (or --summary-only) is written in chunks; run it again instead")
     try:
-        if scenario.sweep or summary_only:
-            result = sweep(scenario, summary_only=summary_only, progress=_progress_printer())
-            summaries, write = result.summaries, functools.partial(result.to_hdf5, target, command=command)
+        if scenario.sweep or summary_only:  # written chunk by chunk as the runs finish
+            result = sweep(scenario, summary_only=summary_only, progress=_progress_printer(), output=target,
+                           command=command, resume=resume)
+            summaries, write = result.summaries, (lambda: None)
             warnings = result.warnings
         else:  # one run: the plain compiled loop, kept in the persistent cache
             one = simulate(scenario)
@@ -160,6 +168,10 @@ def run(scenario, output, overrides, sweeps, summary_only):
             warnings = one.warnings
     except SimulationError as exc:
         _fail(str(exc), RUN_FAILED)
+    except ResumeError as exc:
+        _fail(f"--resume: {exc}")
+    except OSError as exc:  # the results file could not be written (a full disk, no permission)
+        _fail(f"{output}: cannot write: {exc.strerror or exc}")
     for warning in warnings[:5]:
         click.echo(f"hoistsim: warning: {warning}", err=True)
     if len(warnings) > 5:

@@ -86,25 +86,53 @@ class SweepResult:
 
 
 def sweep(scenario: Scenario, *, summary_only: bool = False, chunk_size: int | None = None,
-          progress: Callable[[int, int], None] | None = None) -> SweepResult:
-    """Run every value of the scenario's sweep (one run if it has none), vectorised."""
+          progress: Callable[[int, int], None] | None = None, output=None, command: str = "",
+          resume: bool = False) -> SweepResult:
+    """Run every value of the scenario's sweep (one run if it has none), vectorised.
+
+    With ``output`` (a path), the results file is written as the chunks finish
+    (:mod:`hoistsim.streaming`): memory stays at a chunk's worth, the result
+    keeps the summaries only, and ``resume`` goes on from the chunks an
+    interrupted run of the same sweep left in its partial file.
+    """
     pairs = sweep_values(scenario)
     labels = [label for label, _ in pairs]
     scenarios = [one for _, one in pairs]
     keys = list(scenario.sweep or {})
+    parameters = {key: np.asarray([swept_number(one, key) for one in scenarios]) for key in keys}
     started = time.perf_counter()
     warnings: list[str] = []
-    outcome = simulate_many(scenarios, labels, summary_only=summary_only, chunk_size=chunk_size,
-                            progress=progress, warnings=warnings)
-    runs = None if summary_only else outcome
-    summaries = outcome if summary_only else [run.summary for run in outcome]
+    stream = None
+    if output is not None:
+        from .streaming import StreamedFile
+
+        stream = StreamedFile(output, scenario, labels, parameters, summary_only=summary_only, command=command,
+                              resume=resume)
+    try:
+        outcome = simulate_many(scenarios, labels, summary_only=summary_only, chunk_size=chunk_size,
+                                progress=progress, warnings=warnings, sink=stream,
+                                skip_chunks=stream.chunks_done if stream is not None else 0)
+        if stream is not None:
+            for i, row in stream.written_summaries().items():
+                if outcome[i] is None:
+                    outcome[i] = row
+            stream.finish()
+    except SimulationError:
+        if stream is not None:
+            stream.discard()  # a run that fails would fail again: nothing to resume
+        raise
+    except BaseException:
+        if stream is not None:
+            stream.close()  # interrupted: the chunks stay for --resume
+        raise
+    streamed = summary_only or stream is not None
     return SweepResult(
         scenario=scenario,
         labels=labels,
         keys=keys,
-        parameters={key: np.asarray([swept_number(one, key) for one in scenarios]) for key in keys},
-        summaries=summaries,
-        runs=runs,
+        parameters=parameters,
+        summaries=outcome if streamed else [run.summary for run in outcome],
+        runs=None if streamed else outcome,
         stats={"wall_time": time.perf_counter() - started, "runs": len(labels)},
         warnings=warnings,
     )
@@ -121,15 +149,21 @@ def swept_number(scenario: Scenario, key: str) -> float:
 
 
 def simulate_many(scenarios: list[Scenario], labels: list[str], *, summary_only: bool = False,
-                  chunk_size: int | None = None, progress=None, warnings: list | None = None) -> list:
+                  chunk_size: int | None = None, progress=None, warnings: list | None = None,
+                  sink=None, skip_chunks: int = 0) -> list:
     """RunResults (or, with ``summary_only``, summary dicts) for many scenarios, in their order.
 
     A machine with a periodic regime keeps its event rows even for summaries:
     its regime is read from them.  ``warnings`` collects what the runs warn of.
+    ``sink`` (:class:`hoistsim.streaming.StreamedFile`) takes each chunk as it
+    finishes, and only the runs' summaries are kept; the first ``skip_chunks``
+    chunks (a resumed sweep's, in the file already) are not run and stay None.
     """
     plans = [build_plan(s, summary_only=summary_only) for s in scenarios]
+    if sink is not None:
+        sink.begin([grid for _, grid in plans])
     out: list = [None] * len(scenarios)
-    done = 0
+    done, chunk_number = 0, 0
     for indices in _groups(scenarios, plans):
         group = [plans[i][0] for i in indices]
         group = _padded_tables(group)
@@ -146,6 +180,10 @@ def simulate_many(scenarios: list[Scenario], labels: list[str], *, summary_only:
         run, built = None, None
         for start in range(0, len(indices), chunk):
             part = indices[start:start + chunk]
+            chunk_number += 1
+            if chunk_number <= skip_chunks:  # in the file from before the interruption
+                done += len(part)
+                continue
             batch = group[start:start + chunk]
             batch = batch + [batch[-1]] * (chunk - len(batch))  # a full chunk: one compiled shape
             stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *batch)
@@ -182,6 +220,11 @@ def simulate_many(scenarios: list[Scenario], labels: list[str], *, summary_only:
                     out[i] = run_result(scenarios[i], labels[i], plans[i][1], one, elapsed)
                     if warnings is not None:
                         warnings.extend(out[i].warnings)
+            if sink is not None:
+                sink.write(part, [out[i] for i in part])
+                if not summary_only:  # written: keep the summary, let the series go
+                    for i in part:
+                        out[i] = out[i].summary
             done += len(part)
             if progress is not None:
                 progress(done, len(scenarios))

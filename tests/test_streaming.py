@@ -1,0 +1,131 @@
+"""A sweep's file is written as its chunks finish, and an interrupted sweep resumes to the same numbers."""
+
+from __future__ import annotations
+
+import signal
+import subprocess
+import sys
+import textwrap
+
+import h5py
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from conftest import SCENARIOS
+
+from hoistsim import load_scenario, sweep
+from hoistsim.cli import main
+from hoistsim.streaming import ResumeError, StreamedFile, partial_path
+
+SWEEP_FILE = SCENARIOS / "force_sweep_engage_at_speed.yaml"
+CLOCKS = {"solver_wall_time"}  # the only numbers that differ between two runs of the same sweep
+
+
+def _short(count=10, summary_only=False):
+    return load_scenario(SWEEP_FILE, overrides=["simulation.duration=0.4 s"],
+                         sweeps=[f"clutch.engagement_force=3 kN:12 kN:{count}"])
+
+
+def _datasets(path) -> dict:
+    out = {}
+    with h5py.File(path, "r") as f:
+        def visit(name, item):
+            if isinstance(item, h5py.Dataset) and name.rsplit("/", 1)[-1] not in CLOCKS and name != "scenario":
+                out[name] = item.asstr()[()] if item.dtype.kind == "O" else item[()]
+        f.visititems(visit)
+    return out
+
+
+def _same(a: dict, b: dict) -> None:
+    assert sorted(a) == sorted(b)
+    for name in a:
+        if a[name].dtype.kind == "f":
+            np.testing.assert_array_equal(a[name], b[name], err_msg=name)  # NaN where NaN, bits elsewhere
+        else:
+            assert (a[name] == b[name]).all(), name
+
+
+class _Stop(Exception):
+    pass
+
+
+def _interrupted(scenario, target, chunks: int, summary_only: bool, monkeypatch):
+    """Run the sweep to ``target`` and stop it after ``chunks`` chunks are written."""
+    written = {"n": 0}
+    original = StreamedFile.write
+
+    def write(self, indices, outcomes):
+        original(self, indices, outcomes)
+        written["n"] += 1
+        if written["n"] == chunks:
+            raise _Stop
+
+    monkeypatch.setattr(StreamedFile, "write", write)
+    with pytest.raises(_Stop):
+        sweep(scenario, summary_only=summary_only, chunk_size=4, output=target)
+    monkeypatch.setattr(StreamedFile, "write", original)
+
+
+@pytest.mark.parametrize("summary_only", [pytest.param(False, marks=pytest.mark.slow), True])
+def test_a_resumed_sweep_equals_an_uninterrupted_one(tmp_path, monkeypatch, summary_only):
+    scenario = _short()
+    whole = sweep(scenario, summary_only=summary_only, chunk_size=4, output=tmp_path / "whole.h5")
+    _interrupted(scenario, tmp_path / "resumed.h5", 2, summary_only, monkeypatch)
+    assert not (tmp_path / "resumed.h5").exists() and partial_path(tmp_path / "resumed.h5").exists()
+    assert len(list(partial_path(tmp_path / "resumed.h5").glob("chunk-*.h5"))) == 2  # two whole chunks kept
+    resumed = sweep(scenario, summary_only=summary_only, chunk_size=4, output=tmp_path / "resumed.h5", resume=True)
+    assert not partial_path(tmp_path / "resumed.h5").exists()
+    _same(_datasets(tmp_path / "whole.h5"), _datasets(tmp_path / "resumed.h5"))
+    assert [r["lockup_time"] for r in resumed.summaries] == pytest.approx(
+        [r["lockup_time"] for r in whole.summaries], nan_ok=True, rel=0, abs=0)
+
+
+@pytest.mark.slow
+def test_the_streamed_file_is_the_file_written_at_once(tmp_path):
+    scenario = _short(6)
+    sweep(scenario, chunk_size=4, output=tmp_path / "streamed.h5")
+    sweep(scenario).to_hdf5(tmp_path / "at_once.h5")
+    _same(_datasets(tmp_path / "streamed.h5"), _datasets(tmp_path / "at_once.h5"))
+
+
+def test_resume_refuses_another_scenario_in_one_line(tmp_path, monkeypatch):
+    target = tmp_path / "forces.h5"
+    _interrupted(_short(), target, 1, True, monkeypatch)
+    with pytest.raises(ResumeError, match="holds another scenario or other options"):
+        sweep(_short(12), summary_only=True, chunk_size=4, output=target, resume=True)
+    result = CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(target), "--summary-only", "--resume",
+                                       "--set", "simulation.duration=0.4 s",
+                                       "--sweep", "clutch.engagement_force=3 kN:12 kN:11"])
+    assert result.exit_code == 2
+    lines = result.output.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("hoistsim: error: --resume: ") and not target.exists()
+    nothing = CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(tmp_path / "new.h5"), "--summary-only",
+                                        "--resume"])
+    assert nothing.exit_code == 2 and "no interrupted sweep" in nothing.output
+
+
+@pytest.mark.slow
+def test_a_sweep_killed_while_writing_a_chunk_resumes_from_the_last_whole_one(tmp_path):
+    """SIGKILL while the second chunk is being written: it is not among the chunks kept, --resume redoes it."""
+    target = tmp_path / "killed.h5"
+    script = textwrap.dedent(f"""
+        import os, signal
+        from hoistsim import load_scenario, sweep
+        from hoistsim import streaming
+        calls = {{"n": 0}}
+        original = streaming.StreamedFile._write_runs
+        def write_runs(self, f, runs):
+            calls["n"] += 1
+            original(self, f, runs)
+            if calls["n"] == 2:  # the chunk's data written, its file not yet renamed into place
+                os.kill(os.getpid(), signal.SIGKILL)
+        streaming.StreamedFile._write_runs = write_runs
+        s = load_scenario({str(SWEEP_FILE)!r}, overrides=["simulation.duration=0.4 s"],
+                          sweeps=["clutch.engagement_force=3 kN:12 kN:10"])
+        sweep(s, chunk_size=4, output={str(target)!r})
+    """)
+    proc = subprocess.run([sys.executable, "-c", script], capture_output=True)
+    assert proc.returncode == -signal.SIGKILL and not target.exists()
+    sweep(_short(), chunk_size=4, output=target, resume=True)
+    sweep(_short(), chunk_size=4, output=tmp_path / "whole.h5")
+    _same(_datasets(tmp_path / "whole.h5"), _datasets(target))
