@@ -40,6 +40,10 @@ _INSTANT_TEXT = {"run": ("1", "the run it belongs to"), "time": ("s", "the insta
                  "mode_after": ("1", "the coupling's mode after it")}
 
 
+FILE_BYTES = 32 * 2**20  # series gathered into one chunk file
+FILE_RUNS = 65536  # summaries gathered into one chunk file
+
+
 class ResumeError(Exception):
     """--resume cannot go on (another scenario, other options, nothing to resume)."""
 
@@ -78,10 +82,14 @@ class StreamedFile:
             shutil.rmtree(self.folder, ignore_errors=True)
             self.folder.mkdir()
             (self.folder / "key").write_text(self.key)
-        self.chunks_done = 0
-        while self._chunk(self.chunks_done + 1).is_file():  # whole chunks only: each appears by a rename
-            self.chunks_done += 1
-        self.written = self.chunks_done
+        # whole files only (each appears by a rename); a file holds one or more of the sweep's chunks
+        self.files, self.chunks_done = 0, 0
+        while self._chunk(self.files + 1).is_file():
+            self.files += 1
+            with h5py.File(self._chunk(self.files), "r") as f:
+                self.chunks_done += int(f.attrs["sweep_chunks"])
+        self.resumed_files = self.files
+        self.pending: list = []  # chunks finished, not yet in a file: (indices, outcomes)
 
     def _chunk(self, number: int) -> Path:
         return self.folder / f"chunk-{number:07d}.h5"
@@ -98,11 +106,27 @@ class StreamedFile:
         self.padded = not same  # some run lacks some rows: every series is float, NaN there
 
     def write(self, indices, outcomes) -> None:
-        """One finished chunk: its runs (RunResults, or summary dicts when summary-only), at ``indices``."""
-        self.written += 1
-        final = self._chunk(self.written)
+        """One finished chunk: its runs (RunResults, or summary dicts when summary-only), at ``indices``.
+
+        Chunks are gathered into files of about FILE_BYTES of series (or FILE_RUNS summaries): few
+        files, each written once; what a kill loses is at most one file's worth of runs.
+        """
+        self.pending.append((list(indices), list(outcomes)))
+        runs = sum(len(i) for i, _ in self.pending)
+        size = 0 if self.summary_only else runs * self.time.size * 8 * len(outcomes[0].series)
+        if size >= FILE_BYTES or runs >= FILE_RUNS:
+            self._flush()
+
+    def _flush(self) -> None:
+        if not self.pending:
+            return
+        indices = [i for part, _ in self.pending for i in part]
+        outcomes = [o for _, part in self.pending for o in part]
+        self.files += 1
+        final = self._chunk(self.files)
         partial = final.with_suffix(".tmp")
         with h5py.File(partial, "w") as f:
+            f.attrs["sweep_chunks"] = len(self.pending)
             f["indices"] = np.asarray(indices, dtype=np.int64)
             summaries = [o if self.summary_only else o.summary for o in outcomes]
             f.attrs["columns"] = json.dumps([k for k in summaries[0] if k != "label"])
@@ -113,6 +137,7 @@ class StreamedFile:
             if not self.summary_only:
                 self._write_runs(f, outcomes)
         os.replace(partial, final)
+        self.pending = []
 
     def _write_runs(self, f: h5py.File, runs) -> None:
         for key, (units, values) in output._run_extras(runs).items():
@@ -150,7 +175,7 @@ class StreamedFile:
     def written_summaries(self) -> dict[int, dict]:
         """The summaries of the runs in chunks written before a resume, by run index."""
         rows = {}
-        for number in range(1, self.chunks_done + 1):
+        for number in range(1, self.resumed_files + 1):
             with h5py.File(self._chunk(number), "r") as f:
                 columns = json.loads(f.attrs["columns"])
                 values = {key: f[f"values/{key}"][()].tolist() for key in columns}
@@ -162,9 +187,10 @@ class StreamedFile:
 
     def finish(self) -> None:
         """Assemble the results file from the chunks, one at a time; it takes the target's name atomically."""
+        self._flush()
         with output.atomic_path(self.target) as tmp:
             with h5py.File(tmp, "w") as f:
-                _Assembly(f, self).build([self._chunk(n) for n in range(1, self.written + 1)])
+                _Assembly(f, self).build([self._chunk(n) for n in range(1, self.files + 1)])
         shutil.rmtree(self.folder, ignore_errors=True)
 
     def discard(self) -> None:
@@ -213,14 +239,14 @@ class _Assembly:
         group.attrs["solver"], group.attrs["rtol"], group.attrs["atol"] = sim.solver, sim.rtol, sim.atol
         output._write_scenario(f, stream.scenario, stream.command)
 
-    def _column(self, group, name, dtype, units, text="", time_axis=False):
+    def _column(self, group, name, dtype, units, text="", time_axis=False, rows=1):
         if name in group:
             return group[name]
         shape = (self.count, group["time"].shape[0]) if time_axis else (self.count,)
         options = {}
-        if time_axis:
-            options = dict(chunks=(min(self.count, max(1, 2**18 // max(shape[1], 1))), shape[1]),
-                           compression="gzip", compression_opts=1, shuffle=True)
+        if time_axis:  # an HDF5 chunk a sweep chunk: each is written once, never read back and rewritten
+            options = dict(chunks=(min(self.count, rows), shape[1]), compression="gzip", compression_opts=1,
+                           shuffle=True)
         data = group.create_dataset(name, shape=shape, dtype=dtype,
                                     fillvalue=np.nan if np.dtype(dtype).kind == "f" else 0, **options)
         data.attrs["units"] = units
@@ -241,7 +267,7 @@ class _Assembly:
                 self._column(group, key, item.dtype, str(item.attrs["units"]))[rows] = item[()]
         for name, item in chunk.get("series", {}).items():
             self._column(group, name, item.dtype, str(item.attrs["units"]), str(item.attrs["long_name"]),
-                         time_axis=True)[rows] = item[()]
+                         time_axis=True, rows=len(indices))[rows] = item[()]
         if "instants" in chunk:
             self._instants(group, chunk, indices)
         for key, part in chunk.get("periodic", {}).items():

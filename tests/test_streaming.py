@@ -49,6 +49,14 @@ class _Stop(Exception):
     pass
 
 
+@pytest.fixture(autouse=True)
+def a_file_a_chunk(monkeypatch):
+    """Every chunk in a file of its own (a sweep of a few short runs would otherwise fill one file)."""
+    from hoistsim import streaming
+
+    monkeypatch.setattr(streaming, "FILE_RUNS", 1)
+
+
 def _interrupted(scenario, target, chunks: int, summary_only: bool, monkeypatch):
     """Run the sweep to ``target`` and stop it after ``chunks`` chunks are written."""
     written = {"n": 0}
@@ -112,6 +120,7 @@ def test_a_sweep_killed_while_writing_a_chunk_resumes_from_the_last_whole_one(tm
         import os, signal
         from hoistsim import load_scenario, sweep
         from hoistsim import streaming
+        streaming.FILE_RUNS = 1
         calls = {{"n": 0}}
         original = streaming.StreamedFile._write_runs
         def write_runs(self, f, runs):
