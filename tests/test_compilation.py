@@ -9,6 +9,7 @@ from hoistsim import simulate
 from hoistsim.core import loop
 
 
+@pytest.mark.slow
 def test_new_parameter_values_do_not_recompile():
     simulate(scene(force="3000 N", mass="500 kg", duration="1 s"))
     before = loop.trace_count
