@@ -71,6 +71,7 @@ class StreamedFile:
         self.summary_only, self.command = summary_only, command
         self.key = resume_key(scenario, summary_only)
         self.time, self.padded = None, False
+        self.discarded = 0
         if resume:
             if not (self.folder / "key").is_file():
                 raise ResumeError(f"no interrupted sweep ({self.folder.name}) beside {self.target.name} to resume; "
@@ -78,7 +79,8 @@ class StreamedFile:
             if (self.folder / "key").read_text() != self.key:
                 raise ResumeError(f"{self.folder.name} holds another scenario or other options (or another "
                                   "hoistsim); run without --resume to start again")
-        else:
+        else:  # a fresh start: an interrupted sweep's chunks there go (said: ``discarded``)
+            self.discarded = len(list(self.folder.glob("chunk-*.h5"))) if self.folder.is_dir() else 0
             shutil.rmtree(self.folder, ignore_errors=True)
             self.folder.mkdir()
             (self.folder / "key").write_text(self.key)

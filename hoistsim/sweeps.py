@@ -12,6 +12,7 @@ import dataclasses
 import functools
 import math
 import time
+from pathlib import Path
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -108,6 +109,9 @@ def sweep(scenario: Scenario, *, summary_only: bool = False, chunk_size: int | N
 
         stream = StreamedFile(output, scenario, labels, parameters, summary_only=summary_only, command=command,
                               resume=resume)
+        if stream.discarded:
+            warnings.append(f"{Path(output).name}: an interrupted sweep's {stream.discarded} chunk file(s) were "
+                            "discarded (--resume keeps them)")
     try:
         outcome = simulate_many(scenarios, labels, summary_only=summary_only, chunk_size=chunk_size,
                                 progress=progress, warnings=warnings, sink=stream,

@@ -138,3 +138,11 @@ def test_a_sweep_killed_while_writing_a_chunk_resumes_from_the_last_whole_one(tm
     sweep(_short(), chunk_size=4, output=target, resume=True)
     sweep(_short(), chunk_size=4, output=tmp_path / "whole.h5")
     _same(_datasets(tmp_path / "whole.h5"), _datasets(target))
+
+
+def test_starting_afresh_over_an_interrupted_sweep_says_so(tmp_path, monkeypatch):
+    target = tmp_path / "forces.h5"
+    _interrupted(_short(), target, 1, True, monkeypatch)
+    again = sweep(_short(), summary_only=True, chunk_size=4, output=target)
+    assert again.warnings == ["forces.h5: an interrupted sweep's 1 chunk file(s) were discarded (--resume keeps them)"]
+    assert target.exists() and not partial_path(target).exists()
