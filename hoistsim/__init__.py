@@ -22,7 +22,7 @@ _PUBLIC = {
     "SweepResult": "sweeps",
     "exact_from_scenario": "exact",
     "solve_exact": "exact",
-    "open_results": "output",
+    "open_results": "reading",
 }
 __all__ = sorted(_PUBLIC)
 

@@ -7,11 +7,9 @@ stderr; --debug shows the traceback.
 
 from __future__ import annotations
 
-import contextlib
 import functools
 import os
 import sys
-import threading
 import time
 from pathlib import Path
 
@@ -23,6 +21,7 @@ os.environ.setdefault("EQX_ON_ERROR", "nan")
 import click  # noqa: E402
 
 from .scenario import ScenarioError  # noqa: E402
+from .terminal import compiling, progress_printer  # noqa: E402
 
 BAD_INPUT, RUN_FAILED = 2, 1
 
@@ -147,7 +146,7 @@ def run(scenario, output, overrides, sweeps, summary_only, resume):
     from .sweeps import sweep
 
     _jax.enable_compilation_cache()
-    _jax.compile_notice = _compiling
+    _jax.compile_notice = compiling
     command = "hoistsim run " + " ".join(
         [scenario_path, "-o", output, *(f"--set {o}" for o in overrides), *(f"--sweep {w}" for w in sweeps)]
         + (["--summary-only"] if summary_only else []))
@@ -158,14 +157,13 @@ def run(scenario, output, overrides, sweeps, summary_only, resume):
         _fail("--resume: only a sweep (or --summary-only) is written in chunks; run it again instead")
     try:
         if scenario.sweep or summary_only:  # written chunk by chunk as the runs finish
-            result = sweep(scenario, summary_only=summary_only, progress=_progress_printer(), output=target,
+            result = sweep(scenario, summary_only=summary_only, progress=progress_printer(), output=target,
                            command=command, resume=resume)
-            summaries, write = result.summaries, (lambda: None)
-            warnings = result.warnings
+            summaries, warnings = result.summaries, result.warnings
         else:  # one run: the plain compiled loop, kept in the persistent cache
             one = simulate(scenario)
-            summaries, write = [one.summary], functools.partial(write_runs, target, [one], command=command)
-            warnings = one.warnings
+            write_runs(target, [one], command=command)
+            summaries, warnings = [one.summary], one.warnings
     except SimulationError as exc:
         _fail(str(exc), RUN_FAILED)
     except ResumeError as exc:
@@ -176,10 +174,6 @@ def run(scenario, output, overrides, sweeps, summary_only, resume):
         click.echo(f"hoistsim: warning: {warning}", err=True)
     if len(warnings) > 5:
         click.echo(f"hoistsim: warning: ... and {len(warnings) - 5} more runs like these", err=True)
-    try:
-        write()
-    except OSError as exc:
-        _fail(f"{output}: cannot write: {exc.strerror or exc}")
     elapsed = time.perf_counter() - started
     click.echo(summary_table(summaries))
     if "irregularity" in summaries[0]:
@@ -188,49 +182,6 @@ def run(scenario, output, overrides, sweeps, summary_only, resume):
     count = len(summaries)
     click.echo(f"wrote {output} ({count} run{'s' if count != 1 else ''}"
                f"{', summaries only' if summary_only else ''}, {elapsed:.2f} s)")
-
-
-@contextlib.contextmanager
-def _compiling(name: str):
-    """Say on stderr that a scene's solver is compiling: one line, and on a terminal the seconds as they pass."""
-    text = "hoistsim: compiling the solver for this scene's structure (once; later runs load it)"
-    if not sys.stderr.isatty():
-        click.echo(text, err=True)
-        yield
-        return
-    started = time.perf_counter()
-    done = threading.Event()
-
-    def tick() -> None:
-        while not done.wait(0.25):
-            click.echo(f"\r{text}: {time.perf_counter() - started:.0f} s", err=True, nl=False)
-
-    ticker = threading.Thread(target=tick, daemon=True)
-    ticker.start()
-    try:
-        yield
-    finally:
-        done.set()
-        ticker.join()
-        click.echo(f"\r{text}: done in {time.perf_counter() - started:.1f} s", err=True)
-
-
-def _progress_printer():
-    """Progress of a long sweep on stderr, only when stderr is a terminal."""
-    if not sys.stderr.isatty():
-        return None
-    started = time.perf_counter()
-
-    def show(done: int, total: int) -> None:
-        elapsed = time.perf_counter() - started
-        left = elapsed / done * (total - done) if done else 0.0
-        end = "\n" if done == total else ""
-        click.echo(f"\r  {done}/{total} runs ({100 * done / total:.0f} %), {elapsed:.1f} s, ~{left:.0f} s left   ",
-                   err=True, nl=False)
-        if end:
-            click.echo("", err=True)
-
-    return show
 
 
 @main.command()
@@ -325,7 +276,7 @@ def flywheel(scenario, irregularity, as_json, overrides, density, width, outer_d
     elif width is not None or outer_diameter is not None:
         _fail("--width and --outer-diameter need --density (the rim's material)")
     _jax.enable_compilation_cache()
-    _jax.compile_notice = _compiling
+    _jax.compile_notice = compiling
     started = time.perf_counter()
     sizing = size_flywheel(scenario, irregularity)
     if rim_sizes is not None:
@@ -371,7 +322,7 @@ def compare(results, as_csv, columns):
     By default as many columns as fit 120 characters, the questions first (lock-up, heat, torque,
     where the load went); units under the names.
     """
-    from .output import read_summary, read_summary_units
+    from .reading import read_summary, read_summary_units
     from .report import compare_table
 
     rows = _read(read_summary, results)

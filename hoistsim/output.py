@@ -1,4 +1,10 @@
-"""HDF5 output, written atomically: a file is complete or absent.
+"""HDF5 output, format 2, written atomically: a file is complete or absent.
+
+Runs arrive as *records* (:func:`write_record`: a chunk's summaries, series
+blocks and instants) and :func:`assemble` builds the file from them one at a
+time, so one run written at once (one record in memory) and a sweep streamed
+as its chunks finish (records kept as files, :mod:`hoistsim.streaming`) take
+the same path.  Reading is :mod:`hoistsim.reading`.
 
 Format 2 (the contract's names; see README), one layout for one run or a million:
 
@@ -10,8 +16,6 @@ Format 2 (the contract's names; see README), one layout for one run or a million
                    category, torque_margin, mode_after, and each series just after it
     /periodic/<i>/ the periodic regime of run i: periods (a row a period) and turning_moment
     /scenario      the scenario text, with provenance attributes
-
-Format 1 files (a group per run, /summary) are still read.
 """
 
 from __future__ import annotations
@@ -22,6 +26,7 @@ import json
 import os
 import platform
 import tempfile
+from dataclasses import dataclass
 from pathlib import Path
 
 import h5py
@@ -77,38 +82,25 @@ def provenance() -> dict[str, str]:
 
 
 def write_runs(path, runs, *, command: str = "", parameters: dict | None = None) -> None:
-    """Write runs (in sweep order) to ``path`` atomically, stacked (format 2)."""
+    """Write runs (in sweep order) to ``path`` atomically: one record of them all, assembled."""
     if not runs:
         raise ValueError("no runs to write")
-    with atomic_path(path) as tmp:
-        with h5py.File(tmp, "w") as f:
-            _start_file(f, summary_only=False)
-            group = f.create_group("runs")
-            _write_run_variables(group, [run.summary for run in runs], parameters or {},
-                                 _summary_units(runs[0].scenario), runs[0].scenario,
-                                 extra=_run_extras(runs))
-            _write_series(group, runs)
-            _write_instants(group.create_group("events"), runs)
-            for index, run in enumerate(runs):
-                if run.periodic is not None:
-                    periodic = f.create_group(f"periodic/{index}")
-                    _write_periods(periodic.create_group("periods"), run.periodic.regime)
-                    if run.periodic.diagram is not None:
-                        _write_diagram(periodic.create_group("turning_moment"), run.periodic.diagram)
-            _write_scenario(f, runs[0].scenario, command)
+    _write_at_once(path, runs[0].scenario, [run.label or run.name for run in runs], parameters or {}, runs,
+                   summary_only=False, command=command)
 
 
 def write_sweep(path, result, *, command: str = "") -> None:
     """Write a sweep: every run's time series, or (summary-only) the run variables alone."""
-    if result.runs is not None:
-        write_runs(path, result.runs, command=command, parameters=result.parameters)
-        return
-    with atomic_path(path) as tmp:
-        with h5py.File(tmp, "w") as f:
-            _start_file(f, summary_only=True)
-            _write_run_variables(f.create_group("runs"), result.summaries, result.parameters,
-                                 _summary_units(result.scenario), result.scenario)
-            _write_scenario(f, result.scenario, command)
+    summary_only = result.runs is None
+    _write_at_once(path, result.scenario, result.labels, result.parameters,
+                   result.summaries if summary_only else result.runs, summary_only=summary_only, command=command)
+
+
+def _write_at_once(path, scenario, labels, parameters, outcomes, *, summary_only: bool, command: str) -> None:
+    time, padded = (None, False) if summary_only else common_time([run.grid for run in outcomes])
+    with h5py.File(f"record-{id(outcomes)}", "w", driver="core", backing_store=False) as record:
+        write_record(record, range(len(outcomes)), outcomes, summary_only=summary_only, time=time, padded=padded)
+        assemble(path, [record], Heading(scenario, labels, parameters, summary_only, time, command))
 
 
 FORMAT_VERSION = 2
@@ -150,90 +142,201 @@ def _run_extras(runs) -> dict:
     return extras
 
 
-def _write_run_variables(group: h5py.Group, rows: list[dict], parameters: dict, units: dict[str, str],
-                         scenario, extra: dict | None = None) -> None:
-    """The (run) variables: label, each swept key's SI value (NaN for tables), every summary column."""
-    from .scenario import key_units
-
-    run = _scale(group, "run", np.arange(len(rows)), "1", "run index, in sweep order")
-    _variable(group, "label", np.asarray([row["label"] for row in rows], dtype=object), "1",
-              "the run's swept values (or the scenario's name)", (run,), dtype=_TEXT)
-    for key, values in parameters.items():
-        _variable(group, key, np.asarray(values, dtype=float), key_units(key), f"swept: {key} (SI)", (run,))
-    columns = [k for k in rows[0] if k != "label"]
-    for key in columns:
-        kind = "f8" if isinstance(rows[0][key], float) else "i8"
-        _variable(group, key, np.asarray([row[key] for row in rows], dtype=kind), units.get(key, ""), "", (run,))
-    for key, (unit, values) in (extra or {}).items():
-        if key not in group:  # the residuals are summary columns already
-            _variable(group, key, values, unit, "", (run,))
-    group.attrs["swept_keys"] = json.dumps(list(parameters))
-    group.attrs["summary_columns"] = json.dumps(["label", *parameters, *columns])
-    group.attrs["name"] = scenario.name
-    group.attrs["parameters"] = json.dumps(scenario.resolved(), sort_keys=True)
-    sim = scenario.simulation
-    group.attrs["solver"], group.attrs["rtol"], group.attrs["atol"] = sim.solver, sim.rtol, sim.atol
-
-
-def _common_grid(runs) -> tuple[np.ndarray, list]:
-    """The time axis every run's grid lies on, and where each run's grid rows fall in it."""
-    grids = [np.asarray(run.grid if run.grid is not None else run.time) for run in runs]
+def common_time(grids) -> tuple[np.ndarray, bool]:
+    """The time axis every run's output grid lies on, and whether some run lacks some of its rows."""
+    grids = [np.asarray(g) for g in grids]
     if all(g.shape == grids[0].shape and np.array_equal(g, grids[0]) for g in grids[1:]):
-        return grids[0], [slice(None)] * len(runs)
-    union = np.unique(np.concatenate(grids))
-    return union, [np.searchsorted(union, g) for g in grids]
+        return grids[0], False
+    return np.unique(np.concatenate(grids)), True
 
 
-def stacked_series(runs):
-    """The common time axis and every series stacked (run, time): each run's output-grid rows, NaN where
-    a run has no row (a flag column stays a small integer where every run has every row)."""
-    time, places = _common_grid(runs)
-    padded = any(not isinstance(p, slice) for p in places)
+def series_blocks(runs, time, padded: bool) -> dict[str, np.ndarray]:
+    """Every series of the runs on (run, time): each run's output-grid rows, NaN where a run has no row
+    (a flag stays a small integer where every run has every row)."""
+    blocks = {}
+    places = [np.searchsorted(time, run.grid) for run in runs]
     rows = [run.grid_rows() for run in runs]
-    stacked = {}
     for name, first in runs[0].series.items():
         dtype = np.float64 if padded or first.dtype.kind == "f" else first.dtype
-        values = np.full((len(runs), time.size), np.nan if dtype == np.float64 else 0, dtype=dtype)
-        for i, (run, place) in enumerate(zip(runs, places)):
-            values[i, place] = run.series[name][rows[i]]
-        stacked[name] = values
-    return time, stacked
+        block = np.full((len(runs), time.size), np.nan if dtype == np.float64 else 0, dtype=dtype)
+        for k, run in enumerate(runs):
+            block[k, places[k]] = run.series[name][rows[k]]
+        blocks[name] = block
+    return blocks
 
 
-def _write_series(group: h5py.Group, runs) -> None:
-    """Every series on (run, time), chunked along run and compressed."""
-    time, stacked = stacked_series(runs)
-    scale = _scale(group, "time", time, "s", "time since the start (the output grid; exact instants are in events)")
+# ------------------------------------------------------------------ records: runs as they finish
+
+# What an instant row holds besides the series just after it, with its units and meaning.
+_INSTANT_COLUMNS = {
+    "time": ("s", "the instant, exact (root-found or scheduled)"),
+    "kind": ("1", "lock, unlock, reversal, engage, disengage, a scheduled event, an observation "
+                  "(slip_peak, load_lowest, ...) or a period mark"),
+    "element": ("1", "the element it belongs to"),
+    "category": ("1", "switch, scheduled, observation or cycle"),
+    "torque_margin": ("N*m", "the coupling's static capacity minus the torque it would carry stuck "
+                             "(NaN where it does not apply)"),
+    "mode_after": ("1", "the coupling's mode after it"),
+}
+_TEXT_COLUMNS = ("kind", "element", "category", "mode_after")
+
+
+def write_record(f: h5py.Group, indices, outcomes, *, summary_only: bool, time, padded: bool) -> None:
+    """Runs at ``indices`` (RunResults, or summary dicts when summary-only) as a record for :func:`assemble`."""
+    f["indices"] = np.asarray(list(indices), dtype=np.int64)
+    summaries = [o if summary_only else o.summary for o in outcomes]
+    columns = [k for k in summaries[0] if k != "label"]
+    f.attrs["columns"] = json.dumps(columns)
+    for key in columns:  # floats, else integers (a yes/no too)
+        f[f"values/{key}"] = np.asarray([row[key] for row in summaries],
+                                        dtype="f8" if isinstance(summaries[0][key], float) else "i8")
+    if summary_only:
+        return
+    runs = outcomes
+    for key, (units, values) in _run_extras(runs).items():
+        f[f"extras/{key}"] = values
+        f[f"extras/{key}"].attrs["units"] = units
     first = runs[0]
-    chunks = (min(len(runs), max(1, 2**18 // max(time.size, 1))), time.size)
-    for name, values in stacked.items():
-        _variable(group, name, values, first.units[name], first.descriptions.get(name, ""),
-                  (group["run"], scale), chunks=chunks, compression="gzip", compression_opts=1, shuffle=True)
-
-
-def _write_instants(group: h5py.Group, runs) -> None:
-    """Every exact instant of every run, one row each, with the value of every series just after it."""
-    tables = [run.all_instants() for run in runs]
-    counts = [len(t["time"]) for t in tables]
-    event = _scale(group, "event", np.arange(sum(counts)), "1", "instant index, runs in order")
-    _variable(group, "run", np.repeat(np.arange(len(runs)), counts), "1", "the run it belongs to", (event,))
-    texts = {"time": ("s", "the instant, exact (root-found or scheduled)"),
-             "kind": ("1", "lock, unlock, reversal, engage, disengage, a scheduled event, an observation "
-                           "(slip_peak, load_lowest, ...) or a period mark"),
-             "element": ("1", "the element it belongs to"),
-             "category": ("1", "switch, scheduled, observation or cycle"),
-             "torque_margin": ("N*m", "the coupling's static capacity minus the torque it would carry stuck "
-                                      "(NaN where it does not apply)"),
-             "mode_after": ("1", "the coupling's mode after it")}
-    for name, (units, text) in texts.items():
-        values = np.concatenate([np.asarray(t[name]) for t in tables]) if counts else np.zeros(0)
-        kind = dict(dtype=_TEXT) if name in ("kind", "element", "category", "mode_after") else {}
-        _variable(group, name, values.astype(object) if kind else values.astype(float), units, text, (event,),
-                  **kind)
-    first = runs[0]
+    for name, block in series_blocks(runs, time, padded).items():
+        f[f"series/{name}"] = block
+        f[f"series/{name}"].attrs["units"] = first.units[name]
+        f[f"series/{name}"].attrs["long_name"] = first.descriptions.get(name, "")
+    tables = [run.instants for run in runs]
+    f["instants/counts"] = np.asarray([len(t["time"]) for t in tables], dtype=np.int64)
+    for name in _INSTANT_COLUMNS:
+        values = np.concatenate([np.asarray(t[name]) for t in tables])
+        if name in _TEXT_COLUMNS:
+            f.create_dataset(f"instants/{name}", data=values.astype(object), dtype=_TEXT)
+        else:
+            f[f"instants/{name}"] = values.astype(float)
     for name in first.series:
-        values = np.concatenate([run.series[name][run.instant_rows()] for run in runs]) if counts else np.zeros(0)
-        _variable(group, name, values, first.units[name], "value just after the instant", (event,))
+        f[f"after/{name}"] = np.concatenate([run.series[name][run.instant_rows()] for run in runs])
+    for k, run in enumerate(runs):
+        if run.periodic is not None:
+            group = f.create_group(f"periodic/{k}")
+            _write_periods(group.create_group("periods"), run.periodic.regime)
+            if run.periodic.diagram is not None:
+                _write_diagram(group.create_group("turning_moment"), run.periodic.diagram)
+
+
+@dataclass
+class Heading:
+    """What a results file says of the whole sweep: its scenario, labels, swept values and time axis."""
+
+    scenario: object
+    labels: list
+    parameters: dict
+    summary_only: bool
+    time: np.ndarray | None
+    command: str = ""
+
+
+def assemble(path, records, layout: Heading) -> None:
+    """The results file at ``path`` from records taken one at a time, written under a temporary name
+    and moved into place: the (run) and (run, time) variables filled record by record (an HDF5 chunk a
+    record, written once), the instants appended."""
+    with atomic_path(path) as tmp:
+        with h5py.File(tmp, "w") as f:
+            Assembly(f, layout).build(records)
+
+
+class Assembly:
+    """Format 2 from records (see the module docstring)."""
+
+    def __init__(self, f: h5py.File, layout: Heading):
+        self.f, self.layout = f, layout
+        self.count = len(layout.labels)
+        self.instants = 0
+
+    def build(self, records) -> None:
+        f, layout = self.f, self.layout
+        _start_file(f, layout.summary_only)
+        group = f.create_group("runs")
+        run = _scale(group, "run", np.arange(self.count), "1", "run index, in sweep order")
+        _variable(group, "label", np.asarray(layout.labels, dtype=object), "1",
+                  "the run's swept values (or the scenario's name)", (run,), dtype=_TEXT)
+        from .scenario import key_units
+
+        for key, values in layout.parameters.items():
+            _variable(group, key, np.asarray(values, dtype=float), key_units(key), f"swept: {key} (SI)", (run,))
+        if layout.time is not None:
+            _scale(group, "time", layout.time, "s", "time since the start (the output grid; exact instants are in events)")
+        units = _summary_units(layout.scenario)
+        columns = None
+        for record in records:  # open HDF5 groups, one at a time
+            columns = columns or json.loads(record.attrs["columns"])
+            self._record(group, record, units)
+        group.attrs["summary_columns"] = json.dumps(["label", *layout.parameters, *(columns or [])])
+        group.attrs["swept_keys"] = json.dumps(list(layout.parameters))
+        group.attrs["name"] = layout.scenario.name
+        group.attrs["parameters"] = json.dumps(layout.scenario.resolved(), sort_keys=True)
+        sim = layout.scenario.simulation
+        group.attrs["solver"], group.attrs["rtol"], group.attrs["atol"] = sim.solver, sim.rtol, sim.atol
+        _write_scenario(f, layout.scenario, layout.command)
+
+    def _column(self, group, name, dtype, units, text="", time_axis=False, rows=1):
+        if name in group:
+            return group[name]
+        shape = (self.count, group["time"].shape[0]) if time_axis else (self.count,)
+        options = {}
+        if time_axis:  # an HDF5 chunk a record: each is written once, never read back and rewritten
+            options = dict(chunks=(min(self.count, rows), shape[1]), compression="gzip", compression_opts=1,
+                           shuffle=True)
+        data = group.create_dataset(name, shape=shape, dtype=dtype,
+                                    fillvalue=np.nan if np.dtype(dtype).kind == "f" else 0, **options)
+        data.attrs["units"] = units
+        if text:
+            data.attrs["long_name"] = text
+        data.dims[0].attach_scale(group["run"])
+        if time_axis:
+            data.dims[1].attach_scale(group["time"])
+        return data
+
+    def _record(self, group, record, units) -> None:
+        indices = record["indices"][()]
+        contiguous = indices[-1] - indices[0] + 1 == len(indices)
+        rows = slice(int(indices[0]), int(indices[-1]) + 1) if contiguous else indices
+        for key, item in record["values"].items():
+            self._column(group, key, item.dtype, units.get(key, ""))[rows] = item[()]
+        for key, item in record.get("extras", {}).items():
+            if key not in record["values"]:  # the residuals are summary values already
+                self._column(group, key, item.dtype, str(item.attrs["units"]))[rows] = item[()]
+        for name, item in record.get("series", {}).items():
+            self._column(group, name, item.dtype, str(item.attrs["units"]), str(item.attrs["long_name"]),
+                         time_axis=True, rows=len(indices))[rows] = item[()]
+        if "instants" in record:
+            self._instants(group, record, indices)
+        for key, part in record.get("periodic", {}).items():
+            self.f.copy(part, self.f.require_group("periodic"), name=str(int(indices[int(key)])))
+
+    def _instants(self, group, record, indices) -> None:
+        events = group.require_group("events")
+        counts = record["instants/counts"][()]
+        columns = {"run": np.repeat(indices, counts).astype(np.int64)}
+        for name in _INSTANT_COLUMNS:
+            item = record[f"instants/{name}"]
+            columns[name] = item.asstr()[()].astype(object) if name in _TEXT_COLUMNS else item[()]
+        columns.update({name: item[()] for name, item in record["after"].items()})
+        if "event" not in events:
+            scale = events.create_dataset("event", shape=(0,), maxshape=(None,), dtype=np.int64, chunks=(4096,))
+            scale.attrs["units"] = "1"
+            scale.attrs["long_name"] = "instant index, runs in order"
+            scale.make_scale("event")
+            texts = {"run": ("1", "the run it belongs to"), **_INSTANT_COLUMNS}
+            for name, values in columns.items():
+                units, text = texts[name] if name in texts else (str(group[name].attrs["units"]),
+                                                                 "value just after the instant")
+                data = events.create_dataset(name, shape=(0,), maxshape=(None,), chunks=(4096,),
+                                             dtype=_TEXT if name in _TEXT_COLUMNS else values.dtype)
+                data.attrs["units"] = units
+                data.attrs["long_name"] = text
+                data.dims[0].attach_scale(scale)
+        added, start = int(counts.sum()), self.instants
+        for name, values in {"event": np.arange(start, start + added), **columns}.items():
+            data = events[name]
+            data.resize((start + added,))
+            data[start:] = values
+        self.instants += added
 
 
 def _write_diagram(group: h5py.Group, diagram) -> None:
@@ -307,132 +410,3 @@ def _write_scenario(f: h5py.File, scenario, command: str) -> None:
     data.attrs["atol"] = scenario.simulation.atol
     for key, value in provenance().items():
         data.attrs[key] = value
-
-
-def _version(f: h5py.File) -> int:
-    return int(f.attrs.get("format_version", 1))
-
-
-def read_runs(path, columns=None, attributes=None) -> list[dict]:
-    """Read the runs of a file back as dicts of numpy arrays (for plots and tables), one per run.
-
-    Each has ``time`` and its series on the output grid with the exact instants
-    merged in (the state just after each), ``events`` (every instant: time,
-    kind, element, torque_margin, mode_after, category), ``attrs`` (name,
-    label, parameters and the run's summary values) and, for a periodic
-    regime, ``periods`` and ``turning_moment``.  ``columns``: the series to read
-    (all when None); ``attributes``: the summary values to keep past the first
-    run (all when None).
-    """
-    with h5py.File(path, "r") as f:
-        if _version(f) == 1:
-            return _read_runs_v1(f, columns, attributes)
-        if "runs" not in f or "time" not in f["runs"]:
-            return []  # summaries only
-        group = f["runs"]
-        time = group["time"][()]
-        series = [n for n, item in group.items() if isinstance(item, h5py.Dataset) and item.ndim == 2]
-        wanted = [n for n in series if columns is None or n in columns]
-        data = {name: group[name][()] for name in wanted}
-        rows = next((data[n] for n in wanted if data[n].dtype.kind == "f"), None)
-        if rows is None and series:
-            rows = group[series[0]][()].astype(float)
-        events = group["events"]
-        owner = events["run"][()]
-        instants = {name: events[name].asstr()[()] if events[name].dtype.kind == "O" else events[name][()]
-                    for name in ("time", "kind", "element", "torque_margin", "mode_after", "category")}
-        after = {name: events[name][()] for name in wanted}
-        summary = _run_variables(group)
-        base = {"name": group.attrs["name"], "parameters": group.attrs["parameters"]}
-        runs = []
-        for i in range(group["run"].shape[0]):
-            on_grid = np.isfinite(rows[i]) if rows is not None else np.ones(time.size, bool)
-            mine = owner == i
-            times = np.concatenate([time[on_grid], instants["time"][mine]])
-            order = np.argsort(times, kind="stable")
-            sorted_times = times[order]
-            keep = np.append(sorted_times[1:] != sorted_times[:-1], True)  # an instant on a grid time: its row
-            run = {name: np.concatenate([data[name][i][on_grid], after[name][mine]])[order][keep] for name in wanted}
-            run["time"] = sorted_times[keep]
-            table = np.zeros(int(mine.sum()), dtype=[("time", "f8"), ("kind", object), ("element", object),
-                                                     ("torque_margin", "f8"), ("mode_after", object),
-                                                     ("category", object)])
-            for name in table.dtype.names:
-                table[name] = instants[name][mine]
-            run["events"] = table
-            keys = summary if i == 0 or attributes is None else [k for k in attributes if k in summary]
-            run["attrs"] = {**base, **{k: summary[k][i] for k in keys}}
-            if f"periodic/{i}" in f:
-                for name, part in f[f"periodic/{i}"].items():
-                    run[name] = {k: v[()] for k, v in part.items()}
-                    run[name]["attrs"] = dict(part.attrs)
-            runs.append(run)
-    return runs
-
-
-def _run_variables(group: h5py.Group) -> dict[str, np.ndarray]:
-    """The (run) variables named in ``summary_columns``: label, swept keys, summary values."""
-    out = {}
-    for name in json.loads(group.attrs["summary_columns"]):
-        item = group[name]
-        out[name] = item.asstr()[()] if item.dtype.kind == "O" else item[()]
-    return out
-
-
-def read_swept_keys(path) -> list[str]:
-    with h5py.File(path, "r") as f:
-        holder = f["summary"] if _version(f) == 1 else f["runs"]
-        return json.loads(holder.attrs.get("swept_keys", "[]"))
-
-
-def read_summary_units(path) -> dict[str, str]:
-    """Each summary column's units (the swept keys' are SI; "" where none is recorded)."""
-    with h5py.File(path, "r") as f:
-        if _version(f) == 1:
-            text = f["summary"].attrs.get("units", "")
-            text = text.decode() if isinstance(text, bytes) else str(text)
-            return dict(item.split(": ", 1) for item in text.split(", ") if ": " in item)
-        group = f["runs"]
-        return {name: str(group[name].attrs.get("units", "")) for name in json.loads(group.attrs["summary_columns"])
-                if name != "label"}
-
-
-def read_summary(path) -> list[dict]:
-    """Every run's label, swept values and summary as one dict per run (plain Python values)."""
-    with h5py.File(path, "r") as f:
-        if _version(f) == 1:
-            table = f["summary"][()]
-            columns = {name: table[name] for name in table.dtype.names}
-        else:
-            columns = _run_variables(f["runs"])
-    names = list(columns)
-    lists = [np.asarray(columns[n]).tolist() for n in names]
-    return [{n: (v.decode() if isinstance(v, bytes) else v) for n, v in zip(names, values)} for values in zip(*lists)]
-
-
-def open_results(path):
-    """A results file's runs as one xarray.Dataset: (run, time) series, (run) swept keys and summaries.
-
-    The exact instants are ``xarray.open_dataset(path, group="runs/events", engine="h5netcdf")``.
-    """
-    import xarray as xr
-
-    return xr.open_dataset(path, group="runs", engine="h5netcdf")
-
-
-def _read_runs_v1(f: h5py.File, columns, attributes) -> list[dict]:
-    """Format 1 (one group a run), as files written before format 2."""
-    runs = []
-    for index, key in enumerate(sorted(f.get("runs", {}), key=int)):
-        group = f["runs"][key]
-        names = set(group)
-        wanted = names - {"events", "event"} if columns is None else names & set(columns)
-        run = {name: group[name][()] for name in wanted if isinstance(group[name], h5py.Dataset)}
-        for name in names & {"periods", "turning_moment"}:
-            run[name] = {k: v[()] for k, v in group[name].items()}
-            run[name]["attrs"] = dict(group[name].attrs)
-        run["events"] = group["events"][()]
-        keep = None if index == 0 or attributes is None else attributes
-        run["attrs"] = {k: group.attrs[k] for k in (group.attrs if keep is None else keep) if k in group.attrs}
-        runs.append(run)
-    return runs

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from .core.panel import RPM
-from .output import read_runs, read_summary
+from .reading import read_runs, read_summary
 
 
 def plot_file(path, output) -> list[str]:
@@ -94,7 +94,7 @@ def scenario_name(path) -> str:
 
 def swept_axis(path, summaries):
     """(name, values in display units, unit) of the first swept key with numbers, else the run index."""
-    from .output import read_swept_keys
+    from .reading import read_swept_keys
 
     for key in read_swept_keys(path):
         values = np.asarray([row[key] for row in summaries], dtype=float)

@@ -40,17 +40,11 @@ class RunResult:
 
     def grid_rows(self) -> np.ndarray:
         """Indices of the output grid's rows in ``time`` (a grid time that is also an event time: its row)."""
-        grid = self.time if self.grid is None else self.grid
-        return np.searchsorted(self.time, grid)
+        return np.searchsorted(self.time, self.grid)
 
     def instant_rows(self) -> np.ndarray:
         """Indices in ``time`` of the rows of ``instants`` (the state just after each)."""
-        return np.searchsorted(self.time, self.all_instants()["time"])
-
-    def all_instants(self) -> dict:
-        if self.instants is not None:
-            return self.instants
-        return {**self.events, "category": np.asarray(["switch"] * len(self.events["time"]), dtype=object)}
+        return np.searchsorted(self.time, self.instants["time"])
 
     def __getitem__(self, name: str) -> np.ndarray:
         return self.time if name == "time" else self.series[name]

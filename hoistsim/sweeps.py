@@ -65,7 +65,7 @@ class SweepResult:
         every summary value on (run), with units."""
         import xarray as xr
 
-        from .output import _summary_units, stacked_series
+        from .output import _summary_units, common_time, series_blocks
         from .scenario import key_units
 
         units = _summary_units(self.scenario)
@@ -77,7 +77,8 @@ class SweepResult:
                 data[key] = ("run", values, {"units": units.get(key, "")})
         coords = {"run": ("run", np.arange(len(self)))}
         if self.runs is not None:
-            time, stacked = stacked_series(self.runs)
+            time, padded = common_time([run.grid for run in self.runs])
+            stacked = series_blocks(self.runs, time, padded)
             coords["time"] = ("time", time, {"units": "s"})
             first = self.runs[0]
             for name, values in stacked.items():

@@ -16,7 +16,7 @@ from conftest import ROOT, SCENARIOS  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 
 from hoistsim.cli import main  # noqa: E402
-from hoistsim.output import read_runs  # noqa: E402
+from hoistsim.reading import read_runs  # noqa: E402
 from hoistsim.plotting import runs_columns  # noqa: E402
 from hoistsim.plotting_runs import THIN_TO, runs_figure  # noqa: E402
 from hoistsim.plotting_summary import summary_figure  # noqa: E402

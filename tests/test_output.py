@@ -102,7 +102,7 @@ def test_opens_in_xarray_as_one_dataset(written):
 
 def test_reading_back_gives_the_run_as_simulated(written, braked_run):
     """The grid rows and the instants merge back into the run's own rows, value for value."""
-    from hoistsim.output import read_runs
+    from hoistsim.reading import read_runs
 
     (back,) = read_runs(written)
     np.testing.assert_array_equal(back["time"], braked_run.time)
@@ -130,7 +130,7 @@ def test_failed_write_leaves_existing_file_and_no_debris(tmp_path, braked_run, m
     def broken(*args, **kwargs):
         raise RuntimeError("disk fell off")
 
-    monkeypatch.setattr(output, "_write_instants", broken)
+    monkeypatch.setattr(output.Assembly, "_instants", broken)
     with pytest.raises(RuntimeError):
         write_runs(path, [braked_run])
     assert path.read_bytes() == b"precious results"
@@ -148,7 +148,7 @@ def test_killed_writer_leaves_existing_file_intact(tmp_path):
         run = simulate(load_scenario({str(SCENARIOS / 'runback_slipping_clutch.yaml')!r}))
         def die(*args, **kwargs):
             os.kill(os.getpid(), signal.SIGKILL)   # half-way through the file
-        output._write_instants = die
+        output.Assembly._instants = die
         output.write_runs({str(path)!r}, [run])
     """)
     proc = subprocess.run([sys.executable, "-c", script], capture_output=True)

@@ -334,7 +334,7 @@ def test_plot_draws_the_turning_moment_diagram_and_the_speed_over_a_period(linea
 
     import matplotlib.pyplot as plt
 
-    from hoistsim.output import read_runs
+    from hoistsim.reading import read_runs
     from hoistsim.plotting_periodic import periodic_figure
 
     fig = periodic_figure(read_runs(tmp_path / "ripple.h5")[0], plt)
