@@ -32,6 +32,8 @@ from pathlib import Path
 import h5py
 import numpy as np
 
+from .results import Summaries
+
 _TEXT = h5py.string_dtype()
 
 
@@ -182,14 +184,15 @@ _TEXT_COLUMNS = ("kind", "element", "category", "mode_after")
 
 
 def write_record(f: h5py.Group, indices, outcomes, *, summary_only: bool, time, padded: bool) -> None:
-    """Runs at ``indices`` (RunResults, or summary dicts when summary-only) as a record for :func:`assemble`."""
+    """Runs at ``indices`` (RunResults, or their :class:`hoistsim.results.Summaries` when summary-only) as a
+    record for :func:`assemble`."""
     f["indices"] = np.asarray(list(indices), dtype=np.int64)
-    summaries = [o if summary_only else o.summary for o in outcomes]
-    columns = [k for k in summaries[0] if k != "label"]
+    summaries = (outcomes if summary_only else Summaries.from_rows([o.summary for o in outcomes])).columns
+    columns = [k for k in summaries if k != "label"]
     f.attrs["columns"] = json.dumps(columns)
     for key in columns:  # floats, else integers (a yes/no too)
-        f[f"values/{key}"] = np.asarray([row[key] for row in summaries],
-                                        dtype="f8" if isinstance(summaries[0][key], float) else "i8")
+        values = np.asarray(summaries[key])
+        f[f"values/{key}"] = values.astype("f8" if values.dtype.kind == "f" else "i8")
     if summary_only:
         return
     runs = outcomes

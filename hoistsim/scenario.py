@@ -9,13 +9,16 @@ exits with status 2.  Values are parsed and converted to SI in :mod:`.units`.
 from __future__ import annotations
 
 import difflib
+import functools
 import io
-import itertools
 import json
+import math
 from pathlib import Path
-from typing import Any
+from typing import Annotated, Any
 
-from pydantic import BaseModel, ValidationError
+import numpy as np
+
+from pydantic import BaseModel, TypeAdapter, ValidationError
 from ruamel.yaml import YAML
 
 from . import units as u
@@ -231,15 +234,15 @@ def scenario_from_text(text: str, source: str = "<scenario>",
         # a sweep given on the command line has no line in the file
         where, lines = ("--sweep", None) if sweeps else (source, tree)
         values, labels = _expand_range(key, values, where, _line_of(lines, ("sweep", key)))
-        runs = _check_sweep(raw, key, values, lines, where)
+        scenario._sweep_numbers[key] = _check_sweep(scenario, raw, key, values, lines, where)
         scenario._sweep_values[key] = values
         scenario._sweep_labels[key] = labels
-        if len(scenario.sweep) == 1:
-            scenario._sweep_runs = runs
     scenario._raw = raw
     scenario._text = text
     scenario._source = source
     scenario._warnings = bare_angles(raw, Scenario, (), tree, source)
+    if len(scenario.sweep or ()) > 1:
+        _check_combinations(scenario)
     return scenario
 
 
@@ -281,8 +284,9 @@ def _error_from(err: dict, tree: Any, source: str, overridden: set[str]) -> Scen
     return ScenarioError(key, message, source=source, line=_line_of(tree, (*loc, *row)))
 
 
-def _check_sweep(raw: dict, key: str, values: list, tree: Any, source: str) -> list:
-    """A sweep names known keys, and each of its values is one the key accepts: the validated runs."""
+def _check_sweep(scenario: Scenario, raw: dict, key: str, values: list, tree: Any, source: str) -> np.ndarray:
+    """A sweep names a known key, and each of its values is one the key accepts (validated alone, on the
+    validated base): the SI number of each value (NaN where it is not one, a table that varies)."""
     line = _line_of(tree, ("sweep", key))
     try:
         _check_key(key, source)
@@ -291,20 +295,69 @@ def _check_sweep(raw: dict, key: str, values: list, tree: Any, source: str) -> l
     if not isinstance(values, list) or not values:
         raise ScenarioError(f"sweep.{key}", f"needs a non-empty list of values, {_SWEEP_EXAMPLE}",
                             source=source, line=line)
-    runs = []
-    base = {k: v for k, v in raw.items() if k != "sweep"}  # each run copies the scenario, not the whole sweep
+    base = {k: v for k, v in raw.items() if k != "sweep"}
+    numbers = np.empty(len(values))
     for i, value in enumerate(values):
-        one = _copy_plain(base)
-        _assign(one, key, value)
         try:
-            runs.append(Scenario.model_validate(one))
-            runs[-1]._raw = one
-        except ValidationError as exc:
-            inner = _error_from(exc.errors()[0], None, source, set())
-            detail = inner.message if inner.key == key else f"{inner.key}: {inner.message}"
+            numbers[i] = swept_number(with_swept_value(scenario, key, value, base), key)
+        except ScenarioError as exc:
+            detail = exc.message if exc.key in (key, "") else f"{exc.key}: {exc.message}"
             raise ScenarioError(f"sweep.{key}", f"value {i + 1} ({_format_value(value)}): {detail}",
                                 source=source, line=_line_of(tree, ("sweep", key, i)) or line) from None
-    return runs
+    return numbers
+
+
+def with_swept_value(scenario: Scenario, key: str, value: Any, raw: dict | None = None) -> Scenario:
+    """The validated scenario with one key set to ``value``, validating the value alone.
+
+    The value is validated as its field's type, then every check of the
+    sections that hold it, and of the scenario, runs again on the copy: the
+    same checks as validating the whole scenario, at a small part of the cost
+    (a sweep of a million values validates each).  A key in a section the
+    scenario lacks is validated with the whole scenario (``raw``, its plain
+    data, needed then).
+    """
+    *path, leaf = key.split(".")
+    models = [scenario]
+    for part in path:
+        models.append(getattr(models[-1], part))
+        if models[-1] is None:  # the sweep adds a section
+            if raw is None:
+                raw = {k: v for k, v in scenario._raw.items() if k != "sweep"}
+            one = _copy_plain(raw)
+            _assign(one, key, value)
+            try:
+                return Scenario.model_validate(one)
+            except ValidationError as exc:
+                raise _error_from(exc.errors()[0], None, "", set()) from None
+    try:
+        new = _field_adapter(type(models[-1]), leaf).validate_python(value)
+    except ValidationError as exc:
+        err = exc.errors()[0]
+        raise _error_from({**err, "loc": (*key.split("."), *err["loc"])}, None, "", set()) from None
+    update = {leaf: new, **{other: None for other in _ALTERNATIVES.get(key, ())}}
+    for model, part in zip(reversed(models), reversed([None, *path])):  # each model, and its name in its parent
+        new = model.model_copy(update=update)
+        for check in type(new).__pydantic_decorators__.model_validators.values():
+            check.func(new)  # the section's checks across its keys (each returns the model)
+        update = {part: new}
+    return new
+
+
+@functools.lru_cache(maxsize=None)
+def _field_adapter(model: type[BaseModel], name: str) -> TypeAdapter:
+    field = model.model_fields[name]
+    return TypeAdapter(Annotated[(field.annotation, *field.metadata)] if field.metadata else field.annotation)
+
+
+def swept_number(scenario: Scenario, key: str) -> float:
+    """The SI value of a swept key in one run (a constant force table counts as its force; NaN if not a number)."""
+    value = scenario
+    for part in key.split("."):
+        value = getattr(value, part)
+    if hasattr(value, "forces"):
+        return value.forces[0] if len(set(value.forces)) == 1 else math.nan
+    return float(value) if isinstance(value, (int, float)) else math.nan
 
 
 def _expand_range(key: str, spec: Any, source: str, line: int | None) -> tuple[Any, list[str]]:
@@ -362,32 +415,29 @@ def parse_sweep(assignment: str) -> tuple[str, Any]:
 
 
 def sweep_values(scenario: Scenario) -> list[tuple[str, Scenario]]:
-    """One (label, scenario) per run: the sweep's values, a grid when two keys are swept."""
-    if not scenario.sweep:
-        return [("", scenario)]
-    keys = list(scenario.sweep)
-    if len(keys) == 1 and scenario._sweep_runs:  # validated when the file was read
-        key = keys[0]
-        for run in scenario._sweep_runs:
-            run._text, run._source = scenario.text, scenario.source
-        return [(f"{key}={label}", run) for label, run in zip(scenario._sweep_labels[key], scenario._sweep_runs)]
-    runs = []
-    base = {k: v for k, v in scenario._raw.items() if k != "sweep"}  # not the sweep's values, once per run
-    indices = itertools.product(*(range(len(scenario._sweep_values[k])) for k in keys))
-    for combo_index in indices:
-        combo = [scenario._sweep_values[k][i] for k, i in zip(keys, combo_index)]
-        raw = _copy_plain(base)
-        for key, value in zip(keys, combo):
-            _assign(raw, key, value)
-        label = ", ".join(f"{k}={scenario._sweep_labels[k][i]}" for k, i in zip(keys, combo_index))
+    """One (label, scenario) per run: the sweep's values, a grid when two keys are swept.
+
+    A scenario per run, all at once: for a few runs (a large sweep builds its runs
+    a chunk at a time, :class:`hoistsim.sweep_runs.SweepRuns`).
+    """
+    from .sweep_runs import SweepRuns
+
+    runs = SweepRuns(scenario)
+    return [(runs.label(i), runs.scenario(i)) for i in range(len(runs))]
+
+
+def _check_combinations(scenario: Scenario) -> None:
+    """With two keys swept, each value was checked alone; checks across keys see every combination."""
+    from .sweep_runs import SweepRuns
+
+    runs = SweepRuns(scenario)
+    for i in range(len(runs)):
         try:
-            run = _validate(raw, None, scenario.source)
+            runs.scenario(i)
         except ScenarioError as exc:
-            exc.message = f"{exc.message} (in sweep run {label})"
+            exc.message = f"{exc.message} (in sweep run {runs.label(i)})"
+            exc.source = scenario.source
             raise
-        run._raw, run._text, run._source = raw, scenario.text, scenario.source
-        runs.append((label, run))
-    return runs
 
 
 def _format_value(value: Any) -> str:

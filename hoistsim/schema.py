@@ -282,7 +282,7 @@ class Scenario(Section):
     _overridden: set = PrivateAttr(default_factory=set)
     _sweep_values: dict = PrivateAttr(default_factory=dict)  # key -> values, ranges expanded
     _sweep_labels: dict = PrivateAttr(default_factory=dict)  # key -> each value as the user reads it
-    _sweep_runs: list = PrivateAttr(default_factory=list)  # validated runs of a one-key sweep
+    _sweep_numbers: dict = PrivateAttr(default_factory=dict)  # key -> each value's SI number (NaN: a table)
     _warnings: list = PrivateAttr(default_factory=list)  # what was accepted but may not be meant
 
     @property

@@ -23,8 +23,10 @@ import shutil
 from pathlib import Path
 
 import h5py
+import numpy as np
 
 from . import output
+from .results import Summaries
 
 FILE_BYTES = 32 * 2**20  # series gathered into one chunk file
 FILE_RUNS = 65536  # summaries gathered into one chunk file
@@ -70,14 +72,14 @@ class StreamedFile:
             shutil.rmtree(self.folder, ignore_errors=True)
             self.folder.mkdir()
             (self.folder / "key").write_text(self.key)
-        # whole files only (each appears by a rename); a file holds one or more of the sweep's chunks
-        self.files, self.chunks_done = 0, 0
+        # whole files only (each appears by a rename); a file holds one or more of the sweep's blocks
+        self.files, self.blocks_done = 0, 0
         while self._chunk(self.files + 1).is_file():
             self.files += 1
             with h5py.File(self._chunk(self.files), "r") as f:
-                self.chunks_done += int(f.attrs["sweep_chunks"])
+                self.blocks_done += int(f.attrs["sweep_blocks"])
         self.resumed_files = self.files
-        self.pending: list = []  # chunks finished, not yet in a file: (indices, outcomes)
+        self.pending: list = []  # blocks finished, not yet in a file
 
     def _chunk(self, number: int) -> Path:
         return self.folder / f"chunk-{number:07d}.h5"
@@ -89,53 +91,60 @@ class StreamedFile:
         if not self.summary_only:
             self.time, self.padded = output.common_time(grids)
 
-    def write(self, indices, outcomes) -> None:
-        """One finished chunk: its runs (RunResults, or summary dicts when summary-only), at ``indices``.
+    def write(self, block) -> None:
+        """One finished block of runs (:class:`hoistsim.sweeps.Block`).
 
-        Chunks are gathered into files of about FILE_BYTES of series (or FILE_RUNS summaries): few
+        Blocks are gathered into files of about FILE_BYTES of series (or FILE_RUNS summaries): few
         files, each written once; what a kill loses is at most one file's worth of runs.
         """
-        self.pending.append((list(indices), list(outcomes)))
-        runs = sum(len(i) for i, _ in self.pending)
-        size = 0 if self.summary_only else runs * self.time.size * 8 * len(outcomes[0].series)
+        self.pending.append(block)
+        runs = sum(b.stop - b.start for b in self.pending)
+        size = 0 if self.summary_only else runs * self.time.size * 8 * len(block.outcome[0].series)
         if size >= FILE_BYTES or runs >= FILE_RUNS:
             self._flush()
 
     def _flush(self) -> None:
         if not self.pending:
             return
-        indices = [i for part, _ in self.pending for i in part]
-        outcomes = [o for _, part in self.pending for o in part]
+        indices = np.arange(self.pending[0].start, self.pending[-1].stop)
+        if self.summary_only:
+            outcomes = Summaries.concatenate([b.outcome for b in self.pending])
+        else:
+            outcomes = [run for b in self.pending for run in b.outcome]
         self.files += 1
         final = self._chunk(self.files)
         partial = final.with_suffix(".tmp")
         with h5py.File(partial, "w") as f:
-            f.attrs["sweep_chunks"] = len(self.pending)
+            f.attrs["sweep_blocks"] = len(self.pending)
             output.write_record(f, indices, outcomes, summary_only=self.summary_only, time=self.time,
                                 padded=self.padded)
         os.replace(partial, final)
         self.pending = []
 
-    def written_summaries(self) -> dict[int, dict]:
-        """The summaries of the runs in chunks written before a resume, by run index."""
-        rows = {}
+    def written_summaries(self) -> Summaries | None:
+        """The summaries of the runs in the files written before a resume, in order."""
+        parts = []
         for number in range(1, self.resumed_files + 1):
             with h5py.File(self._chunk(number), "r") as f:
                 columns = json.loads(f.attrs["columns"])
-                values = {key: f[f"values/{key}"][()].tolist() for key in columns}
-                for k, i in enumerate(f["indices"][()]):
-                    rows[int(i)] = {"label": self.labels[int(i)], **{key: values[key][k] for key in columns}}
-        return rows
+                indices = f["indices"][()]
+                labels = np.asarray([self.labels[int(i)] for i in indices], dtype=object)
+                parts.append(Summaries({"label": labels, **{key: f[f"values/{key}"][()] for key in columns}}))
+        return Summaries.concatenate(parts) if parts else None
 
     # ------------------------------------------------------------------ the file
 
-    def finish(self) -> None:
-        """Assemble the results file from the chunk files, one at a time; it takes the target's name atomically."""
+    def finish(self, summaries: Summaries | None) -> Summaries:
+        """Assemble the results file from the chunk files, one at a time; it takes the target's name
+        atomically.  ``summaries``: of the runs computed now; returned with those of a resumed sweep's
+        earlier runs before them."""
         self._flush()
+        earlier = self.written_summaries()
         heading = output.Heading(self.scenario, self.labels, self.parameters, self.summary_only, self.time,
                                  self.command)
         output.assemble(self.target, self._records(), heading)
         shutil.rmtree(self.folder, ignore_errors=True)
+        return Summaries.concatenate([part for part in (earlier, summaries) if part is not None])
 
     def _records(self):
         for number in range(1, self.files + 1):

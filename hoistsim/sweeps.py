@@ -8,8 +8,10 @@ one compilation serves the whole sweep, and any later sweep of the same shape.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import functools
+import gc
 import math
 import time
 from pathlib import Path
@@ -20,19 +22,24 @@ import jax
 import numpy as np
 
 from . import _jax
-from .assemble import build_plan, loop_sizes
+from .assemble import build_plan, loop_sizes, output_grid
 from .core.loop import OK, SOLVERS, Plan, _run
-from .core.readout import Readout
+from .core.readout import STATUS, BatchReadout, Readout
 from .periodic.analysis import periodic_regime
-from .results import RunResult, summarize
-from .scenario import Scenario, sweep_values
+from .results import RunResult, Summaries, summary_columns
+from .scenario import Scenario
 from .simulation import SimulationError, failure_message, run_result, simulate
+from .sweep_runs import SweepRuns
 
 # Bytes of time series a chunk may hold.  Measured: with full output, small
 # chunks are fastest per run (every segment rewrites the chunk's output arrays);
 # summary-only runs hold one row each and go 1024 at a time.
 CHUNK_BYTES = 4 * 2**20
 MAX_CHUNK = 1024
+
+# Chunks in a block: the unit of work handed out (to a cluster's workers) and written (to a file's chunks).
+BLOCK_CHUNKS = 8
+
 
 @dataclass
 class SweepResult:
@@ -42,7 +49,7 @@ class SweepResult:
     labels: list[str]
     keys: list[str]  # swept keys
     parameters: dict[str, np.ndarray]  # swept key -> SI value of each run (NaN for tables)
-    summaries: list[dict]
+    summaries: Summaries  # a dict per run when indexed; its ``columns`` keep them as arrays
     runs: list[RunResult] | None = None
     stats: dict = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)  # runs whose periodic regime did not settle, say
@@ -53,7 +60,7 @@ class SweepResult:
     @property
     def summary(self) -> dict[str, np.ndarray]:
         """Column -> one value per run (labels included)."""
-        return {key: np.asarray([row[key] for row in self.summaries]) for key in self.summaries[0]}
+        return self.summaries.columns
 
     def to_hdf5(self, path, command: str = "") -> None:
         from .output import write_sweep
@@ -89,107 +96,171 @@ class SweepResult:
 
 def sweep(scenario: Scenario, *, summary_only: bool = False, chunk_size: int | None = None,
           progress: Callable[[int, int], None] | None = None, output=None, command: str = "",
-          resume: bool = False) -> SweepResult:
+          resume: bool = False, workers: int | None = None, scheduler: str | None = None) -> SweepResult:
     """Run every value of the scenario's sweep (one run if it has none), vectorised.
 
-    With ``output`` (a path), the results file is written as the chunks finish
-    (:mod:`hoistsim.streaming`): memory stays at a chunk's worth, the result
-    keeps the summaries only, and ``resume`` goes on from the chunks an
-    interrupted run of the same sweep left in its partial file.
+    With ``output`` (a path), the results file is written as the runs finish
+    (:mod:`hoistsim.streaming`): memory stays at a block's worth, the result
+    keeps the summaries only, and ``resume`` goes on from the blocks an
+    interrupted run of the same sweep left in its partial file.  ``workers``
+    (a local Dask cluster of that many processes) or ``scheduler`` (the address
+    of a running one) spread the blocks over a cluster (:mod:`hoistsim.cluster`);
+    the numbers are the same bits as on one process.
     """
-    pairs = sweep_values(scenario)
-    labels = [label for label, _ in pairs]
-    scenarios = [one for _, one in pairs]
-    keys = list(scenario.sweep or {})
-    parameters = {key: np.asarray([swept_number(one, key) for one in scenarios]) for key in keys}
+    runs = SweepRuns(scenario)
     started = time.perf_counter()
     warnings: list[str] = []
     stream = None
     if output is not None:
         from .streaming import StreamedFile
 
-        stream = StreamedFile(output, scenario, labels, parameters, summary_only=summary_only, command=command,
-                              resume=resume)
+        stream = StreamedFile(output, scenario, runs.labels, runs.parameters, summary_only=summary_only,
+                              command=command, resume=resume)
         if stream.discarded:
             warnings.append(f"{Path(output).name}: an interrupted sweep's {stream.discarded} chunk file(s) were "
                             "discarded (--resume keeps them)")
     try:
-        outcome = simulate_many(scenarios, labels, summary_only=summary_only, chunk_size=chunk_size,
-                                progress=progress, warnings=warnings, sink=stream,
-                                skip_chunks=stream.chunks_done if stream is not None else 0)
+        outcome = simulate_many(runs, summary_only=summary_only, chunk_size=chunk_size, progress=progress,
+                                warnings=warnings, sink=stream, skip_blocks=stream.blocks_done if stream else 0,
+                                workers=workers, scheduler=scheduler)
         if stream is not None:
-            for i, row in stream.written_summaries().items():
-                if outcome[i] is None:
-                    outcome[i] = row
-            stream.finish()
+            outcome = stream.finish(outcome)
     except SimulationError:
         if stream is not None:
             stream.discard()  # a run that fails would fail again: nothing to resume
         raise
     except BaseException:
         if stream is not None:
-            stream.close()  # interrupted: the chunks stay for --resume
+            stream.close()  # interrupted: the finished blocks stay for --resume
         raise
     streamed = summary_only or stream is not None
     return SweepResult(
         scenario=scenario,
-        labels=labels,
-        keys=keys,
-        parameters=parameters,
-        summaries=outcome if streamed else [run.summary for run in outcome],
+        labels=runs.labels,
+        keys=runs.keys,
+        parameters=runs.parameters,
+        summaries=outcome if streamed else Summaries.from_rows([run.summary for run in outcome]),
         runs=None if streamed else outcome,
-        stats={"wall_time": time.perf_counter() - started, "runs": len(labels)},
+        stats={"wall_time": time.perf_counter() - started, "runs": len(runs)},
         warnings=warnings,
     )
 
 
-def swept_number(scenario: Scenario, key: str) -> float:
-    """The SI value of a swept key in one run (a constant force table counts as its force)."""
-    value = scenario
-    for part in key.split("."):
-        value = getattr(value, part)
-    if hasattr(value, "forces"):
-        return value.forces[0] if len(set(value.forces)) == 1 else math.nan
-    return float(value) if isinstance(value, (int, float)) else math.nan
+class ListedRuns:
+    """Runs given as a list of scenarios (a flywheel's candidates), read like :class:`SweepRuns`."""
+
+    def __init__(self, scenarios: list[Scenario], labels: list[str]):
+        self.scenarios, self.labels = scenarios, labels
+
+    def __len__(self) -> int:
+        return len(self.scenarios)
+
+    def scenario(self, i: int) -> Scenario:
+        return self.scenarios[i]
+
+    def label(self, i: int) -> str:
+        return self.labels[i]
 
 
-def simulate_many(scenarios: list[Scenario], labels: list[str], *, summary_only: bool = False,
+@dataclass
+class Block:
+    """The outcome of the runs ``start`` to ``stop``: their summaries, or (full output) their RunResults."""
+
+    start: int
+    stop: int
+    outcome: object  # Summaries, or a list of RunResult
+    warnings: list
+
+
+def simulate_many(runs, labels: list[str] | None = None, *, summary_only: bool = False,
                   chunk_size: int | None = None, progress=None, warnings: list | None = None,
-                  sink=None, skip_chunks: int = 0) -> list:
-    """RunResults (or, with ``summary_only``, summary dicts) for many scenarios, in their order.
+                  sink=None, skip_blocks: int = 0, workers: int | None = None, scheduler: str | None = None):
+    """The runs' RunResults, or (``summary_only``) their :class:`Summaries`, in order.
 
-    A machine with a periodic regime keeps its event rows even for summaries:
-    its regime is read from them.  ``warnings`` collects what the runs warn of.
-    ``sink`` (:class:`hoistsim.streaming.StreamedFile`) takes each chunk as it
-    finishes, and only the runs' summaries are kept; the first ``skip_chunks``
-    chunks (a resumed sweep's, in the file already) are not run and stay None.
+    ``runs`` is a :class:`SweepRuns` or a list of scenarios (then ``labels``
+    names them).  Runs go in blocks of consecutive runs, each a few chunks of
+    the compiled loop's width (:func:`run_block`), on this process or spread
+    over a Dask cluster; ``sink`` (:class:`hoistsim.streaming.StreamedFile`)
+    takes each block as it finishes, in order, and only summaries are kept;
+    the first ``skip_blocks`` blocks (a resumed sweep's, in the file already)
+    are not run and their entries stay None.  ``warnings`` collects what the
+    runs warn of.
     """
-    plans = [build_plan(s, summary_only=summary_only) for s in scenarios]
+    if not isinstance(runs, (SweepRuns, ListedRuns)):
+        runs = ListedRuns(runs, labels)
+    total = len(runs)
+    chunk = chunk_size or _chunk_for(runs.scenario(0), summary_only, total)
+    size = chunk * BLOCK_CHUNKS
+    blocks = [(start, min(start + size, total)) for start in range(0, total, size)]
     if sink is not None:
-        sink.begin([grid for _, grid in plans])
-    out: list = [None] * len(scenarios)
-    done, chunk_number = 0, 0
-    for indices in _groups(scenarios, plans):
-        group = [plans[i][0] for i in indices]
-        group = _padded_tables(group)
-        first = scenarios[indices[0]]
-        max_switches = max(scenarios[i].simulation.max_switches for i in indices)
-        sizes = tuple(max(n) for n in zip(*(loop_sizes(plan, max_switches) for plan in group)))
-        periodic = any(e.cycles for e in group[0].elements)
+        sink.begin(_grids(runs) if not summary_only else None)
+    done = sum(stop - start for start, stop in blocks[:skip_blocks])
+    todo = blocks[skip_blocks:]
+    if workers is not None or scheduler is not None:
+        from .cluster import cluster_blocks
+
+        finished = cluster_blocks(runs, todo, summary_only=summary_only, chunk=chunk, workers=workers,
+                                  scheduler=scheduler)
+    else:
+        finished = (run_block(runs, start, stop, summary_only=summary_only, chunk=chunk) for start, stop in todo)
+    kept: list = []
+    for block in finished:
+        if warnings is not None:
+            warnings.extend(block.warnings)
+        if sink is not None:
+            sink.write(block)
+        kept.append(block.outcome if summary_only or sink is None else
+                    Summaries.from_rows([run.summary for run in block.outcome]))
+        done += block.stop - block.start
+        if progress is not None:
+            progress(done, total)
+    if sink is not None or summary_only:
+        return Summaries.concatenate(kept) if kept else None
+    return [run for part in kept for run in part]
+
+
+def run_block(runs, start: int, stop: int, *, summary_only: bool, chunk: int) -> Block:
+    """Runs ``start`` to ``stop``: their scenarios and plans built here, grouped by the compiled loop they
+    share, each group in chunks of ``chunk`` runs through one vmapped call (padded to a full chunk)."""
+    with _no_cyclic_collection():
+        return _run_block(runs, start, stop, summary_only=summary_only, chunk=chunk)
+
+
+@contextlib.contextmanager
+def _no_cyclic_collection():
+    """The cyclic garbage collector off while a block's host objects are built: measured, its passes over
+    the thousands of scenarios and plans alive cost 50 us a run (40 % of a summary-only sweep); the
+    block's objects form no cycles, so reference counting frees them."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
+
+
+def _run_block(runs, start: int, stop: int, *, summary_only: bool, chunk: int) -> Block:
+    indices = range(start, stop)
+    scenarios = [runs.scenario(i) for i in indices]
+    plans = [build_plan(s, summary_only=summary_only) for s in scenarios]
+    warnings: list[str] = []
+    rows: list = [None] * len(scenarios)  # each run's RunResult, or its chunk's summary columns and lane
+    parts: list = []
+    for group in _groups(scenarios, plans):
+        group_plans = _padded_tables([plans[k][0] for k in group])
+        first = scenarios[group[0]]
+        max_switches = max(scenarios[k].simulation.max_switches for k in group)
+        sizes = tuple(max(n) for n in zip(*(loop_sizes(plan, max_switches) for plan in group_plans)))
+        periodic = any(e.cycles for e in group_plans[0].elements)
         lean = summary_only and not periodic
         if lean:  # the summary needs no event rows, only their counts
             sizes = (sizes[0], 1)
-        rows = int(group[0].grid.shape[0])
-        chunk = chunk_size or _chunk_for(rows, group[0].layout.size, len(indices))
-        layout = group[0].layout
+        layout = group_plans[0].layout
         run, built = None, None
-        for start in range(0, len(indices), chunk):
-            part = indices[start:start + chunk]
-            chunk_number += 1
-            if chunk_number <= skip_chunks:  # in the file from before the interruption
-                done += len(part)
-                continue
-            batch = group[start:start + chunk]
+        for offset in range(0, len(group), chunk):
+            part = group[offset:offset + chunk]
+            batch = group_plans[offset:offset + chunk]
             batch = batch + [batch[-1]] * (chunk - len(batch))  # a full chunk: one compiled shape
             stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *batch)
             while True:
@@ -200,40 +271,76 @@ def simulate_many(scenarios: list[Scenario], labels: list[str], *, summary_only:
                 t0 = time.perf_counter()
                 raw = jax.device_get(run(stacked))
                 elapsed = (time.perf_counter() - t0) / len(part)
-                logged = max(Readout(layout, raw, lane=k).event_count for k in range(len(part)))
+                logged = int(np.max(raw.counters[: len(part), 0]))
                 if lean or logged <= sizes[1]:
                     break
-                sizes = loop_sizes(group[0], max_switches, log_size=logged + 1)  # room for every row
-            for k, i in enumerate(part):
-                one = Readout(layout, raw, lane=k)
-                if one.status != OK:
-                    if lean:  # the lean run kept no event rows: run it alone to say what happened
-                        try:
-                            simulate(scenarios[i])
-                        except SimulationError as exc:
-                            raise SimulationError(f"{labels[i] or scenarios[i].name}: {exc}") from None
-                    raise SimulationError(f"{labels[i] or scenarios[i].name}: " + failure_message(scenarios[i], one))
-                if summary_only:
-                    values = one.summary()
-                    regime = periodic_regime(scenarios[i], one) if periodic else None
-                    if regime is not None:
-                        values.update(regime.values())
-                        if not regime.regime.settled and warnings is not None:
-                            warnings.append(f"{labels[i] or scenarios[i].name}: {regime.regime.message}")
-                    out[i] = summarize(labels[i], values, one.ledger(), one.count("lock"), one.count("unlock"))
-                else:
-                    out[i] = run_result(scenarios[i], labels[i], plans[i][1], one, elapsed)
-                    if warnings is not None:
-                        warnings.extend(out[i].warnings)
-            if sink is not None:
-                sink.write(part, [out[i] for i in part])
-                if not summary_only:  # written: keep the summary, let the series go
-                    for i in part:
-                        out[i] = out[i].summary
-            done += len(part)
-            if progress is not None:
-                progress(done, len(scenarios))
-    return out
+                sizes = loop_sizes(group_plans[0], max_switches, log_size=logged + 1)  # room for every row
+            _check_status(runs, scenarios, part, start, layout, raw, lean)
+            if not summary_only:
+                for k, lane in enumerate(part):
+                    one = Readout(layout, raw, lane=k)
+                    rows[lane] = run_result(scenarios[lane], runs.label(start + lane), plans[lane][1], one, elapsed)
+                    warnings.extend(rows[lane].warnings)
+                continue
+            labels = [runs.label(start + lane) or scenarios[lane].name for lane in part]
+            batch_read = BatchReadout(layout, raw, len(part))
+            values = batch_read.summary()
+            if periodic:
+                extra = _periodic_values(scenarios, part, layout, raw, labels, warnings)
+                values.update(extra)
+            columns = summary_columns(labels, values, batch_read.ledger(), batch_read.count("lock"),
+                                      batch_read.count("unlock"))
+            parts.append((np.asarray(part), columns))
+    if summary_only:
+        return Block(start, stop, _in_order(parts, len(scenarios)), warnings)
+    return Block(start, stop, rows, warnings)
+
+
+def _in_order(parts, count: int) -> Summaries:
+    """Summary columns of each group's chunks, back in the runs' order."""
+    order = np.concatenate([lanes for lanes, _ in parts])
+    place = np.empty(count, dtype=np.int64)
+    place[order] = np.arange(count)
+    keys = parts[0][1].keys()
+    return Summaries({key: np.concatenate([columns[key] for _, columns in parts])[place] for key in keys})
+
+
+def _periodic_values(scenarios, part, layout, raw, labels, warnings) -> dict[str, np.ndarray]:
+    """The periodic regime of each run of a chunk, read from its event rows: name -> values."""
+    rows = []
+    for k, lane in enumerate(part):
+        regime = periodic_regime(scenarios[lane], Readout(layout, raw, lane=k))
+        rows.append(regime.values())
+        if not regime.regime.settled:
+            warnings.append(f"{labels[k]}: {regime.regime.message}")
+    return {key: np.asarray([row[key] for row in rows]) for key in rows[0]}
+
+
+def _check_status(runs, scenarios, part, start, layout, raw, lean) -> None:
+    """A run of the chunk that failed (chattering, the solver) fails the sweep, saying which and why."""
+    failed = np.flatnonzero(raw.counters[: len(part), STATUS] != OK)
+    if failed.size == 0:
+        return
+    k = int(failed[0])
+    lane = part[k]
+    scenario, name = scenarios[lane], runs.label(start + lane) or scenarios[lane].name
+    if lean:  # the lean run kept no event rows: run it alone to say what happened
+        try:
+            simulate(scenario)
+        except SimulationError as exc:
+            raise SimulationError(f"{name}: {exc}") from None
+    raise SimulationError(f"{name}: " + failure_message(scenario, Readout(layout, raw, lane=k)))
+
+
+def _grids(runs) -> list[np.ndarray]:
+    """Every run's output grid (the common time axis of a full-output file is made of them)."""
+    keys = getattr(runs, "keys", None)
+    if keys is not None and not any(key.startswith("simulation.") for key in keys):
+        sim = runs.scenario(0).simulation  # no swept key moves the grid: one for all
+        grid = output_grid(sim.duration, sim.output_interval)
+        return [grid] * len(runs)
+    return [output_grid(s.simulation.duration, s.simulation.output_interval)
+            for s in (runs.scenario(i) for i in range(len(runs)))]
 
 
 def _groups(scenarios, plans) -> list[list[int]]:
@@ -278,10 +385,14 @@ def _padded_tables(plans: list[Plan]) -> list[Plan]:
     return out
 
 
-def _chunk_for(rows: int, states: int, runs: int) -> int:
+def _chunk_for(scenario: Scenario, summary_only: bool, runs: int) -> int:
+    """Runs per vmapped call: as many as CHUNK_BYTES of time series allow (at most MAX_CHUNK), a power of
+    two (few compiled shapes), no more than the sweep needs."""
+    plan, _ = build_plan(scenario, summary_only=summary_only)
+    rows, states = int(plan.grid.shape[0]), plan.layout.size
     per_run = rows * 8 * (2 * states + 24)  # states, outputs and masks of one run
     chunk = max(1, min(MAX_CHUNK, CHUNK_BYTES // per_run))
-    chunk = 1 << int(math.log2(chunk))  # a power of two: few distinct compiled shapes
+    chunk = 1 << int(math.log2(chunk))
     return min(chunk, 1 << math.ceil(math.log2(runs)))
 
 

@@ -51,10 +51,12 @@ class _Stop(Exception):
 
 @pytest.fixture(autouse=True)
 def a_file_a_chunk(monkeypatch):
-    """Every chunk in a file of its own (a sweep of a few short runs would otherwise fill one file)."""
-    from hoistsim import streaming
+    """Every chunk a block, every block in a file of its own (a sweep of a few short runs would otherwise
+    fill one block and one file)."""
+    from hoistsim import streaming, sweeps
 
     monkeypatch.setattr(streaming, "FILE_RUNS", 1)
+    monkeypatch.setattr(sweeps, "BLOCK_CHUNKS", 1)
 
 
 def _interrupted(scenario, target, chunks: int, summary_only: bool, monkeypatch):
@@ -62,8 +64,8 @@ def _interrupted(scenario, target, chunks: int, summary_only: bool, monkeypatch)
     written = {"n": 0}
     original = StreamedFile.write
 
-    def write(self, indices, outcomes):
-        original(self, indices, outcomes)
+    def write(self, block):
+        original(self, block)
         written["n"] += 1
         if written["n"] == chunks:
             raise _Stop
@@ -119,8 +121,9 @@ def test_a_sweep_killed_while_writing_a_chunk_resumes_from_the_last_whole_one(tm
     script = textwrap.dedent(f"""
         import os, signal
         from hoistsim import load_scenario, sweep
-        from hoistsim import streaming
+        from hoistsim import streaming, sweeps
         streaming.FILE_RUNS = 1
+        sweeps.BLOCK_CHUNKS = 1
         calls = {{"n": 0}}
         original = streaming.output.write_record
         def write_record(*args, **kwargs):

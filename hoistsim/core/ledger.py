@@ -9,6 +9,8 @@ compiled call; :func:`balance` closes it on the host.
 
 from __future__ import annotations
 
+import numpy as np
+
 from .dynamics import Instant
 from .layout import Layout
 
@@ -29,13 +31,18 @@ def balance(terms: dict) -> dict[str, float]:
     Work terms count what came in, losses what went out, potential (and
     kinetic) terms what is stored; ``residual`` = work - stored - losses.
     """
-    out: dict[str, float] = {}
+    return {name: float(value) for name, value in balance_columns(terms).items()}
+
+
+def balance_columns(terms: dict) -> dict[str, np.ndarray]:
+    """:func:`balance` for many runs at once: each start and end an array over the runs."""
+    out: dict = {}
     residual = 0.0
     for name, (kind, start, end) in terms.items():
-        change = float(end) - float(start)
+        change = np.asarray(end, dtype=float) - np.asarray(start, dtype=float)
         out[f"{name}_change" if kind == "potential" else name] = change
-        residual += change if kind == "work" else -change
-    scale = max([abs(v) for v in out.values()] + [1e-300])
-    out["residual"] = float(residual)
-    out["relative_residual"] = float(abs(residual) / scale)
+        residual = residual + change if kind == "work" else residual - change
+    scale = np.max(np.abs(np.asarray([*out.values(), np.full(np.shape(residual), 1e-300)])), axis=0)
+    out["residual"] = np.asarray(residual, dtype=float)
+    out["relative_residual"] = np.abs(residual) / scale
     return out

@@ -125,3 +125,28 @@ class Readout:
         end = self.raw.scalars[1 + len(self.layout.summaries) + n:][:n]
         return {name: (kind, float(a), float(b))
                 for (name, kind), a, b in zip(self.layout.ledger_kinds.items(), start, end)}
+
+
+class BatchReadout:
+    """The first ``count`` runs of a batch's RawRun (a vmapped chunk), read column-wise: a value per run."""
+
+    def __init__(self, layout: Layout, raw, count: int):
+        self.layout, self.raw, self.count_runs = layout, raw, count
+
+    def count(self, kind: str) -> np.ndarray:
+        if kind not in self.layout.event_kinds:
+            return np.zeros(self.count_runs, dtype=np.int64)
+        return np.asarray(self.raw.kind_counts[: self.count_runs, self.layout.kind_code(kind)], dtype=np.int64)
+
+    def summary(self) -> dict[str, np.ndarray]:
+        """:meth:`Readout.summary` of every run: name -> values (yes/no values as bools)."""
+        values = np.asarray(self.raw.scalars[: self.count_runs, 1: 1 + len(self.layout.summaries)])
+        return {name: values[:, i].astype(bool) if units == "bool" else values[:, i].astype(float)
+                for i, (name, units) in enumerate(self.layout.summaries.items())}
+
+    def ledger(self) -> dict:
+        """:meth:`Readout.ledger` of every run: name -> (kind, starts, ends)."""
+        n, first = len(self.layout.ledger_kinds), 1 + len(self.layout.summaries)
+        scalars = np.asarray(self.raw.scalars[: self.count_runs])
+        return {name: (kind, scalars[:, first + i], scalars[:, first + n + i])
+                for i, (name, kind) in enumerate(self.layout.ledger_kinds.items())}

@@ -1,0 +1,92 @@
+"""The runs of a sweep without a scenario object per run: built a chunk at a time, on demand.
+
+A sweep is its base scenario and each swept key's values, every value checked
+when the file was read (alone, on the validated base: see
+:func:`hoistsim.scenario.with_swept_value`).  Run ``i`` is a position in the
+grid of the keys' values (the first key's values slowest); its scenario is
+made when it is about to run, so a million runs hold a million values and
+labels, never a million scenarios.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import cached_property
+
+import numpy as np
+
+from .scenario import Scenario, with_swept_value
+
+
+class SweepRuns:
+    """Every run of ``scenario``'s sweep (one run, the scenario itself, when it has none)."""
+
+    def __init__(self, scenario: Scenario):
+        self.base = scenario
+        self.keys = list(scenario.sweep or {})
+        self.shape = tuple(len(scenario._sweep_values[key]) for key in self.keys)
+        # what every run shares: the base without its sweep (a run is one computation, not a sweep)
+        self._run_base = scenario.model_copy(update={"sweep": None})
+        self._run_base._raw = {k: v for k, v in scenario._raw.items() if k != "sweep"}
+        self._run_base._sweep_values, self._run_base._sweep_labels, self._run_base._sweep_numbers = {}, {}, {}
+
+    def __len__(self) -> int:
+        return math.prod(self.shape) if self.keys else 1
+
+    def positions(self, i: int) -> tuple[int, ...]:
+        """Run ``i``'s index into each key's values (the last key's fastest)."""
+        out = []
+        for size in reversed(self.shape):
+            i, p = divmod(i, size)
+            out.append(p)
+        return tuple(reversed(out))
+
+    def label(self, i: int) -> str:
+        if "labels" in self.__dict__:
+            return self.labels[i]
+        labels = self.base._sweep_labels
+        return ", ".join(f"{key}={labels[key][p]}" for key, p in zip(self.keys, self.positions(i)))
+
+    @cached_property
+    def labels(self) -> list[str]:
+        if len(self.keys) == 1:
+            key = self.keys[0]
+            return [f"{key}={label}" for label in self.base._sweep_labels[key]]
+        return [self.label(i) for i in range(len(self))]
+
+    def __getstate__(self) -> dict:
+        # sent to a cluster's workers: what builds the runs, not the million labels made from it
+        return {k: v for k, v in self.__dict__.items() if k not in ("labels", "parameters")}
+
+    @cached_property
+    def parameters(self) -> dict[str, np.ndarray]:
+        """Swept key -> its SI value in each run (NaN for a table that varies)."""
+        grids = np.meshgrid(*(self.base._sweep_numbers[key] for key in self.keys), indexing="ij")
+        return {key: grid.ravel() for key, grid in zip(self.keys, grids)}
+
+    def scenario(self, i: int) -> Scenario:
+        """Run ``i``'s scenario, validated (its values were checked as the file was read)."""
+        if not self.keys:
+            return self.base
+        run = self._run_base
+        raw = dict(run._raw)
+        for key, p in zip(self.keys, self.positions(i)):
+            value = self.base._sweep_values[key][p]
+            run = with_swept_value(run, key, value, raw)
+            _assign_copied(raw, key, value)
+        run._raw, run._text, run._source = raw, self.base.text, self.base.source
+        return run
+
+
+def _assign_copied(raw: dict, key: str, value) -> None:
+    """Set a dotted key in plain data, copying only the mappings on its path (the rest is shared)."""
+    from .scenario import _ALTERNATIVES
+
+    *path, leaf = key.split(".")
+    node = raw
+    for part in path:
+        node[part] = dict(node.get(part) or {})
+        node = node[part]
+    node[leaf] = value
+    for other in _ALTERNATIVES.get(key, ()):
+        node.pop(other, None)
