@@ -127,9 +127,13 @@ def main():
 @click.option("--resume", is_flag=True,
               help="Finish a sweep that was interrupted, keeping the chunks already written "
                    "(the same scenario and options).")
+@click.option("--workers", type=int, metavar="N",
+              help="Run the sweep on a local Dask cluster of N processes (pip install -e \".[cluster]\").")
+@click.option("--scheduler", metavar="ADDRESS",
+              help="Run the sweep on a running Dask cluster, e.g. tcp://10.0.0.5:8786.")
 @debug_option
 @_guarded
-def run(scenario, output, overrides, sweeps, summary_only, resume):
+def run(scenario, output, overrides, sweeps, summary_only, resume, workers, scheduler):
     """Simulate SCENARIO (every sweep value, when it has a sweep) and write OUTPUT."""
     scenario_path = scenario
     scenario = _scenario(scenario_path, overrides, sweeps)
@@ -155,10 +159,17 @@ def run(scenario, output, overrides, sweeps, summary_only, resume):
     started = time.perf_counter()
     if resume and not (scenario.sweep or summary_only):
         _fail("--resume: only a sweep (or --summary-only) is written in chunks; run it again instead")
+    if workers is not None and scheduler is not None:
+        _fail("give either --workers (a local cluster) or --scheduler (a running one), not both")
+    if workers is not None and workers < 1:
+        _fail(f"--workers: needs at least 1, got {workers}")
+    from .cluster import ClusterError
+
+    clustered = workers is not None or scheduler is not None
     try:
-        if scenario.sweep or summary_only:  # written chunk by chunk as the runs finish
+        if scenario.sweep or summary_only or clustered:  # written block by block as the runs finish
             result = sweep(scenario, summary_only=summary_only, progress=progress_printer(), output=target,
-                           command=command, resume=resume)
+                           command=command, resume=resume, workers=workers, scheduler=scheduler)
             summaries, warnings = result.summaries, result.warnings
         else:  # one run: the plain compiled loop, kept in the persistent cache
             one = simulate(scenario)
@@ -168,6 +179,8 @@ def run(scenario, output, overrides, sweeps, summary_only, resume):
         _fail(str(exc), RUN_FAILED)
     except ResumeError as exc:
         _fail(f"--resume: {exc}")
+    except ClusterError as exc:
+        _fail(str(exc))
     except OSError as exc:  # the results file could not be written (a full disk, no permission)
         _fail(f"{output}: cannot write: {exc.strerror or exc}")
     for warning in warnings[:5]:

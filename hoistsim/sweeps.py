@@ -38,7 +38,10 @@ CHUNK_BYTES = 4 * 2**20
 MAX_CHUNK = 1024
 
 # Chunks in a block: the unit of work handed out (to a cluster's workers) and written (to a file's chunks).
-BLOCK_CHUNKS = 8
+BLOCK_CHUNKS = 2
+# A vmapped chunk steps until its slowest run is done: runs of a block go into chunks in the order of their
+# swept values, so that runs of like work share a chunk (benchmarks/sweep.py measures what it gains).
+ORDER_BY_SWEPT_VALUE = True
 
 
 @dataclass
@@ -109,6 +112,29 @@ def sweep(scenario: Scenario, *, summary_only: bool = False, chunk_size: int | N
     """
     runs = SweepRuns(scenario)
     started = time.perf_counter()
+    with contextlib.ExitStack() as stack:
+        client = None
+        if workers is not None or scheduler is not None:  # connected before the file is touched
+            from .cluster import connect
+
+            client = stack.enter_context(connect(workers, scheduler))
+        summaries, outcome, warnings = _sweep(runs, client, summary_only=summary_only, chunk_size=chunk_size,
+                                              progress=progress, output=output, command=command, resume=resume)
+    return SweepResult(
+        scenario=scenario,
+        labels=runs.labels,
+        keys=runs.keys,
+        parameters=runs.parameters,
+        summaries=summaries,
+        runs=outcome,
+        stats={"wall_time": time.perf_counter() - started, "runs": len(runs)},
+        warnings=warnings,
+    )
+
+
+def _sweep(runs, client, *, summary_only, chunk_size, progress, output, command, resume):
+    """The runs' summaries, RunResults (None when streamed or summary-only) and warnings."""
+    scenario = runs.base
     warnings: list[str] = []
     stream = None
     if output is not None:
@@ -122,7 +148,7 @@ def sweep(scenario: Scenario, *, summary_only: bool = False, chunk_size: int | N
     try:
         outcome = simulate_many(runs, summary_only=summary_only, chunk_size=chunk_size, progress=progress,
                                 warnings=warnings, sink=stream, skip_blocks=stream.blocks_done if stream else 0,
-                                workers=workers, scheduler=scheduler)
+                                client=client)
         if stream is not None:
             outcome = stream.finish(outcome)
     except SimulationError:
@@ -133,17 +159,9 @@ def sweep(scenario: Scenario, *, summary_only: bool = False, chunk_size: int | N
         if stream is not None:
             stream.close()  # interrupted: the finished blocks stay for --resume
         raise
-    streamed = summary_only or stream is not None
-    return SweepResult(
-        scenario=scenario,
-        labels=runs.labels,
-        keys=runs.keys,
-        parameters=runs.parameters,
-        summaries=outcome if streamed else Summaries.from_rows([run.summary for run in outcome]),
-        runs=None if streamed else outcome,
-        stats={"wall_time": time.perf_counter() - started, "runs": len(runs)},
-        warnings=warnings,
-    )
+    if summary_only or stream is not None:
+        return outcome, None, warnings
+    return Summaries.from_rows([run.summary for run in outcome]), outcome, warnings
 
 
 class ListedRuns:
@@ -174,13 +192,13 @@ class Block:
 
 def simulate_many(runs, labels: list[str] | None = None, *, summary_only: bool = False,
                   chunk_size: int | None = None, progress=None, warnings: list | None = None,
-                  sink=None, skip_blocks: int = 0, workers: int | None = None, scheduler: str | None = None):
+                  sink=None, skip_blocks: int = 0, client=None):
     """The runs' RunResults, or (``summary_only``) their :class:`Summaries`, in order.
 
     ``runs`` is a :class:`SweepRuns` or a list of scenarios (then ``labels``
     names them).  Runs go in blocks of consecutive runs, each a few chunks of
     the compiled loop's width (:func:`run_block`), on this process or spread
-    over a Dask cluster; ``sink`` (:class:`hoistsim.streaming.StreamedFile`)
+    over a Dask cluster (``client``, :mod:`hoistsim.cluster`); ``sink`` (:class:`hoistsim.streaming.StreamedFile`)
     takes each block as it finishes, in order, and only summaries are kept;
     the first ``skip_blocks`` blocks (a resumed sweep's, in the file already)
     are not run and their entries stay None.  ``warnings`` collects what the
@@ -196,11 +214,10 @@ def simulate_many(runs, labels: list[str] | None = None, *, summary_only: bool =
         sink.begin(_grids(runs) if not summary_only else None)
     done = sum(stop - start for start, stop in blocks[:skip_blocks])
     todo = blocks[skip_blocks:]
-    if workers is not None or scheduler is not None:
+    if client is not None:
         from .cluster import cluster_blocks
 
-        finished = cluster_blocks(runs, todo, summary_only=summary_only, chunk=chunk, workers=workers,
-                                  scheduler=scheduler)
+        finished = cluster_blocks(client, runs, todo, summary_only=summary_only, chunk=chunk)
     else:
         finished = (run_block(runs, start, stop, summary_only=summary_only, chunk=chunk) for start, stop in todo)
     kept: list = []
@@ -248,6 +265,7 @@ def _run_block(runs, start: int, stop: int, *, summary_only: bool, chunk: int) -
     rows: list = [None] * len(scenarios)  # each run's RunResult, or its chunk's summary columns and lane
     parts: list = []
     for group in _groups(scenarios, plans):
+        group = _by_swept_value(runs, start, group)
         group_plans = _padded_tables([plans[k][0] for k in group])
         first = scenarios[group[0]]
         max_switches = max(scenarios[k].simulation.max_switches for k in group)
@@ -294,6 +312,18 @@ def _run_block(runs, start: int, stop: int, *, summary_only: bool, chunk: int) -
     if summary_only:
         return Block(start, stop, _in_order(parts, len(scenarios)), warnings)
     return Block(start, stop, rows, warnings)
+
+
+def _by_swept_value(runs, start: int, group: list[int]) -> list[int]:
+    """The block's runs ``group`` in the order of their swept values (the first key first; tables, which
+    have no one value, stay as they are)."""
+    if not ORDER_BY_SWEPT_VALUE or not getattr(runs, "keys", None):
+        return group
+    rows = np.asarray(group) + start
+    values = [runs.parameters[key][rows] for key in reversed(runs.keys)]
+    if all(np.isnan(v).all() for v in values):
+        return group
+    return [group[k] for k in np.lexsort(values)]
 
 
 def _in_order(parts, count: int) -> Summaries:

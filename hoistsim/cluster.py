@@ -1,0 +1,81 @@
+"""A sweep's blocks on a Dask cluster: a local one (``--workers N``) or a running one (``--scheduler ADDRESS``).
+
+Each worker is sent the sweep's description once (its base scenario and swept
+values, :class:`hoistsim.sweep_runs.SweepRuns`), takes blocks of runs, builds
+their scenarios and plans itself, runs them through the vectorised loop it
+compiled (or loaded from the persistent cache) once, and sends back arrays:
+the block's summaries, or its runs' time series.  The client writes: blocks
+are taken back in sweep order, so the file is the one a single process
+writes, bit for bit.  A worker lost mid-sweep has its blocks run again
+elsewhere by Dask; a block is only ever taken back once.  Dask is an optional
+dependency (``pip install -e ".[cluster]"``).
+"""
+
+from __future__ import annotations
+
+import collections
+import contextlib
+import uuid
+
+from .sweeps import run_block
+
+CONNECT_SECONDS = 5  # an address with no scheduler behind it fails this fast
+WORKERS_SECONDS = 60  # a running cluster must have a worker by then
+
+
+class ClusterError(Exception):
+    """No cluster to run on: Dask not installed, a scheduler that does not answer, no workers."""
+
+
+def cluster_blocks(client, runs, blocks, *, summary_only: bool, chunk: int):
+    """The blocks ``(start, stop)`` of ``runs`` computed on the cluster, yielded in order as they finish."""
+    sweep_id = uuid.uuid4().hex[:12]  # a running cluster may serve other sweeps: keys of our own
+    shared = client.scatter(runs, broadcast=True)  # sent once to each worker, not with every block
+    window = 2 * max(1, len(client.scheduler_info()["workers"])) + 2
+    pending: collections.deque = collections.deque()
+    for start, stop in blocks:
+        pending.append(client.submit(_remote_block, shared, start, stop, summary_only, chunk, pure=False,
+                                     key=f"hoistsim-block-{sweep_id}-{start}"))
+        if len(pending) >= window:  # bounded: at most a window of finished blocks waits for the writer
+            yield pending.popleft().result()
+    while pending:
+        yield pending.popleft().result()
+
+
+@contextlib.contextmanager
+def connect(workers: int | None = None, scheduler: str | None = None):
+    """A Dask client: of a local cluster of ``workers`` processes, started here, or of the running
+    ``scheduler``.  Connecting comes before anything is written: a cluster that is not there is a
+    one-line :class:`ClusterError`."""
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError:
+        raise ClusterError("--workers and --scheduler need Dask: pip install -e \".[cluster]\"") from None
+    if scheduler is not None:
+        try:
+            client = Client(scheduler, timeout=f"{CONNECT_SECONDS}s", set_as_default=False)
+        except (OSError, TimeoutError) as exc:
+            raise ClusterError(f"--scheduler {scheduler}: no Dask scheduler answers there "
+                               f"({type(exc).__name__} after {CONNECT_SECONDS} s)") from None
+        with client:
+            try:
+                client.wait_for_workers(1, timeout=WORKERS_SECONDS)
+            except TimeoutError:
+                raise ClusterError(f"--scheduler {scheduler}: the cluster has no worker "
+                                   f"(none joined in {WORKERS_SECONDS} s)") from None
+            yield client
+        return
+    if workers < 1:
+        raise ClusterError(f"--workers: needs at least 1, got {workers}")
+    # processes with one thread each: a worker's vectorised loop already keeps its core busy
+    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
+                      host="127.0.0.1") as cluster, Client(cluster, set_as_default=False) as client:
+        yield client
+
+
+def _remote_block(runs, start: int, stop: int, summary_only: bool, chunk: int):
+    """On a worker: one block (the programs compiled once per worker process, kept in the persistent cache)."""
+    from . import _jax
+
+    _jax.enable_compilation_cache()
+    return run_block(runs, start, stop, summary_only=summary_only, chunk=chunk)

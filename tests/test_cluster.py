@@ -1,0 +1,130 @@
+"""A sweep on a Dask cluster: a real scheduler and two workers on 127.0.0.1, the same bits as one process."""
+
+from __future__ import annotations
+
+import os
+import signal
+import time
+
+import h5py
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from conftest import SCENARIOS
+
+from hoistsim import load_scenario, sweep
+from hoistsim.cli import main
+
+distributed = pytest.importorskip("distributed")
+
+SWEEP_FILE = SCENARIOS / "force_sweep_engage_at_speed.yaml"
+CLOCKS = {"solver_wall_time"}  # the only numbers that differ between two runs of the same sweep
+
+
+def _short(count=40):
+    return load_scenario(SWEEP_FILE, overrides=["simulation.duration=0.4 s"],
+                         sweeps=[f"clutch.engagement_force=3 kN:12 kN:{count}"])
+
+
+def _datasets(path) -> dict:
+    out = {}
+    with h5py.File(path, "r") as f:
+        def visit(name, item):
+            if isinstance(item, h5py.Dataset) and name.rsplit("/", 1)[-1] not in CLOCKS and name != "scenario":
+                out[name] = item.asstr()[()] if item.dtype.kind == "O" else item[()]
+        f.visititems(visit)
+    return out
+
+
+def _same(a: dict, b: dict) -> None:
+    assert sorted(a) == sorted(b)
+    for name in a:
+        if a[name].dtype.kind == "f":
+            np.testing.assert_array_equal(a[name], b[name], err_msg=name)  # NaN where NaN, bits elsewhere
+        else:
+            assert (a[name] == b[name]).all(), name
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    """A scheduler and two worker processes, one thread each, on 127.0.0.1."""
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                  dashboard_address=None) as running:
+        yield running
+
+
+@pytest.fixture
+def small_blocks(monkeypatch):
+    """Blocks of one chunk: a short sweep makes several, spread over both workers."""
+    from hoistsim import sweeps
+
+    monkeypatch.setattr(sweeps, "BLOCK_CHUNKS", 1)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("summary_only", [True, False])
+def test_a_sweep_on_two_workers_is_the_sweep_on_one_process(tmp_path, cluster, small_blocks, summary_only):
+    scenario = _short()
+    here = sweep(scenario, summary_only=summary_only, chunk_size=4, output=tmp_path / "here.h5")
+    there = sweep(scenario, summary_only=summary_only, chunk_size=4, output=tmp_path / "there.h5",
+                  scheduler=cluster.scheduler_address)
+    _same(_datasets(tmp_path / "here.h5"), _datasets(tmp_path / "there.h5"))
+    np.testing.assert_array_equal(here.summary["lockup_time"], there.summary["lockup_time"])
+    assert list(there.summary["label"]) == list(here.summary["label"])
+    with h5py.File(tmp_path / "there.h5") as f:
+        assert f["runs/run"].shape == (40,)
+
+
+@pytest.mark.slow
+def test_a_worker_lost_mid_sweep_loses_and_duplicates_nothing(tmp_path, cluster, small_blocks):
+    """One worker's process is killed (SIGKILL) after the first block comes back: Dask runs its blocks
+    elsewhere (the nanny starts a new worker), and the file is the one-process file."""
+    scenario = _short()
+    sweep(scenario, summary_only=True, chunk_size=4, output=tmp_path / "here.h5")
+    client = distributed.Client(cluster.scheduler_address, set_as_default=False)
+    killed = []
+
+    def progress(done, total):
+        if not killed:
+            victim = sorted(client.scheduler_info()["workers"])[0]
+            pid = client.run(os.getpid, workers=[victim])[victim]
+            os.kill(pid, signal.SIGKILL)
+            killed.append(victim)
+
+    there = sweep(scenario, summary_only=True, chunk_size=4, output=tmp_path / "there.h5",
+                  scheduler=cluster.scheduler_address, progress=progress)
+    client.close()
+    assert killed
+    _same(_datasets(tmp_path / "here.h5"), _datasets(tmp_path / "there.h5"))
+    assert len(there.summaries) == 40
+
+
+def test_an_unreachable_scheduler_is_one_line_and_exit_2_within_seconds(tmp_path):
+    started = time.perf_counter()
+    result = CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(tmp_path / "out.h5"), "--summary-only",
+                                       "--scheduler", "tcp://127.0.0.1:9"])
+    assert time.perf_counter() - started < 15
+    assert result.exit_code == 2, result.output
+    lines = result.output.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("hoistsim: error: --scheduler tcp://127.0.0.1:9: "), lines
+    assert not (tmp_path / "out.h5").exists() and not list(tmp_path.iterdir())
+
+
+@pytest.mark.slow
+def test_the_command_line_runs_a_sweep_on_local_workers(tmp_path):
+    target = tmp_path / "two.h5"
+    result = CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(target), "--summary-only",
+                                       "--set", "simulation.duration=0.4 s", "--workers", "2",
+                                       "--sweep", "clutch.engagement_force=3 kN:12 kN:12"])
+    assert result.exit_code == 0, result.output
+    alone = tmp_path / "one.h5"
+    CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(alone), "--summary-only",
+                              "--set", "simulation.duration=0.4 s",
+                              "--sweep", "clutch.engagement_force=3 kN:12 kN:12"])
+    _same(_datasets(alone), _datasets(target))
+
+
+def test_workers_and_scheduler_together_are_refused(tmp_path):
+    result = CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(tmp_path / "out.h5"), "--workers", "2",
+                                       "--scheduler", "tcp://127.0.0.1:9"])
+    assert result.exit_code == 2 and "give either --workers" in result.output
