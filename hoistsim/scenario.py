@@ -13,6 +13,7 @@ import functools
 import io
 import json
 import math
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -76,10 +77,29 @@ def _suggest(word: str, choices: list[str], prefix: str = "") -> str:
     return f"; known keys{' in ' + prefix if prefix else ''}: {', '.join(choices)}"
 
 
+class _Where(Mapping):
+    """key=, source= and line= of a ScenarioError (``**where``): the line is looked up only when an error
+    is raised (finding it parses the file again, round-trip)."""
+
+    def __init__(self, key: str, source: str, tree: Any, path: tuple):
+        self.key, self.source, self.tree, self.path = key, source, tree, path
+
+    def __iter__(self):
+        return iter(("key", "source", "line"))
+
+    def __len__(self) -> int:
+        return 3
+
+    def __getitem__(self, name):
+        if name == "line":
+            return _line_of(self.tree, self.path)
+        return {"key": self.key, "source": self.source}[name]
+
+
 def _check_tree(data: dict, model: type[BaseModel], path: tuple, tree: Any, source: str) -> None:
     """Unknown keys and sections that are not mappings, before any value is looked at."""
     for key, value in data.items():
-        where = dict(key=".".join((*path, key)), source=source, line=_line_of(tree, (*path, key)))
+        where = _Where(".".join((*path, key)), source, tree, (*path, key))
         if key not in model.model_fields:
             known = list(model.model_fields)
             raise ScenarioError(message="unknown key" + _suggest(key, known, ".".join(path)), **where)
@@ -208,7 +228,7 @@ def scenario_from_text(text: str, source: str = "<scenario>",
     """Validate scenario text; ``overrides`` set keys, ``sweeps`` (KEY=SPEC) replace the file's sweep."""
     tree = _read_yaml(text, source)
     try:
-        raw = _to_plain(tree)
+        raw = _to_plain(tree.data)
     except ScenarioError as exc:
         exc.source = source
         raise
@@ -233,7 +253,7 @@ def scenario_from_text(text: str, source: str = "<scenario>",
             raise ScenarioError(key, "is swept in the file (sweep:); --set cannot also set it", source="--set")
         # a sweep given on the command line has no line in the file
         where, lines = ("--sweep", None) if sweeps else (source, tree)
-        values, labels = _expand_range(key, values, where, _line_of(lines, ("sweep", key)))
+        values, labels = _expand_range(key, values, _Where(f"sweep.{key}", where, lines, ("sweep", key)))
         scenario._sweep_numbers[key] = _check_sweep(scenario, raw, key, values, lines, where)
         scenario._sweep_values[key] = values
         scenario._sweep_labels[key] = labels
@@ -287,14 +307,13 @@ def _error_from(err: dict, tree: Any, source: str, overridden: set[str]) -> Scen
 def _check_sweep(scenario: Scenario, raw: dict, key: str, values: list, tree: Any, source: str) -> np.ndarray:
     """A sweep names a known key, and each of its values is one the key accepts (validated alone, on the
     validated base): the SI number of each value (NaN where it is not one, a table that varies)."""
-    line = _line_of(tree, ("sweep", key))
+    where = _Where(f"sweep.{key}", source, tree, ("sweep", key))
     try:
         _check_key(key, source)
     except ScenarioError as exc:
-        raise ScenarioError(f"sweep.{exc.key}", exc.message, source=source, line=line) from None
+        raise ScenarioError(f"sweep.{exc.key}", exc.message, source=source, line=where["line"]) from None
     if not isinstance(values, list) or not values:
-        raise ScenarioError(f"sweep.{key}", f"needs a non-empty list of values, {_SWEEP_EXAMPLE}",
-                            source=source, line=line)
+        raise ScenarioError(message=f"needs a non-empty list of values, {_SWEEP_EXAMPLE}", **where)
     base = {k: v for k, v in raw.items() if k != "sweep"}
     numbers = np.empty(len(values))
     for i, value in enumerate(values):
@@ -303,7 +322,7 @@ def _check_sweep(scenario: Scenario, raw: dict, key: str, values: list, tree: An
         except ScenarioError as exc:
             detail = exc.message if exc.key in (key, "") else f"{exc.key}: {exc.message}"
             raise ScenarioError(f"sweep.{key}", f"value {i + 1} ({_format_value(value)}): {detail}",
-                                source=source, line=_line_of(tree, ("sweep", key, i)) or line) from None
+                                source=source, line=_line_of(tree, ("sweep", key, i)) or where["line"]) from None
     return numbers
 
 
@@ -360,22 +379,19 @@ def swept_number(scenario: Scenario, key: str) -> float:
     return float(value) if isinstance(value, (int, float)) else math.nan
 
 
-def _expand_range(key: str, spec: Any, source: str, line: int | None) -> tuple[Any, list[str]]:
+def _expand_range(key: str, spec: Any, where: _Where) -> tuple[Any, list[str]]:
     """``{from: 1000 N, to: 9000 N, count: 9}`` -> the evenly spaced values and their labels."""
     if not isinstance(spec, dict):
         return spec, [_format_value(v) for v in spec] if isinstance(spec, list) else []
-    where = dict(source=source, line=line)
     if set(spec) != {"from", "to", "count"}:
-        raise ScenarioError(f"sweep.{key}", f"a range needs exactly from:, to: and count:, got {sorted(spec)}",
-                            **where)
+        raise ScenarioError(message=f"a range needs exactly from:, to: and count:, got {sorted(spec)}", **where)
     count = spec["count"]
     if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= 1_000_000:
-        raise ScenarioError(f"sweep.{key}", f"count must be a whole number from 1 to 1000000, got {count!r}",
-                            **where)
+        raise ScenarioError(message=f"count must be a whole number from 1 to 1000000, got {count!r}", **where)
     try:
         start, stop, unit = u.range_ends(spec["from"], spec["to"])
     except u.UnitError as exc:
-        raise ScenarioError(f"sweep.{key}", f"range: {exc}", **where) from None
+        raise ScenarioError(message=f"range: {exc}", **where) from None
     step = (stop - start) / (count - 1) if count > 1 else 0.0
     values = [start + i * step for i in range(count - 1)] + [stop] if count > 1 else [start]
     labels = [f"{v:.6g} {unit}".rstrip() for v in values]

@@ -114,7 +114,29 @@ def to_si(value: object, dimension: Dimension) -> float:
 
 @lru_cache(maxsize=4096)
 def _string_to_si(value: str, dimension: Dimension) -> float:
+    # "6543.21 N": the number times the unit's SI value, that unit judged once (a sweep lists thousands
+    # of forces in a few units; pint reads each in ~60 us); anything else is pint's to read
+    match = _NUMBER_UNIT.fullmatch(value)
+    if match:
+        factor = _unit_factor(match.group(2), dimension)
+        if factor is not None:
+            return _finite(float(match.group(1)) * factor, value)
     return _to_si(value, dimension)
+
+
+_NUMBER_UNIT = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A-Za-z_][A-Za-z_*/^\d]*)\s*")
+
+
+@lru_cache(maxsize=None)
+def _unit_factor(unit: str, dimension: Dimension) -> float | None:
+    """What one ``unit`` is in the SI unit of ``dimension``; None where pint must read the whole text
+    (a unit of another dimension, an unknown one, one with an offset)."""
+    try:
+        one = _to_si(f"1 {unit}", dimension)
+        multiplicative = registry().Quantity(1, unit)._is_multiplicative
+    except Exception:  # pint's errors, our UnitError: the full reading says what is wrong
+        return None
+    return one if multiplicative else None
 
 
 def _to_si(value: object, dimension: Dimension) -> float:

@@ -437,3 +437,38 @@ def test_any_edit_gives_a_scenario_or_a_scenario_error(line, value, action):
         scenario_from_text("\n".join(lines) + "\n", source="s.yaml")
     except ScenarioError as err:
         assert "\n" not in str(err) and str(err).startswith("s.yaml")
+
+
+@pytest.mark.parametrize("dimension, units", [
+    ("FORCE", ["N", "kN", "daN", "lbf"]), ("ANGULAR_SPEED", ["rpm", "rad/s", "deg/s"]),
+    ("INERTIA", ["kg*m^2", "g*cm^2", "lb*ft^2"]), ("LENGTH", ["m", "cm", "mm", "in"])])
+def test_a_number_with_a_unit_reads_as_pint_reads_it(dimension, units):
+    """The quick reading of "6543.21 N" (the number times the unit's SI value, the unit judged once) gives
+    pint's value, bit for bit, and pint's message for a unit of another dimension."""
+    import random
+
+    from hoistsim import units as u
+
+    rnd = random.Random(7)
+    dim = getattr(u, dimension)
+    for _ in range(400):
+        text = f"{rnd.uniform(-1e5, 1e5):.{rnd.randint(0, 12)}g} {rnd.choice(units)}"
+        u._string_to_si.cache_clear()
+        assert u.to_si(text, dim) == u._to_si(text, dim), text
+    with pytest.raises(u.UnitError, match="which is"):
+        u.to_si("3 s", dim)
+
+
+def test_a_large_listed_sweep_reads_without_the_round_trip_tree_and_errors_still_name_lines():
+    """The data of a file is read by the C parser; the round-trip tree (lines) only for a message."""
+    from hoistsim import yamlsource
+
+    tables = "".join(f"\n    - [[0 s, 0 N], [0.05 s, {3000 + i} N]]" for i in range(50))
+    good = scenario_from_text(BASE + "sweep:\n  clutch.engagement_force:" + tables + "\n")
+    assert len(sweep_values(good)) == 50
+    bad = BASE + "sweep:\n  clutch.engagement_force:" + tables + "\n    - [[0 s, 0 N], [0.05 s, -1 N]]\n"
+    with pytest.raises(ScenarioError) as err:
+        scenario_from_text(bad, source="s.yaml")
+    assert err.value.line == bad.count("\n") and "value 51" in err.value.message
+    assert isinstance(yamlsource.read_yaml(BASE, "s.yaml").data, dict)
+    assert yamlsource.read_yaml(BASE, "s.yaml")._tree is None  # no round-trip parse unless asked
