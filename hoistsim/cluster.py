@@ -17,7 +17,7 @@ import collections
 import contextlib
 import uuid
 
-from .sweeps import run_block
+from .blocks import run_block
 
 CONNECT_SECONDS = 5  # an address with no scheduler behind it fails this fast
 WORKERS_SECONDS = 60  # a running cluster must have a worker by then
@@ -68,7 +68,7 @@ def connect(workers: int | None = None, scheduler: str | None = None):
     if workers < 1:
         raise ClusterError(f"--workers: needs at least 1, got {workers}")
     # processes with one thread each: a worker's vectorised loop already keeps its core busy
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
+    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
                       host="127.0.0.1") as cluster, Client(cluster, set_as_default=False) as client:
         yield client
 

@@ -106,6 +106,7 @@ def _write_at_once(path, scenario, labels, parameters, outcomes, *, summary_only
 
 
 FORMAT_VERSION = 2
+LABEL_SLICE = 65536  # labels made and written at a time
 
 
 def _start_file(f: h5py.File, summary_only: bool) -> None:
@@ -227,7 +228,7 @@ class Heading:
     """What a results file says of the whole sweep: its scenario, labels, swept values and time axis."""
 
     scenario: object
-    labels: list
+    labels: object  # a sequence of str (a sweep's are made when read)
     parameters: dict
     summary_only: bool
     time: np.ndarray | None
@@ -256,8 +257,10 @@ class Assembly:
         _start_file(f, layout.summary_only)
         group = f.create_group("runs")
         run = _scale(group, "run", np.arange(self.count), "1", "run index, in sweep order")
-        _variable(group, "label", np.asarray(layout.labels, dtype=object), "1",
-                  "the run's swept values (or the scenario's name)", (run,), dtype=_TEXT)
+        labels = _variable(group, "label", None, "1", "the run's swept values (or the scenario's name)", (run,),
+                           shape=(self.count,), dtype=_TEXT)
+        for start in range(0, self.count, LABEL_SLICE):  # a slice at a time: a million never all at once
+            labels[start:start + LABEL_SLICE] = np.asarray(layout.labels[start:start + LABEL_SLICE], dtype=object)
         from .scenario import key_units
 
         for key, values in layout.parameters.items():

@@ -7,9 +7,14 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Sequence
+from functools import cached_property
+from pathlib import Path
 
 import h5py
 import numpy as np
+
+from .results import Summaries
 
 
 def _version(f: h5py.File) -> int:
@@ -111,6 +116,45 @@ def read_summary(path) -> list[dict]:
     names = list(columns)
     lists = [np.asarray(columns[n]).tolist() for n in names]
     return [{n: (v.decode() if isinstance(v, bytes) else v) for n, v in zip(names, values)} for values in zip(*lists)]
+
+
+class FileSummaries(Sequence):
+    """The summaries of a results file's runs (format 2), read when asked for: a dict per run by index,
+    as :class:`hoistsim.results.Summaries`, or every ``columns``.  A streamed sweep of a million runs
+    returns these: its memory does not grow with the runs it keeps."""
+
+    def __init__(self, path, flags=()):
+        self.path, self.flags = Path(path), set(flags)  # flags: yes/no values, stored as 0/1
+        with h5py.File(self.path, "r") as f:
+            group = f["runs"]
+            swept = set(json.loads(group.attrs["swept_keys"]))
+            self.names = [n for n in json.loads(group.attrs["summary_columns"]) if n not in swept]
+            self.count = int(group["run"].shape[0])
+
+    def __len__(self) -> int:
+        return self.count
+
+    def _read(self, rows: slice) -> Summaries:
+        with h5py.File(self.path, "r") as f:
+            group = f["runs"]
+            columns = {name: group[name].asstr()[rows] if name == "label" else group[name][rows]
+                       for name in self.names}
+        return Summaries({name: values.astype(object) if name == "label" else
+                          values.astype(bool) if name in self.flags else values for name, values in columns.items()})
+
+    def __getitem__(self, index):
+        if isinstance(index, slice):
+            start, stop, step = index.indices(self.count)
+            return self._read(slice(start, stop))[::step] if stop > start else []
+        if index < 0:
+            index += self.count
+        if not 0 <= index < self.count:
+            raise IndexError(index)
+        return self._read(slice(index, index + 1))[0]
+
+    @cached_property
+    def columns(self) -> dict[str, np.ndarray]:
+        return self._read(slice(None)).columns
 
 
 def open_results(path):

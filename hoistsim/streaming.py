@@ -78,7 +78,6 @@ class StreamedFile:
             self.files += 1
             with h5py.File(self._chunk(self.files), "r") as f:
                 self.blocks_done += int(f.attrs["sweep_blocks"])
-        self.resumed_files = self.files
         self.pending: list = []  # blocks finished, not yet in a file
 
     def _chunk(self, number: int) -> Path:
@@ -92,7 +91,7 @@ class StreamedFile:
             self.time, self.padded = output.common_time(grids)
 
     def write(self, block) -> None:
-        """One finished block of runs (:class:`hoistsim.sweeps.Block`).
+        """One finished block of runs (:class:`hoistsim.blocks.Block`).
 
         Blocks are gathered into files of about FILE_BYTES of series (or FILE_RUNS summaries): few
         files, each written once; what a kill loses is at most one file's worth of runs.
@@ -121,30 +120,15 @@ class StreamedFile:
         os.replace(partial, final)
         self.pending = []
 
-    def written_summaries(self) -> Summaries | None:
-        """The summaries of the runs in the files written before a resume, in order."""
-        parts = []
-        for number in range(1, self.resumed_files + 1):
-            with h5py.File(self._chunk(number), "r") as f:
-                columns = json.loads(f.attrs["columns"])
-                indices = f["indices"][()]
-                labels = np.asarray([self.labels[int(i)] for i in indices], dtype=object)
-                parts.append(Summaries({"label": labels, **{key: f[f"values/{key}"][()] for key in columns}}))
-        return Summaries.concatenate(parts) if parts else None
-
     # ------------------------------------------------------------------ the file
 
-    def finish(self, summaries: Summaries | None) -> Summaries:
-        """Assemble the results file from the chunk files, one at a time; it takes the target's name
-        atomically.  ``summaries``: of the runs computed now; returned with those of a resumed sweep's
-        earlier runs before them."""
+    def finish(self) -> None:
+        """Assemble the results file from the chunk files, one at a time; it takes the target's name atomically."""
         self._flush()
-        earlier = self.written_summaries()
         heading = output.Heading(self.scenario, self.labels, self.parameters, self.summary_only, self.time,
                                  self.command)
         output.assemble(self.target, self._records(), heading)
         shutil.rmtree(self.folder, ignore_errors=True)
-        return Summaries.concatenate([part for part in (earlier, summaries) if part is not None])
 
     def _records(self):
         for number in range(1, self.files + 1):

@@ -11,6 +11,7 @@ labels, never a million scenarios.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from functools import cached_property
 
 import numpy as np
@@ -42,21 +43,17 @@ class SweepRuns:
         return tuple(reversed(out))
 
     def label(self, i: int) -> str:
-        if "labels" in self.__dict__:
-            return self.labels[i]
         labels = self.base._sweep_labels
         return ", ".join(f"{key}={labels[key][p]}" for key, p in zip(self.keys, self.positions(i)))
 
-    @cached_property
-    def labels(self) -> list[str]:
-        if len(self.keys) == 1:
-            key = self.keys[0]
-            return [f"{key}={label}" for label in self.base._sweep_labels[key]]
-        return [self.label(i) for i in range(len(self))]
+    @property
+    def labels(self) -> "Labels":
+        """Every run's label, made when read (a million runs keep their values' labels, not a million more)."""
+        return Labels(self)
 
     def __getstate__(self) -> dict:
-        # sent to a cluster's workers: what builds the runs, not the million labels made from it
-        return {k: v for k, v in self.__dict__.items() if k not in ("labels", "parameters")}
+        # sent to a cluster's workers: what builds the runs, not what is derived from it
+        return {k: v for k, v in self.__dict__.items() if k != "parameters"}
 
     @cached_property
     def parameters(self) -> dict[str, np.ndarray]:
@@ -76,6 +73,31 @@ class SweepRuns:
             _assign_copied(raw, key, value)
         run._raw, run._text, run._source = raw, self.base.text, self.base.source
         return run
+
+
+class Labels(Sequence):
+    """The labels of a sweep's runs, each made from its values' labels when read."""
+
+    def __init__(self, runs: SweepRuns):
+        self.runs = runs
+
+    def __len__(self) -> int:
+        return len(self.runs)
+
+    def __getitem__(self, index):
+        if isinstance(index, slice):
+            return [self.runs.label(i) for i in range(*index.indices(len(self)))]
+        if index < 0:
+            index += len(self)
+        if not 0 <= index < len(self):
+            raise IndexError(index)
+        return self.runs.label(index)
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, Sequence) and list(self) == list(other)
+
+    def __repr__(self) -> str:
+        return f"Labels({len(self)} runs: {self[0]!r}, ...)"
 
 
 def _assign_copied(raw: dict, key: str, value) -> None:

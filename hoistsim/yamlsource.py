@@ -43,13 +43,13 @@ _YAML_PROBLEMS = {  # ruamel's wording -> what to fix
 class Lines:
     """The scenario's data, and its round-trip tree (the line of every key and item), parsed when first used."""
 
-    def __init__(self, text: str, data: Any, tree: CommentedMap | None = None):
-        self.text, self.data, self._tree = text, data, tree
+    def __init__(self, text: str, source: str, data: Any, tree: CommentedMap | None = None):
+        self.text, self.source, self.data, self._tree = text, source, data, tree
 
     @property
     def tree(self) -> CommentedMap:
-        if self._tree is None:
-            self._tree = yaml_reader().load(io.StringIO(self.text))
+        if self._tree is None:  # the round-trip parser is stricter (a tab the C parser lets pass): its error
+            self._tree = _read_round_trip(self.text, self.source)
         return self._tree
 
 
@@ -59,11 +59,11 @@ def read_yaml(text: str, source: str) -> Lines:
         fast.allow_duplicate_keys = False
         data = fast.load(io.StringIO(text))
         if isinstance(data, dict):
-            return Lines(text, data)
+            return Lines(text, source, data)
     except Exception:  # read it round-trip: that says what is wrong, with its line
         pass
     tree = _read_round_trip(text, source)
-    return Lines(text, tree, tree)
+    return Lines(text, source, tree, tree)
 
 
 def _read_round_trip(text: str, source: str) -> CommentedMap:

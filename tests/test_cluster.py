@@ -49,7 +49,7 @@ def _same(a: dict, b: dict) -> None:
 def cluster():
     """A scheduler and two worker processes, one thread each, on 127.0.0.1."""
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
-                                  dashboard_address=None) as running:
+                                  dashboard_address=":0") as running:
         yield running
 
 

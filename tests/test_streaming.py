@@ -149,3 +149,22 @@ def test_starting_afresh_over_an_interrupted_sweep_says_so(tmp_path, monkeypatch
     again = sweep(_short(), summary_only=True, chunk_size=4, output=target)
     assert again.warnings == ["forces.h5: an interrupted sweep's 1 chunk file(s) were discarded (--resume keeps them)"]
     assert target.exists() and not partial_path(target).exists()
+
+
+def test_a_streamed_sweep_reads_its_summaries_back_as_they_were(tmp_path):
+    """A streamed sweep keeps nothing per run in memory: its summaries are read back from the file when
+    asked for, the same values and types as a sweep kept in memory (yes/no values as bools)."""
+    from hoistsim.reading import FileSummaries
+
+    scenario = _short()
+    kept = sweep(scenario, summary_only=True, chunk_size=4)
+    streamed = sweep(scenario, summary_only=True, chunk_size=4, output=tmp_path / "s.h5")
+    assert isinstance(streamed.summaries, FileSummaries) and len(streamed.summaries) == len(kept.summaries) == 10
+    for a, b in zip(kept.summaries, streamed.summaries):
+        assert list(a) == list(b)
+        for key in a:
+            assert type(a[key]) is type(b[key]), key
+            assert a[key] == b[key] or (a[key] != a[key] and b[key] != b[key]), key  # NaN where NaN
+    assert streamed.summaries[-1] == kept.summaries[-1] or np.isnan(kept.summaries[-1]["lockup_time"])
+    assert [row["label"] for row in streamed.summaries[2:5]] == list(kept.labels[2:5])
+    np.testing.assert_array_equal(streamed.summary["slip_energy"], kept.summary["slip_energy"])

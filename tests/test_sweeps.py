@@ -209,7 +209,7 @@ def test_an_observation_never_fires_again_at_its_own_restart():
 
     from hoistsim.assemble import build_plan, loop_sizes
     from hoistsim.core.readout import PASSES
-    from hoistsim.sweeps import compiled_batch
+    from hoistsim.blocks import compiled_batch
 
     s = load_scenario(SWEEP_FILE, sweeps=["clutch.engagement_force=3510.2639296187685 N"])
     ((_, one),) = sweep_values(s)
