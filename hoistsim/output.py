@@ -136,9 +136,10 @@ def _variable(group: h5py.Group, name: str, values, units: str, text: str, dims:
 def _run_extras(runs) -> dict:
     """Per-run numbers beside the summary: the energy ledger's terms and the solver's counts."""
     extras = {}
-    for key in runs[0].energy_balance:
+    balances = [run.energy_balance for run in runs]  # each closes the run's ledger: once a run
+    for key in balances[0]:
         extras[f"energy_{key}"] = ("J" if key != "relative_residual" else "1",
-                                   np.asarray([run.energy_balance[key] for run in runs], dtype=float))
+                                   np.asarray([balance[key] for balance in balances], dtype=float))
     for key in runs[0].stats:
         extras[f"solver_{key}"] = ("s" if key == "wall_time" else "1",
                                    np.asarray([run.stats[key] for run in runs]))
