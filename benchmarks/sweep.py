@@ -171,10 +171,11 @@ def cluster(count: int) -> list[list[str]]:
         out = Path(folder) / "cluster.h5"
         alone = measured(hoistsim_cli("run", str(RANGE_SCENARIO), "-o", str(out), "--summary-only",
                                       "--sweep", f"clutch.engagement_force=3 kN:12 kN:{count}"))["wall"]
+        hoistsim.sweep(small, summary_only=True)  # compiled (or loaded) here too
         start = time.perf_counter()
         hoistsim.sweep(scenario, summary_only=True, output=out)
         in_process = time.perf_counter() - start
-        rows.append(["no cluster", f"{alone:.1f}", f"{in_process:.1f}", "-"])
+        rows.append(["no cluster (this process)", f"{alone:.1f}", f"{in_process:.1f}", "-"])
         base = None
         for workers in (1, 2):
             wall = measured(hoistsim_cli("run", str(RANGE_SCENARIO), "-o", str(out), "--summary-only",
@@ -217,26 +218,34 @@ def _timed(func) -> float:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="small files, scale to 1e4, no cluster")
+    parser.add_argument("--part", type=int, choices=(1, 2, 3, 4), help="only this part")
     args = parser.parse_args()
+    from hoistsim import _jax
+
+    _jax.enable_compilation_cache()  # as the command line does: a program compiled once is loaded after
     with tempfile.TemporaryDirectory() as folder:
         folder = Path(folder)
-        small, large = (200, 1000) if args.quick else (1000, 5000)
-        print(f"1. marginal cost per scenario, files listing {small} and {large} force tables", flush=True)
-        rows = marginal(folder, small, large)
-        print(table(["output", f"{small} runs [s]", f"{large} runs [s]", "hoistsim per run [us]",
-                     "scipy per run [us]", "ratio", "lock-up diff [s]"], rows))
-        print(f"(scipy: mean of {SCIPY_SAMPLE} evenly spaced scenarios of the {large}-table file; "
-              "hoistsim: (T(large) - T(small)) / (large - small), medians of "
-              f"{REPEATS} fresh processes)\n", flush=True)
-        counts = [1000, 10000] if args.quick else [1000, 10000, 100000, 1000000]
-        print("2. summary-only sweeps through the command line, --sweep FROM:TO:COUNT", flush=True)
-        print(table(["runs", "wall [s]", "per run [us]", "peak RSS [MiB]"], scale(counts)) + "\n", flush=True)
-        if not args.quick:
+        wanted = lambda part: args.part in (None, part)  # noqa: E731
+        if wanted(1):
+            small, large = (200, 1000) if args.quick else (1000, 5000)
+            print(f"1. marginal cost per scenario, files listing {small} and {large} force tables", flush=True)
+            rows = marginal(folder, small, large)
+            print(table(["output", f"{small} runs [s]", f"{large} runs [s]", "hoistsim per run [us]",
+                         "scipy per run [us]", "ratio", "lock-up diff [s]"], rows))
+            print(f"(scipy: mean of {SCIPY_SAMPLE} evenly spaced scenarios of the {large}-table file; "
+                  "hoistsim: (T(large) - T(small)) / (large - small), medians of "
+                  f"{REPEATS} fresh processes)\n", flush=True)
+        if wanted(2):
+            counts = [1000, 10000] if args.quick else [1000, 10000, 100000, 1000000]
+            print("2. summary-only sweeps through the command line, --sweep FROM:TO:COUNT", flush=True)
+            print(table(["runs", "wall [s]", "per run [us]", "peak RSS [MiB]"], scale(counts)) + "\n", flush=True)
+        if wanted(3) and not args.quick:
             print("3. a local Dask cluster, 1e5 runs summary-only", flush=True)
             print(table(["cluster", "command wall [s]", "sweep, workers up [s]", "speed-up"], cluster(100000))
                   + "\n", flush=True)
-        print("4. lanes that wait: 8192 forces listed in random order", flush=True)
-        print(table(["order", "sweep [s]", "per run [us]"], lanes(folder, 8192)))
+        if wanted(4):
+            print("4. lanes that wait: 8192 forces listed in random order", flush=True)
+            print(table(["order", "sweep [s]", "per run [us]"], lanes(folder, 8192)))
 
 
 if __name__ == "__main__":
