@@ -205,13 +205,13 @@ def run(scenario, output, overrides, sweeps, summary_only, resume, workers, sche
 def check(scenario, overrides):
     """Validate SCENARIO and print the reduced model, without simulating."""
     from .report import reduced_model_table
-    from .scenario import sweep_values
+    from .sweep_runs import SweepRuns
 
     scenario_path = scenario
     scenario = _scenario(scenario_path, overrides)
-    runs = sweep_values(scenario)
+    count = len(SweepRuns(scenario))  # every value was validated as the file was read
     click.echo(reduced_model_table(scenario))
-    click.echo(f"{scenario_path}: valid ({len(runs)} run{'s' if len(runs) != 1 else ''})")
+    click.echo(f"{scenario_path}: valid ({count} run{'s' if count != 1 else ''})")
 
 
 @main.command()
