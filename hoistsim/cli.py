@@ -163,7 +163,7 @@ def run(scenario, output, overrides, sweeps, summary_only, resume, workers, sche
         _fail("give either --workers (a local cluster) or --scheduler (a running one), not both")
     if workers is not None and workers < 1:
         _fail(f"--workers: needs at least 1, got {workers}")
-    from .cluster import ClusterError
+    from .cluster import ClusterError, ClusterLost
 
     clustered = workers is not None or scheduler is not None
     try:
@@ -179,6 +179,8 @@ def run(scenario, output, overrides, sweeps, summary_only, resume, workers, sche
         _fail(str(exc), RUN_FAILED)
     except ResumeError as exc:
         _fail(f"--resume: {exc}")
+    except ClusterLost as exc:  # during the run: not the input's fault
+        _fail(str(exc), RUN_FAILED)
     except ClusterError as exc:
         _fail(str(exc))
     except OSError as exc:  # the results file could not be written (a full disk, no permission)

@@ -7,7 +7,9 @@ compiled (or loaded from the persistent cache) once, and sends back arrays:
 the block's summaries, or its runs' time series.  The client writes: blocks
 are taken back in sweep order, so the file is the one a single process
 writes, bit for bit.  A worker lost mid-sweep has its blocks run again
-elsewhere by Dask; a block is only ever taken back once.  Dask is an optional
+elsewhere by Dask; a block the cluster cancels (the client's connection to
+the scheduler dropped) is submitted again; a block is only ever taken back
+once.  Dask is an optional
 dependency (``pip install -e ".[cluster]"``).
 """
 
@@ -16,10 +18,12 @@ from __future__ import annotations
 import collections
 import contextlib
 import uuid
+from concurrent.futures import CancelledError
 
 from .blocks import run_block
 
 CONNECT_SECONDS = 5  # an address with no scheduler behind it fails this fast
+RETRIES = 3  # submissions of a block the cluster cancels before the sweep gives up
 WORKERS_SECONDS = 60  # a running cluster must have a worker by then
 
 
@@ -27,19 +31,43 @@ class ClusterError(Exception):
     """No cluster to run on: Dask not installed, a scheduler that does not answer, no workers."""
 
 
+class ClusterLost(ClusterError):
+    """The cluster went away during the sweep (its finished blocks are kept for --resume)."""
+
+
 def cluster_blocks(client, runs, blocks, *, summary_only: bool, chunk: int):
     """The blocks ``(start, stop)`` of ``runs`` computed on the cluster, yielded in order as they finish."""
     sweep_id = uuid.uuid4().hex[:12]  # a running cluster may serve other sweeps: keys of our own
-    shared = client.scatter(runs, broadcast=True)  # sent once to each worker, not with every block
+    shared = [client.scatter(runs, broadcast=True)]  # sent once to each worker, not with every block
     window = 2 * max(1, len(client.scheduler_info()["workers"])) + 2
+    tries = collections.Counter()
+
+    def submit(start: int, stop: int):
+        tries[start] += 1
+        return (start, stop), client.submit(_remote_block, shared[0], start, stop, summary_only, chunk,
+                                            pure=False, key=f"hoistsim-block-{sweep_id}-{start}-{tries[start]}")
+
+    def taken(block, future):
+        # A block is taken back once.  Dask reruns a lost worker's tasks itself; a future it cancels
+        # (the client's connection to the scheduler dropped and came back) is submitted again.
+        while True:
+            try:
+                return future.result()
+            except CancelledError:
+                if tries[block[0]] >= RETRIES:
+                    raise ClusterLost(f"the cluster cancelled runs {block[0]}-{block[1] - 1} "
+                                       f"{RETRIES} times; the chunks written so far are kept (--resume)") from None
+                client.wait_for_workers(1, timeout=WORKERS_SECONDS)
+                shared[0] = client.scatter(runs, broadcast=True)  # the scattered sweep may have gone too
+                block, future = submit(*block)
+
     pending: collections.deque = collections.deque()
     for start, stop in blocks:
-        pending.append(client.submit(_remote_block, shared, start, stop, summary_only, chunk, pure=False,
-                                     key=f"hoistsim-block-{sweep_id}-{start}"))
+        pending.append(submit(start, stop))
         if len(pending) >= window:  # bounded: at most a window of finished blocks waits for the writer
-            yield pending.popleft().result()
+            yield taken(*pending.popleft())
     while pending:
-        yield pending.popleft().result()
+        yield taken(*pending.popleft())
 
 
 @contextlib.contextmanager

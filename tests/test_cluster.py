@@ -128,3 +128,61 @@ def test_workers_and_scheduler_together_are_refused(tmp_path):
     result = CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(tmp_path / "out.h5"), "--workers", "2",
                                        "--scheduler", "tcp://127.0.0.1:9"])
     assert result.exit_code == 2 and "give either --workers" in result.output
+
+
+class _Cancelling:
+    """A client whose first submission of one block is cancelled (a scheduler connection that dropped)."""
+
+    def __init__(self, cancel_start: int):
+        self.cancel_start, self.submitted = cancel_start, []
+
+    def scatter(self, data, broadcast=False):
+        return data
+
+    def scheduler_info(self):
+        return {"workers": {"a": {}, "b": {}}}
+
+    def wait_for_workers(self, n, timeout=None):
+        pass
+
+    def submit(self, func, *args, key, pure):
+        self.submitted.append(key)
+        cancel = args[1] == self.cancel_start and self.submitted.count(key) == 1 and key.endswith("-1")
+
+        class Future:
+            def result(self):
+                if cancel:
+                    from concurrent.futures import CancelledError
+
+                    raise CancelledError(key)
+                return func(*args)
+
+        return Future()
+
+
+def test_a_block_the_cluster_cancels_is_submitted_again_and_taken_once(monkeypatch):
+    from hoistsim import cluster
+
+    monkeypatch.setattr(cluster, "_remote_block", lambda runs, start, stop, summary_only, chunk: (start, stop))
+    client = _Cancelling(cancel_start=4)
+    blocks = [(0, 4), (4, 8), (8, 10)]
+    taken = list(cluster.cluster_blocks(client, object(), blocks, summary_only=True, chunk=4))
+    assert taken == blocks  # in order, each once
+    assert sum(key.split("-")[-2] == "4" for key in client.submitted) == 2  # the cancelled block again
+
+
+def test_a_block_cancelled_again_and_again_stops_the_sweep_in_one_line(monkeypatch):
+    from hoistsim import cluster
+
+    class Always(_Cancelling):
+        def submit(self, func, *args, key, pure):
+            from concurrent.futures import CancelledError
+
+            class Future:
+                def result(self):
+                    raise CancelledError(key)
+
+            return Future()
+
+    with pytest.raises(cluster.ClusterLost, match="cancelled runs 0-3 3 times"):
+        list(cluster.cluster_blocks(Always(0), object(), [(0, 4)], summary_only=True, chunk=4))
