@@ -286,6 +286,7 @@ def solve_exact(drivetrain, force_times, force_forces, duration, *, initial_moto
 
 
 def exact_from_scenario(scenario) -> ExactSolution:
+    _holding_brake_only(scenario)
     drivetrain = Machine.from_scenario(scenario).reduced()
     schedule = ForceSchedule.from_scenario(scenario)
     brake = getattr(scenario, "brake", None)
@@ -312,3 +313,10 @@ def clutch_torque(drivetrain, mode, force, motor_speed, held):
     kinetic = hoist.fk * hoist.c * force
     return np.where(mode == LOCKED, locked, np.where(mode == SLIP_FORWARD, kinetic,
                                                      np.where(mode == SLIP_BACKWARD, -kinetic, 0.0)))
+
+
+def _holding_brake_only(scenario) -> None:
+    """The closed form knows the holding brake (the drum held, then free), not one that slips."""
+    brake = getattr(scenario, "brake", None)
+    if brake is not None and brake.static_torque is not None:
+        raise ValueError("the closed form covers a holding brake only, not one with static_torque")

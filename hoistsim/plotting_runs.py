@@ -35,7 +35,7 @@ def runs_figure(runs, plt, swept):
     classes = element_classes()
     present = set(runs[0])
     panels = _panels(classes, present)
-    shading = [phase for cls in classes for phase in cls.shading if phase.column in present]
+    shading = list({id(phase): phase for cls in classes for phase in cls.shading if phase.column in present}.values())
     # events that are not switches or scheduled instants (observations, period marks) get no line
     quiet = {"slip_peak"} | {k for cls in classes for k in cls.observation_kinds} | {
         kind for cls in classes for kind in cls.cycles.values()}
@@ -162,7 +162,8 @@ def _marks(ax, trace, scale, runs, run_colours, mode):
         xs, ys, cs = [], [], []
         for run, colour in zip(runs, run_colours):
             values = trace.of(run)
-            times = [float(row["time"]) for row in run["events"] if _kind(row) == kind]
+            times = [float(row["time"]) for row in run["events"] if _kind(row) == kind
+                     and (trace.marks_of is None or _text(row, "element") == trace.marks_of)]
             if values is None or not times:
                 continue
             xs += times
@@ -279,5 +280,9 @@ def _run_name(run) -> str:
 
 
 def _kind(row) -> str:
-    kind = row["kind"]
-    return kind.decode() if isinstance(kind, bytes) else str(kind)
+    return _text(row, "kind")
+
+
+def _text(row, name: str) -> str:
+    value = row[name] if name in (row.dtype.names or ()) else ""
+    return value.decode() if isinstance(value, bytes) else str(value)

@@ -230,7 +230,31 @@ class PeriodicSpec(Section):
 
 
 class BrakeSpec(Section):
-    release_time: u.quantity(u.TIME, ge=0.0)  # the holding brake frees the drum at this time
+    release_time: u.quantity(u.TIME, ge=0.0)  # the brake frees the drum at this time
+    static_torque: u.quantity(u.TORQUE, gt=0.0) | None = None  # the most it holds, at the drum (absent: any)
+    kinetic_torque: u.quantity(u.TORQUE, ge=0.0) | None = None  # what it passes slipping (default: static)
+    apply_time: u.quantity(u.TIME, ge=0.0) | None = None  # it closes again at this time
+
+    @model_validator(mode="after")
+    def _consistent(self):
+        if self.kinetic_torque is not None and self.static_torque is None:
+            raise ScenarioError("brake.kinetic_torque", "needs static_torque (a brake without it holds any torque "
+                                "and never slips)")
+        if self.kinetic_torque is not None and self.kinetic_torque > self.static_torque:
+            raise ScenarioError("brake.kinetic_torque", f"must not exceed static_torque ({self.static_torque:g} "
+                                f"N*m), got {self.kinetic_torque:g} N*m")
+        if self.apply_time is not None and self.apply_time <= self.release_time:
+            raise ScenarioError("brake.apply_time", f"must be after release_time ({self.release_time:g} s), "
+                                f"got {self.apply_time:g} s")
+        if self.apply_time is not None and self.static_torque is None:
+            raise ScenarioError("brake.apply_time", "needs static_torque: a brake that holds any torque would "
+                                "stop a turning drum dead")
+        return self
+
+    @property
+    def characteristic(self) -> str:
+        """Which variant: ``holding`` (any torque, never slips) or ``friction`` (slips above static_torque)."""
+        return "holding" if self.static_torque is None else "friction"
 
 
 class BearingsSpec(Section):
@@ -292,10 +316,11 @@ class Scenario(Section):
 
     @model_validator(mode="after")
     def _brake_holds_still_drum(self):
-        if self.brake is not None and self.initial.drum_speed != 0.0:
-            raise ScenarioError("initial.drum_speed",
-                                "must be 0 when a holding brake (brake:) keeps the drum still at the start")
-        if self.brake is not None and self.initial.steady_lift:
+        holding = self.brake is not None and self.brake.characteristic == "holding"
+        if holding and self.initial.drum_speed != 0.0:
+            raise ScenarioError("initial.drum_speed", "must be 0 when a holding brake (brake: without "
+                                "static_torque) keeps the drum still at the start")
+        if holding and self.initial.steady_lift:
             raise ScenarioError("initial.steady_lift", "a steady lift cannot start with the brake holding the drum")
         return self
 

@@ -25,7 +25,8 @@ class Trace:
     empty): a trace is drawn only where the file holds them.  A ``limit`` (a
     capacity) is drawn thin and dotted, and left out of a family of many runs.
     ``marks`` are observation kinds marked on the curve where they happened
-    (a turnaround, a lock).
+    (a turnaround, a lock); ``marks_of`` keeps those of one element (its
+    section: the locks of this coupling, not another's).
     """
 
     label: str
@@ -35,6 +36,7 @@ class Trace:
     style: str = "-"
     limit: bool = False
     marks: tuple[str, ...] = ()
+    marks_of: str | None = None
 
     def columns(self) -> tuple[str, ...]:
         return self.needs or (self.column,)

@@ -15,6 +15,7 @@ from .cone_clutch import ConeClutch as ConeClutch
 from .constant_torque_motor import ConstantTorqueMotor as ConstantTorqueMotor
 from .drum import Drum as Drum
 from .flywheel import Flywheel as Flywheel
+from .friction_brake import FrictionBrake as FrictionBrake
 from .gear_pair import GearPair as GearPair
 from .holding_brake import HoldingBrake as HoldingBrake
 from .linear_motor import LinearMotor as LinearMotor
@@ -38,7 +39,7 @@ REGISTRY: dict[str, object] = {
     "load": RigidLoad,
     "flywheel": Flywheel,
     "reciprocating": SliderCrank,
-    "brake": HoldingBrake,
+    "brake": {"holding": HoldingBrake, "friction": FrictionBrake},
     "bearings": DrumShaftLoads,
     "periodic_regime": PeriodicRegime,  # scenario.periodic_regime: given, or implied by a ripple
 }

@@ -47,7 +47,7 @@ class ConeClutch(AbstractCoupling):
         speed_panel(Trace("clutch output (pinion)", "pinion_speed", style="--", needs=("motor_speed", "slip_speed"),
                           value=lambda run: run["motor_speed"] - run["slip_speed"])),
         Panel("clutch_slip", "clutch slip [rpm]\n(motor - clutch output)", 10,
-              (Trace("slip speed", "slip_speed", marks=("lock",)),), scale=30.0 / np.pi, zero_line=True),
+              (Trace("slip speed", "slip_speed", marks=("lock",), marks_of="clutch"),), scale=30.0 / np.pi, zero_line=True),
         Panel("clutch_torque", "clutch torque [N*m]", 20, (
             Trace("transmitted", "clutch_torque"),
             Trace("static capacity", "clutch_capacity", style=":", limit=True),

@@ -1,0 +1,89 @@
+"""The friction brake on the drum shaft against independent answers.
+
+A load lowered at a known speed and caught by the brake's kinetic torque
+decelerates uniformly until it stops: its stopping time, the brake's heat and
+the height lost are closed forms of the reduced machine (Machine.reduced(),
+the two-shaft model the closed-form solution of the clutch uses).
+"""
+
+from __future__ import annotations
+
+import copy
+
+import numpy as np
+import pytest
+from conftest import SCENARIOS
+
+from hoistsim import load_scenario, scenario_from_dict, scenario_from_text, simulate
+from hoistsim.model import Machine
+
+TIGHT = ["simulation.rtol=1e-10", "simulation.atol=1e-12"]
+
+
+def _caught(kinetic="1200 N*m", static="1500 N*m", speed="-2.5 rad/s", duration="4 s"):
+    """The lowering scene with the brake closed from the start (released only after the run)."""
+    text = (SCENARIOS / "lowering_on_the_brake.yaml").read_text()
+    closed = text.replace("  release_time: 0 s\n  apply_time: 0.5 s\n", "  release_time: 10 s\n")
+    assert closed != text
+    return scenario_from_text(closed, overrides=TIGHT + [
+        f"brake.kinetic_torque={kinetic}", f"brake.static_torque={static}", f"initial.drum_speed={speed}",
+        f"simulation.duration={duration}"])
+
+
+def _closed_form(scenario):
+    """Stopping time, brake heat and height lost of a drum at -w0 slowed by T_k - M g R (pinion-shaft terms)."""
+    d = Machine.from_scenario(scenario).reduced()
+    tau = scenario.gears.wheel_teeth / scenario.gears.pinion_teeth
+    kinetic = scenario.brake.kinetic_torque / tau  # at the pinion shaft, where J_b and T_L are
+    speed = -scenario.initial.drum_speed * tau
+    stop = speed * d.output_inertia / (kinetic - d.load_torque)
+    heat = kinetic * speed * stop / 2
+    drop = 0.5 * scenario.drum.diameter * (speed / tau) * stop / 2
+    return stop, heat, drop
+
+
+def test_a_falling_load_caught_by_the_brake_stops_as_the_closed_form_says():
+    scenario = _caught()
+    run = simulate(scenario)
+    stop, heat, drop = _closed_form(scenario)
+    locks = run.events["time"][(run.events["kind"] == "lock") & (run.events["element"] == "brake")]
+    assert len(locks) == 1
+    assert locks[0] == pytest.approx(stop, rel=1e-9)
+    assert run.summary["brake_energy"] == pytest.approx(heat, rel=1e-9)
+    assert run.summary["final_load_position"] == pytest.approx(-drop, rel=1e-9)
+    assert abs(run["drum_speed"][-1]) < 1e-12  # held: 981 N*m of load against 1500 N*m static
+    assert run.summary["energy_relative_residual"] < 1e-8
+    slipping = run.time < stop
+    np.testing.assert_allclose(run["brake_torque"][slipping], 1200.0, rtol=1e-12)
+    assert run["brake_heat"][-1] == pytest.approx(heat, rel=1e-9)
+
+
+def test_a_brake_too_weak_for_the_load_lets_it_run_down():
+    """Kinetic torque below the load's (981 N*m): the load gains speed at (M g R - T_k) / J, never stops."""
+    scenario = _caught(kinetic="800 N*m", static="900 N*m", duration="1 s")
+    run = simulate(scenario)
+    assert not ((run.events["kind"] == "lock") & (run.events["element"] == "brake")).any()
+    d = Machine.from_scenario(scenario).reduced()
+    tau = scenario.gears.wheel_teeth / scenario.gears.pinion_teeth
+    rate = (800.0 / tau - d.load_torque) / d.output_inertia / tau  # drum acceleration, rad/s^2
+    assert run["drum_speed"][-1] == pytest.approx(-2.5 + rate * 1.0, rel=1e-9)
+    assert run.summary["energy_relative_residual"] < 1e-8
+
+
+def test_a_held_drum_lets_go_when_the_brake_is_released_and_is_caught_when_applied():
+    """The shipped scene: released at 0 s, applied at 0.5 s; lowering, then held. Events name the brake."""
+    run = simulate(load_scenario(SCENARIOS / "lowering_on_the_brake.yaml", overrides=TIGHT))
+    kinds = list(zip(run.events["kind"], run.events["element"]))
+    assert ("brake_apply", "brake") in kinds and ("lock", "brake") in kinds
+    assert run.summary["brake_energy"] > 0 and run.summary["energy_relative_residual"] < 1e-8
+    assert set(run.series) >= {"brake_torque", "brake_engaged", "brake_mode", "brake_heat", "brake_capacity"}
+
+
+def test_a_holding_brake_scene_has_no_friction_brake_columns():
+    from scenes import EXERCISE6
+
+    data = copy.deepcopy(EXERCISE6)
+    data["brake"] = {"release_time": "0.5 s"}
+    data["simulation"]["duration"] = "1 s"
+    run = simulate(scenario_from_dict(data))
+    assert "brake_torque" in run.series and "brake_heat" not in run.series and "brake_energy" not in run.summary
