@@ -87,3 +87,19 @@ def test_a_holding_brake_scene_has_no_friction_brake_columns():
     data["simulation"]["duration"] = "1 s"
     run = simulate(scenario_from_dict(data))
     assert "brake_torque" in run.series and "brake_heat" not in run.series and "brake_energy" not in run.summary
+
+
+def test_a_start_where_the_brake_slips_before_it_lets_go():
+    """Clutch drive above load + static torque: the brake unlocks before its release and slips at its
+    kinetic torque; its heat is that torque times the drum's turn while it slipped (the load's rise / R)."""
+    scenario = load_scenario(SCENARIOS / "start_against_a_slipping_brake.yaml", overrides=TIGHT)
+    run = simulate(scenario)
+    unlock = run.events["time"][(run.events["kind"] == "unlock") & (run.events["element"] == "brake")]
+    assert len(unlock) == 1 and 0.5 < unlock[0] < scenario.brake.release_time
+    rope = 0.5 * scenario.drum.diameter
+    rise = np.interp([unlock[0], scenario.brake.release_time], run.time, run["load_position"])
+    heat = scenario.brake.kinetic_torque * (rise[1] - rise[0]) / rope
+    assert run.summary["brake_energy"] == pytest.approx(heat, rel=1e-8)
+    slipping = (run.time > unlock[0]) & (run.time < scenario.brake.release_time)
+    np.testing.assert_allclose(run["brake_torque"][slipping], -scenario.brake.kinetic_torque, rtol=1e-12)
+    assert run.summary["energy_relative_residual"] < 1e-8
