@@ -257,6 +257,10 @@ class BrakeSpec(Section):
         return "holding" if self.static_torque is None else "friction"
 
 
+class RatchetSpec(Section):
+    release_time: u.quantity(u.TIME, ge=0.0) | None = None  # the pawl is lifted at this time (absent: never)
+
+
 class BearingsSpec(Section):
     gear_offset: u.quantity(u.LENGTH, gt=0.0)  # a: bearing A to the gear, away from B
     rope_offset: u.quantity(u.LENGTH, gt=0.0)  # bearing A to the rope, towards B
@@ -296,6 +300,7 @@ class Scenario(Section):
     reciprocating: ReciprocatingSpec | None = None
     periodic: PeriodicSpec | None = None
     brake: BrakeSpec | None = None
+    ratchet: RatchetSpec | None = None
     bearings: BearingsSpec | None = None
     simulation: SimulationSpec
     sweep: dict[str, Any] | None = None  # checked by _check_sweep
@@ -322,6 +327,13 @@ class Scenario(Section):
                                 "static_torque) keeps the drum still at the start")
         if holding and self.initial.steady_lift:
             raise ScenarioError("initial.steady_lift", "a steady lift cannot start with the brake holding the drum")
+        return self
+
+    @model_validator(mode="after")
+    def _pawl_on_a_lowering_drum(self):
+        if self.ratchet is not None and self.initial.drum_speed < 0.0:
+            raise ScenarioError("initial.drum_speed", "must not be negative with a ratchet: the pawl would stop "
+                                "a lowering drum dead")
         return self
 
     @model_validator(mode="after")

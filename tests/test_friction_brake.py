@@ -70,6 +70,7 @@ def test_a_brake_too_weak_for_the_load_lets_it_run_down():
     assert run.summary["energy_relative_residual"] < 1e-8
 
 
+@pytest.mark.slow  # a structure of its own to compile
 def test_a_held_drum_lets_go_when_the_brake_is_released_and_is_caught_when_applied():
     """The shipped scene: released at 0 s, applied at 0.5 s; lowering, then held. Events name the brake."""
     run = simulate(load_scenario(SCENARIOS / "lowering_on_the_brake.yaml", overrides=TIGHT))
@@ -89,6 +90,7 @@ def test_a_holding_brake_scene_has_no_friction_brake_columns():
     assert "brake_torque" in run.series and "brake_heat" not in run.series and "brake_energy" not in run.summary
 
 
+@pytest.mark.slow  # a structure of its own to compile
 def test_a_start_where_the_brake_slips_before_it_lets_go():
     """Clutch drive above load + static torque: the brake unlocks before its release and slips at its
     kinetic torque; its heat is that torque times the drum's turn while it slipped (the load's rise / R)."""

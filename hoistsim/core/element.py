@@ -182,6 +182,7 @@ class AbstractCoupling(AbstractElement):
     - ``joins()``: the shafts it ties, (a, b), b None for the ground; it
       transmits a torque from a to b, positive when a drives b;
     - ``capacity(x)``: the largest torque it carries stuck (N*m, inf for no limit);
+      ``capacity_toward(x, sign)`` where that differs with the torque's direction;
     - ``sliding_torque(x)``: the torque it passes while slipping (N*m, >= 0);
     - ``is_open(segment)``: whether it carries nothing over a whole segment.
     ``can_slip`` False: it is stuck or open, never slipping (no slip guards).
@@ -191,12 +192,18 @@ class AbstractCoupling(AbstractElement):
 
     can_slip: ClassVar[bool] = True
     reports_switches: ClassVar[bool] = True
+    holds_one_way: ClassVar[bool] = False  # capacity_toward is zero one way: settled last (core.switching)
 
     def joins(self) -> tuple:
         raise NotImplementedError
 
     def capacity(self, x):
         raise NotImplementedError
+
+    def capacity_toward(self, x, sign):
+        """The capacity against a torque that pushes side a forwards (``sign`` +1) or backwards (-1):
+        ``capacity(x)`` both ways, unless the coupling holds one way only (a pawl)."""
+        return self.capacity(x)
 
     def sliding_torque(self, x):
         raise NotImplementedError

@@ -44,9 +44,10 @@ from .layout import DISENGAGE, ENGAGE, LOCK, NO_EVENT, REVERSAL, UNLOCK, Layout
 KNOT_RESOLUTION = 1e-9
 
 
-def holding_capacity(coupling, x):
-    """The capacity with the stick tolerance: what a stuck coupling is allowed to carry."""
-    return coupling.capacity(x) * (1.0 + STICK_TOLERANCE)
+def holding_capacity(coupling, x, sign):
+    """The capacity with the stick tolerance: what a stuck coupling is allowed to carry against a torque
+    pushing side a forwards (``sign`` > 0) or backwards."""
+    return coupling.capacity_toward(x, sign) * (1.0 + STICK_TOLERANCE)
 
 
 def _instant(t, y, args) -> Instant:
@@ -84,7 +85,7 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
             def guard(t, y, args, **_):
                 x = _instant(t, y, args)
                 return jnp.where(args.modes[k] == STUCK,
-                                 holding_capacity(coupling, x) - sign * x.coupling_torque(name), 1.0)
+                                 holding_capacity(coupling, x, sign) - sign * x.coupling_torque(name), 1.0)
             return guard
 
         def peak(t, y, args, k=k, name=name, **_):
@@ -194,13 +195,23 @@ def settle(layout: Layout, segment, t, y, modes, candidates):
         excess = []
         for k, coupling in enumerate(couplings):
             torque = x.coupling_torques[k]
-            ratio = jnp.abs(torque) / holding_capacity(coupling, x)
+            ratio = jnp.abs(torque) / holding_capacity(coupling, x, jnp.sign(torque))
             excess.append(jnp.where(candidates[k] & (modes[k] == STUCK) & (ratio > 1.0), ratio, 0.0))
         worst = jnp.argmax(jnp.stack(excess))
         for k in range(len(couplings)):
             slips = (worst == k) & (excess[k] > 0.0)
             direction = jnp.where(x.coupling_torques[k] > 0, SLIP_FORWARD, SLIP_BACKWARD)
             modes = modes.at[k].set(jnp.where(slips, direction, modes[k]))
+    # A coupling that holds one way only is let go first when the trial with every candidate stuck
+    # pushes it its free way; once a coupling beside it slips, it may be pushed the way it holds:
+    # then it is held again (with the others as decided), not left to slip and lock an instant later.
+    for k, coupling in enumerate(couplings):
+        if not coupling.holds_one_way:
+            continue
+        x = Instant(layout, t, met, modes.at[k].set(STUCK), segment.table)
+        torque = x.coupling_torques[k]
+        held = jnp.abs(torque) <= holding_capacity(coupling, x, jnp.sign(torque))
+        modes = modes.at[k].set(jnp.where(candidates[k] & (modes[k] != STUCK) & held, STUCK, modes[k]))
     return modes, met
 
 
@@ -219,4 +230,5 @@ def margin(layout: Layout, segment, t, y, modes, k):
     """Capacity less |torque| of coupling k were it stuck at (t, y), the others as they are (N*m)."""
     coupling = layout.coupling_elements[k]
     x = Instant(layout, t, y, modes.at[k].set(STUCK), segment.table)
-    return coupling.capacity(x) - jnp.abs(x.coupling_torques[k])
+    torque = x.coupling_torques[k]
+    return coupling.capacity_toward(x, jnp.sign(torque)) - jnp.abs(torque)

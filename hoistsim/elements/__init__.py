@@ -21,6 +21,7 @@ from .holding_brake import HoldingBrake as HoldingBrake
 from .linear_motor import LinearMotor as LinearMotor
 from .motor_ripple import MotorRipple as MotorRipple
 from .motor_table import TableMotor as TableMotor
+from .ratchet import Ratchet as Ratchet
 from .periodic_regime import PeriodicRegime as PeriodicRegime
 from .resisting_ripple import ResistingRipple as ResistingRipple
 from .rigid_load import RigidLoad as RigidLoad
@@ -40,6 +41,7 @@ REGISTRY: dict[str, object] = {
     "flywheel": Flywheel,
     "reciprocating": SliderCrank,
     "brake": {"holding": HoldingBrake, "friction": FrictionBrake},
+    "ratchet": Ratchet,
     "bearings": DrumShaftLoads,
     "periodic_regime": PeriodicRegime,  # scenario.periodic_regime: given, or implied by a ripple
 }

@@ -1,0 +1,67 @@
+"""A ratchet (pawl) on the drum shaft: the drum may turn to lift, never to lower."""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+import jax.numpy as jnp
+import numpy as np
+
+from ..core.element import STUCK, AbstractCoupling
+from ..core.panel import Panel, Phase, Trace
+
+
+class Ratchet(AbstractCoupling):
+    """A one-way coupling of the drum shaft to the ground, until ``release_time`` lifts the pawl.
+
+    Stuck, it holds any torque that would lower the load and none that would
+    lift it: a drive that lifts frees it (it "slips" forwards, passing no
+    torque, the pawl clicking over the teeth) and the drum coming back to rest
+    catches it again, exactly where its speed falls through zero.  Its locks and
+    unlocks are events named ``ratchet``; the release a boundary and the event
+    ``ratchet_release``.
+    """
+
+    release_time: object  # s (inf: never lifted)
+
+    section: ClassVar[str] = "ratchet"
+    holds_one_way: ClassVar[bool] = True
+    event_kinds: ClassVar[tuple] = ("ratchet_release",)
+    columns: ClassVar[dict] = {
+        "ratchet_torque": ("N*m", "torque the pawl applies to the drum, positive holding the load up"),
+        "ratchet_engaged": ("1", "1 while the pawl holds the drum"),
+    }
+    panels: ClassVar[tuple] = (Panel("ratchet", "pawl torque [N*m]\n(at the drum)", 41,
+                                     (Trace("holding the load up", "ratchet_torque"),), zero_line=True, height=0.8),)
+    shading: ClassVar[tuple] = (Phase("pawl holding", "ratchet_engaged", 1, "#5e3c99", hatch="\\\\\\"),)
+
+    @classmethod
+    def from_spec(cls, spec, scenario) -> "Ratchet":
+        return cls(release_time=np.inf if spec.release_time is None else spec.release_time)
+
+    def joins(self) -> tuple:
+        return ("drum", None)
+
+    def capacity(self, x):
+        return jnp.inf
+
+    def capacity_toward(self, x, sign):
+        # the drum pushes the ground backwards (negative) when the load would lower it: held, without limit;
+        # a torque that would lift it meets no pawl
+        return jnp.where(sign > 0, 0.0, jnp.inf)
+
+    def sliding_torque(self, x):
+        return 0.0
+
+    def is_open(self, segment):
+        return segment.middle >= self.release_time
+
+    def boundaries(self) -> tuple:
+        return (self.release_time,)
+
+    def boundary_events(self, t) -> tuple:
+        return (("ratchet_release", t == self.release_time),)
+
+    def outputs(self, x) -> dict:
+        return {"ratchet_torque": -x.coupling_torque("ratchet"),
+                "ratchet_engaged": (x.mode("ratchet") == STUCK).astype(jnp.int8)}
