@@ -200,14 +200,20 @@ def _draw_events(axes, runs, run_colours, mode, quiet):
             axes[0].annotate(f"{len(rows)} switches: listed in the file's events, not drawn",
                              (0.01, 0.02), xycoords="axes fraction", fontsize=8, color="0.3")
             continue
+        named: dict = {}  # time -> the kinds named there: events at one instant share one label
         for time, kind in rows:
             kind_colour, style = _EVENT_STYLE.get(kind, ("#888888", ":"))
             for ax in axes:
                 ax.axvline(time, color=kind_colour if mode == "one" else colour, ls=style, lw=0.9, alpha=0.75)
             if mode == "one":
-                axes[0].annotate(kind.replace("_", " "), (time, 1.0), xycoords=("data", "axes fraction"),
-                                 xytext=(2, -3), textcoords="offset points", fontsize=7, rotation=90,
-                                 va="top", color=kind_colour)
+                if time in named:
+                    named[time][1].append(kind.replace("_", " "))
+                    named[time][0].set_text(", ".join(named[time][1]))
+                    continue
+                label = axes[0].annotate(kind.replace("_", " "), (time, 1.0), xycoords=("data", "axes fraction"),
+                                         xytext=(2, -3), textcoords="offset points", fontsize=7, rotation=90,
+                                         va="top", color=kind_colour)
+                named[time] = (label, [kind.replace("_", " ")])
             elif kind not in seen:
                 axes[0].plot([], [], color="0.3", ls=style, lw=0.9, label=f"event: {kind.replace('_', ' ')}")
             seen.add(kind)

@@ -105,3 +105,25 @@ def test_a_start_where_the_brake_slips_before_it_lets_go():
     slipping = (run.time > unlock[0]) & (run.time < scenario.brake.release_time)
     np.testing.assert_allclose(run["brake_torque"][slipping], -scenario.brake.kinetic_torque, rtol=1e-12)
     assert run.summary["energy_relative_residual"] < 1e-8
+
+
+@pytest.mark.slow  # two structures of their own to compile
+def test_the_brake_applied_exactly_at_the_clutch_lock():
+    """A hard case: the brake closes on the turning drum at the very instant the clutch locks (the lock
+    time of the same start without the apply, as a float): one boundary and one root at one time.
+    The run goes on without chattering, the brake slips from there, and the ledger closes."""
+    text = (SCENARIOS / "engage_at_speed_with_brake.yaml").read_text()
+    friction = text.replace("brake:\n  release_time: 0.6 s\n",
+                            "brake:\n  release_time: 0.6 s\n  static_torque: 3000 N*m\n  kinetic_torque: 1500 N*m\n")
+    assert friction != text
+    free = simulate(scenario_from_text(friction, overrides=TIGHT))
+    lock = float(free.events["time"][(free.events["kind"] == "lock") & (free.events["element"] == "clutch")][0])
+    run = simulate(scenario_from_text(friction, overrides=TIGHT + [f"brake.apply_time={lock!r} s"]))
+    kinds = list(zip(run.events["kind"], run.events["element"]))
+    assert ("brake_apply", "brake") in kinds
+    apply = run.events["time"][run.events["kind"] == "brake_apply"][0]
+    assert apply == lock
+    after = run.time > lock
+    assert (run["brake_mode"][after][:10] == 1).all()  # slipping as the load rises
+    np.testing.assert_allclose(run["brake_torque"][after][:10], -1500.0, rtol=1e-12)
+    assert run.summary["brake_energy"] > 0 and run.summary["energy_relative_residual"] < 1e-8
