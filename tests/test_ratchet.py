@@ -14,7 +14,7 @@ import pytest
 from conftest import SCENARIOS
 from scenes import EXERCISE6
 
-from hoistsim import load_scenario, scenario_from_dict, scenario_from_text, simulate
+from hoistsim import scenario_from_dict, scenario_from_text, simulate
 from hoistsim.errors import ScenarioError
 from hoistsim.model import Machine
 
