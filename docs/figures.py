@@ -71,6 +71,9 @@ FIGURES = {
     "engage_at_speed_with_brake": ("hoistsim run + plot scenarios/engage_at_speed_with_brake.yaml",
                                    _run_and_plot("engage_at_speed_with_brake.yaml",
                                                  {"": "engage_at_speed_with_brake.png"})),
+    "start_against_a_slipping_brake": ("hoistsim run + plot scenarios/start_against_a_slipping_brake.yaml",
+                                       _run_and_plot("start_against_a_slipping_brake.yaml",
+                                                     {"": "start_against_a_slipping_brake.png"})),
     "force_sweep": ("hoistsim run + plot scenarios/force_sweep_engage_at_speed.yaml (10 forces)",
                     _run_and_plot("force_sweep_engage_at_speed.yaml",
                                   {"": "force_sweep.png", "_summary": "force_sweep_summary.png"})),
@@ -111,7 +114,7 @@ if __name__ == "__main__":
     args = parser.parse_args()
     if args.list:
         for figure, (what, _) in FIGURES.items():
-            print(f"{figure:28s} {what}")
+            print(f"{figure:32s} {what}")
         sys.exit(0)
     try:
         regenerate(args.names, Path(args.output))
