@@ -10,39 +10,17 @@ import h5py
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from conftest import SCENARIOS
+from samefiles import SWEEP_FILE, datasets, same, short_sweep
 
-from hoistsim import load_scenario, sweep
+from hoistsim import sweep
 from hoistsim.cli import main
 
 distributed = pytest.importorskip("distributed")
 
-SWEEP_FILE = SCENARIOS / "force_sweep_engage_at_speed.yaml"
-CLOCKS = {"solver_wall_time"}  # the only numbers that differ between two runs of the same sweep
 
 
 def _short(count=40):
-    return load_scenario(SWEEP_FILE, overrides=["simulation.duration=0.4 s"],
-                         sweeps=[f"clutch.engagement_force=3 kN:12 kN:{count}"])
-
-
-def _datasets(path) -> dict:
-    out = {}
-    with h5py.File(path, "r") as f:
-        def visit(name, item):
-            if isinstance(item, h5py.Dataset) and name.rsplit("/", 1)[-1] not in CLOCKS and name != "scenario":
-                out[name] = item.asstr()[()] if item.dtype.kind == "O" else item[()]
-        f.visititems(visit)
-    return out
-
-
-def _same(a: dict, b: dict) -> None:
-    assert sorted(a) == sorted(b)
-    for name in a:
-        if a[name].dtype.kind == "f":
-            np.testing.assert_array_equal(a[name], b[name], err_msg=name)  # NaN where NaN, bits elsewhere
-        else:
-            assert (a[name] == b[name]).all(), name
+    return short_sweep(count)
 
 
 @pytest.fixture(scope="module")
@@ -68,7 +46,7 @@ def test_a_sweep_on_two_workers_is_the_sweep_on_one_process(tmp_path, cluster, s
     here = sweep(scenario, summary_only=summary_only, chunk_size=4, output=tmp_path / "here.h5")
     there = sweep(scenario, summary_only=summary_only, chunk_size=4, output=tmp_path / "there.h5",
                   scheduler=cluster.scheduler_address)
-    _same(_datasets(tmp_path / "here.h5"), _datasets(tmp_path / "there.h5"))
+    same(datasets(tmp_path / "here.h5"), datasets(tmp_path / "there.h5"))
     np.testing.assert_array_equal(here.summary["lockup_time"], there.summary["lockup_time"])
     assert list(there.summary["label"]) == list(here.summary["label"])
     with h5py.File(tmp_path / "there.h5") as f:
@@ -95,7 +73,7 @@ def test_a_worker_lost_mid_sweep_loses_and_duplicates_nothing(tmp_path, cluster,
                   scheduler=cluster.scheduler_address, progress=progress)
     client.close()
     assert killed
-    _same(_datasets(tmp_path / "here.h5"), _datasets(tmp_path / "there.h5"))
+    same(datasets(tmp_path / "here.h5"), datasets(tmp_path / "there.h5"))
     assert len(there.summaries) == 40
 
 
@@ -121,7 +99,7 @@ def test_the_command_line_runs_a_sweep_on_local_workers(tmp_path):
     CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(alone), "--summary-only",
                               "--set", "simulation.duration=0.4 s",
                               "--sweep", "clutch.engagement_force=3 kN:12 kN:12"])
-    _same(_datasets(alone), _datasets(target))
+    same(datasets(alone), datasets(target))
 
 
 def test_workers_and_scheduler_together_are_refused(tmp_path):

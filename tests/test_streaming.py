@@ -7,42 +7,19 @@ import subprocess
 import sys
 import textwrap
 
-import h5py
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from conftest import SCENARIOS
+from samefiles import SWEEP_FILE, datasets, same, short_sweep
 
-from hoistsim import load_scenario, sweep
+from hoistsim import sweep
 from hoistsim.cli import main
 from hoistsim.streaming import ResumeError, StreamedFile, partial_path
 
-SWEEP_FILE = SCENARIOS / "force_sweep_engage_at_speed.yaml"
-CLOCKS = {"solver_wall_time"}  # the only numbers that differ between two runs of the same sweep
 
 
-def _short(count=10, summary_only=False):
-    return load_scenario(SWEEP_FILE, overrides=["simulation.duration=0.4 s"],
-                         sweeps=[f"clutch.engagement_force=3 kN:12 kN:{count}"])
-
-
-def _datasets(path) -> dict:
-    out = {}
-    with h5py.File(path, "r") as f:
-        def visit(name, item):
-            if isinstance(item, h5py.Dataset) and name.rsplit("/", 1)[-1] not in CLOCKS and name != "scenario":
-                out[name] = item.asstr()[()] if item.dtype.kind == "O" else item[()]
-        f.visititems(visit)
-    return out
-
-
-def _same(a: dict, b: dict) -> None:
-    assert sorted(a) == sorted(b)
-    for name in a:
-        if a[name].dtype.kind == "f":
-            np.testing.assert_array_equal(a[name], b[name], err_msg=name)  # NaN where NaN, bits elsewhere
-        else:
-            assert (a[name] == b[name]).all(), name
+def _short(count=10):
+    return short_sweep(count)
 
 
 class _Stop(Exception):
@@ -85,7 +62,7 @@ def test_a_resumed_sweep_equals_an_uninterrupted_one(tmp_path, monkeypatch, summ
     assert len(list(partial_path(tmp_path / "resumed.h5").glob("chunk-*.h5"))) == 2  # two whole chunks kept
     resumed = sweep(scenario, summary_only=summary_only, chunk_size=4, output=tmp_path / "resumed.h5", resume=True)
     assert not partial_path(tmp_path / "resumed.h5").exists()
-    _same(_datasets(tmp_path / "whole.h5"), _datasets(tmp_path / "resumed.h5"))
+    same(datasets(tmp_path / "whole.h5"), datasets(tmp_path / "resumed.h5"))
     assert [r["lockup_time"] for r in resumed.summaries] == pytest.approx(
         [r["lockup_time"] for r in whole.summaries], nan_ok=True, rel=0, abs=0)
 
@@ -95,7 +72,7 @@ def test_the_streamed_file_is_the_file_written_at_once(tmp_path):
     scenario = _short(6)
     sweep(scenario, chunk_size=4, output=tmp_path / "streamed.h5")
     sweep(scenario).to_hdf5(tmp_path / "at_once.h5")
-    _same(_datasets(tmp_path / "streamed.h5"), _datasets(tmp_path / "at_once.h5"))
+    same(datasets(tmp_path / "streamed.h5"), datasets(tmp_path / "at_once.h5"))
 
 
 def test_resume_refuses_another_scenario_in_one_line(tmp_path, monkeypatch):
@@ -140,7 +117,7 @@ def test_a_sweep_killed_while_writing_a_chunk_resumes_from_the_last_whole_one(tm
     assert proc.returncode == -signal.SIGKILL and not target.exists()
     sweep(_short(), chunk_size=4, output=target, resume=True)
     sweep(_short(), chunk_size=4, output=tmp_path / "whole.h5")
-    _same(_datasets(tmp_path / "whole.h5"), _datasets(target))
+    same(datasets(tmp_path / "whole.h5"), datasets(target))
 
 
 def test_starting_afresh_over_an_interrupted_sweep_says_so(tmp_path, monkeypatch):
