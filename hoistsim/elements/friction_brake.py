@@ -7,12 +7,13 @@ from typing import ClassVar
 import jax.numpy as jnp
 import numpy as np
 
-from ..core.element import OPEN, STUCK, AbstractCoupling
+from ..core.element import OPEN
 from ..core.panel import Panel, SummaryPanel, Trace
+from ._drum_hold import AbstractDrumHold
 from .holding_brake import HoldingBrake
 
 
-class FrictionBrake(AbstractCoupling):
+class FrictionBrake(AbstractDrumHold):
     """A friction coupling of the drum shaft to the ground, closed until ``release_time`` and again from
     ``apply_time`` (never, when not given).
 
@@ -27,10 +28,10 @@ class FrictionBrake(AbstractCoupling):
 
     static_torque: object  # N*m, at the drum shaft
     kinetic_torque: object  # N*m
-    release_time: object  # s
     apply_time: object  # s (inf: never closes again)
 
     section: ClassVar[str] = "brake"
+    release_event: ClassVar[str] = "brake_release"
     event_kinds: ClassVar[tuple] = ("brake_release", "brake_apply")
     summaries: ClassVar[dict] = {"brake_energy": "J"}
     ledger_kinds: ClassVar[dict] = {"brake_energy": "loss"}
@@ -62,9 +63,6 @@ class FrictionBrake(AbstractCoupling):
         heat = float(summary["brake_energy"])
         return f"brake heat {heat / 1000:.2f} kJ" if heat > 0 else None
 
-    def joins(self) -> tuple:
-        return ("drum", None)
-
     def capacity(self, x):
         return self.static_torque
 
@@ -72,13 +70,13 @@ class FrictionBrake(AbstractCoupling):
         return self.kinetic_torque
 
     def is_open(self, segment):
-        return (segment.middle >= self.release_time) & (segment.middle < self.apply_time)
+        return super().is_open(segment) & (segment.middle < self.apply_time)
 
     def boundaries(self) -> tuple:
-        return (self.release_time, self.apply_time)
+        return (*super().boundaries(), self.apply_time)
 
     def boundary_events(self, t) -> tuple:
-        return (("brake_release", t == self.release_time), ("brake_apply", t == self.apply_time))
+        return (*super().boundary_events(t), ("brake_apply", t == self.apply_time))
 
     def states(self) -> dict:
         return {"brake_energy": 0.0}
@@ -93,11 +91,6 @@ class FrictionBrake(AbstractCoupling):
         return {"brake_energy": x.state("brake_energy")}
 
     def outputs(self, x) -> dict:
-        # the torque the coupling passes from the drum to the ground is what the drum
-        # pushes on the brake; the brake pushes back with its opposite
         mode = x.mode("brake")
-        return {"brake_torque": -x.coupling_torque("brake"),
-                "brake_engaged": (mode == STUCK).astype(jnp.int8),
-                "brake_mode": mode.astype(jnp.int8),
-                "brake_heat": x.state("brake_energy"),
+        return {**super().outputs(x), "brake_mode": mode.astype(jnp.int8), "brake_heat": x.state("brake_energy"),
                 "brake_capacity": jnp.where(mode == OPEN, 0.0, self.static_torque)}

@@ -6,11 +6,11 @@ from typing import ClassVar
 
 import jax.numpy as jnp
 
-from ..core.element import STUCK, AbstractCoupling
 from ..core.panel import Panel, Phase, Trace
+from ._drum_hold import AbstractDrumHold
 
 
-class HoldingBrake(AbstractCoupling):
+class HoldingBrake(AbstractDrumHold):
     """A coupling of the drum shaft to the ground, stuck until ``release_time``, open after.
 
     It holds any torque (no capacity limit) and never slips.  The release is a
@@ -18,9 +18,8 @@ class HoldingBrake(AbstractCoupling):
     event ``brake_release``.
     """
 
-    release_time: object  # s
-
     section: ClassVar[str] = "brake"
+    release_event: ClassVar[str] = "brake_release"
     can_slip: ClassVar[bool] = False
     reports_switches: ClassVar[bool] = False
     event_kinds: ClassVar[tuple] = ("brake_release",)
@@ -36,26 +35,8 @@ class HoldingBrake(AbstractCoupling):
     def from_spec(cls, spec, scenario) -> "HoldingBrake":
         return cls(release_time=spec.release_time)
 
-    def joins(self) -> tuple:
-        return ("drum", None)
-
     def capacity(self, x):
         return jnp.inf
 
     def sliding_torque(self, x):
         return 0.0
-
-    def is_open(self, segment):
-        return segment.middle >= self.release_time
-
-    def boundaries(self) -> tuple:
-        return (self.release_time,)
-
-    def boundary_events(self, t) -> tuple:
-        return (("brake_release", t == self.release_time),)
-
-    def outputs(self, x) -> dict:
-        # The torque the coupling passes from the drum to the ground is what the
-        # drum pushes on the brake; the brake pushes back with its opposite.
-        return {"brake_torque": -x.coupling_torque("brake"),
-                "brake_engaged": (x.mode("brake") == STUCK).astype(jnp.int8)}

@@ -7,11 +7,11 @@ from typing import ClassVar
 import jax.numpy as jnp
 import numpy as np
 
-from ..core.element import STUCK, AbstractCoupling
 from ..core.panel import Panel, Phase, Trace
+from ._drum_hold import AbstractDrumHold
 
 
-class Ratchet(AbstractCoupling):
+class Ratchet(AbstractDrumHold):
     """A one-way coupling of the drum shaft to the ground, until ``release_time`` lifts the pawl.
 
     Stuck, it holds any torque that would lower the load and none that would
@@ -22,9 +22,8 @@ class Ratchet(AbstractCoupling):
     ``ratchet_release``.
     """
 
-    release_time: object  # s (inf: never lifted)
-
     section: ClassVar[str] = "ratchet"
+    release_event: ClassVar[str] = "ratchet_release"
     holds_one_way: ClassVar[bool] = True
     event_kinds: ClassVar[tuple] = ("ratchet_release",)
     columns: ClassVar[dict] = {
@@ -39,9 +38,6 @@ class Ratchet(AbstractCoupling):
     def from_spec(cls, spec, scenario) -> "Ratchet":
         return cls(release_time=np.inf if spec.release_time is None else spec.release_time)
 
-    def joins(self) -> tuple:
-        return ("drum", None)
-
     def capacity(self, x):
         return jnp.inf
 
@@ -52,16 +48,3 @@ class Ratchet(AbstractCoupling):
 
     def sliding_torque(self, x):
         return 0.0
-
-    def is_open(self, segment):
-        return segment.middle >= self.release_time
-
-    def boundaries(self) -> tuple:
-        return (self.release_time,)
-
-    def boundary_events(self, t) -> tuple:
-        return (("ratchet_release", t == self.release_time),)
-
-    def outputs(self, x) -> dict:
-        return {"ratchet_torque": -x.coupling_torque("ratchet"),
-                "ratchet_engaged": (x.mode("ratchet") == STUCK).astype(jnp.int8)}
