@@ -48,7 +48,7 @@ import numpy as np
 
 from hoistsim import load_scenario
 from hoistsim.report import table
-from hoistsim.scenario import sweep_values
+from hoistsim.sweep_runs import sweep_values
 from hoistsim.scipy_reference import solve_scenario_with_scipy
 
 ROOT = Path(__file__).resolve().parents[1]

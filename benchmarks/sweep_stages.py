@@ -26,7 +26,7 @@ from pathlib import Path
 from hoistsim import load_scenario, sweep
 from hoistsim.assemble import build_plan
 from hoistsim.report import table
-from hoistsim.scenario import sweep_values
+from hoistsim.sweep_runs import sweep_values
 
 SCENARIO = Path(__file__).resolve().parents[1] / "scenarios" / "force_sweep_engage_at_speed.yaml"
 FULL_MAX = 1000

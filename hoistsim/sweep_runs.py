@@ -2,7 +2,7 @@
 
 A sweep is its base scenario and each swept key's values, every value checked
 when the file was read (alone, on the validated base: see
-:func:`hoistsim.scenario.with_swept_value`).  Run ``i`` is a position in the
+:func:`hoistsim.sweep_spec.with_swept_value`).  Run ``i`` is a position in the
 grid of the keys' values (the first key's values slowest); its scenario is
 made when it is about to run, so a million runs hold a million values and
 labels, never a million scenarios.
@@ -16,7 +16,8 @@ from functools import cached_property
 
 import numpy as np
 
-from .scenario import Scenario, with_swept_value
+from .scenario import Scenario
+from .sweep_spec import with_swept_value
 
 
 class SweepRuns:
@@ -100,9 +101,19 @@ class Labels(Sequence):
         return f"Labels({len(self)} runs: {self[0]!r}, ...)"
 
 
+def sweep_values(scenario: Scenario) -> list[tuple[str, Scenario]]:
+    """One (label, scenario) per run: the sweep's values, a grid when two keys are swept.
+
+    A scenario per run, all at once: for a few runs (a large sweep builds its runs
+    a chunk at a time, :class:`hoistsim.sweep_runs.SweepRuns`).
+    """
+    runs = SweepRuns(scenario)
+    return [(runs.label(i), runs.scenario(i)) for i in range(len(runs))]
+
+
 def _assign_copied(raw: dict, key: str, value) -> None:
     """Set a dotted key in plain data, copying only the mappings on its path (the rest is shared)."""
-    from .scenario import _ALTERNATIVES
+    from .scenario import _ALTERNATIVES  # noqa: the keys that replace others when set
 
     *path, leaf = key.split(".")
     node = raw

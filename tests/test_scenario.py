@@ -18,8 +18,8 @@ from hoistsim.scenario import (
     parse_override,
     scenario_from_dict,
     scenario_from_text,
-    sweep_values,
 )
+from hoistsim.sweep_runs import sweep_values
 
 ROOT = Path(__file__).resolve().parents[1]
 BASE_PATH = ROOT / "scenarios" / "exercise6_direct_start.yaml"

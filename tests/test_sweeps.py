@@ -16,7 +16,7 @@ from scenes import scene
 from hoistsim import exact_from_scenario, load_scenario, simulate, sweep
 from hoistsim.core import loop
 from hoistsim.cli import main
-from hoistsim.scenario import sweep_values
+from hoistsim.sweep_runs import sweep_values
 
 SWEEP_FILE = SCENARIOS / "force_sweep_engage_at_speed.yaml"
 
@@ -225,10 +225,10 @@ def test_loading_a_sweep_costs_in_proportion_to_its_values(monkeypatch):
     """Each swept value is validated alone, once, on the validated base: the scenario's plain data is not
     copied per value (it was, with the whole sweep in it: 1 000 force tables took 18 s to load)."""
     from hoistsim import scenario as scenario_module
-    from hoistsim import yamlsource
+    from hoistsim import sweep_spec, yamlsource
 
     calls = {"copies": 0, "values": 0}
-    original_copy, original_value = yamlsource.copy_plain, scenario_module.with_swept_value
+    original_copy, original_value = yamlsource.copy_plain, sweep_spec.with_swept_value
 
     def counting_copy(data):
         calls["copies"] += 1
@@ -239,8 +239,8 @@ def test_loading_a_sweep_costs_in_proportion_to_its_values(monkeypatch):
         return original_value(*args, **kwargs)
 
     monkeypatch.setattr(yamlsource, "copy_plain", counting_copy)
-    monkeypatch.setattr(scenario_module, "_copy_plain", counting_copy)
-    monkeypatch.setattr(scenario_module, "with_swept_value", counting_value)
+    monkeypatch.setattr(sweep_spec, "_copy_plain", counting_copy)
+    monkeypatch.setattr(sweep_spec, "with_swept_value", counting_value)
     text = SWEEP_FILE.read_text().split("\nsweep:")[0]
 
     def load(count):
