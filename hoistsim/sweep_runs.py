@@ -16,7 +16,7 @@ from functools import cached_property
 
 import numpy as np
 
-from .scenario import Scenario
+from .scenario import _ALTERNATIVES, Scenario
 from .sweep_spec import with_swept_value
 
 
@@ -113,8 +113,6 @@ def sweep_values(scenario: Scenario) -> list[tuple[str, Scenario]]:
 
 def _assign_copied(raw: dict, key: str, value) -> None:
     """Set a dotted key in plain data, copying only the mappings on its path (the rest is shared)."""
-    from .scenario import _ALTERNATIVES  # noqa: the keys that replace others when set
-
     *path, leaf = key.split(".")
     node = raw
     for part in path:
