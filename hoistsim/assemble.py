@@ -30,25 +30,6 @@ def _padded(grid: np.ndarray) -> np.ndarray:
     return np.concatenate([grid, np.full(size - grid.size, grid[-1])])
 
 
-def check_couplings(layout: Layout) -> None:
-    """Refuse couplings that would constrain the same motion twice (a singular constrained solve).
-
-    Were every coupling stuck at once, their rows of G must be independent: then
-    any subset is too, and the solve for whichever set is stuck is regular.
-    """
-    couplings = layout.coupling_elements
-    if len(couplings) < 2:
-        return
-    from .core.dynamics import Bodies
-
-    rows = np.array([[float(g) for g in row] for row in Bodies(layout).rows])
-    for k in range(2, len(couplings) + 1):
-        if np.linalg.matrix_rank(rows[:k], tol=1e-12 * np.abs(rows).max()) < k:
-            other = ", ".join(c.section for c in couplings[: k - 1])
-            raise ScenarioError(couplings[k - 1].section, f"would hold a motion that {other} already holds; "
-                                "two couplings stuck together would constrain it twice (leave one out)")
-
-
 def _steady_lift_speed(scenario: Scenario) -> float:
     """Speed at which the motor torque equals the load torque: the hoist lifting at constant speed."""
     from .model import Machine
@@ -82,7 +63,7 @@ def machine_elements(scenario: Scenario) -> tuple:
     structure = jax.tree.structure(elements)
     if structure not in _checked:
         try:
-            check_couplings(Layout(elements))
+            Layout(elements)
         except LayoutError as exc:
             raise ScenarioError(exc.key, str(exc)) from None
         _checked.add(structure)

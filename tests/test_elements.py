@@ -10,20 +10,21 @@ slipping clutch.
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 import re
 from pathlib import Path
 
+import jax
 import numpy as np
 import pytest
 from scenes import EXERCISE6
 
 from hoistsim import scenario_from_dict, simulate
-from hoistsim.assemble import build_plan, check_couplings
+from hoistsim.assemble import build_plan, loop_sizes
 from hoistsim.core.element import AbstractCoupling
-from hoistsim.core.layout import Layout
+from hoistsim.core.loop import OK, compiled_run
 from hoistsim.elements import REGISTRY, elements_for
-from hoistsim.errors import ScenarioError
 
 TIGHT = {"rtol": 1e-10, "atol": 1e-12}
 # A start that slips, locks, and lifts: every mode of the clutch and a moving drum.
@@ -140,6 +141,9 @@ class _SecondBrake(AbstractCoupling):
     def joins(self):
         return ("pinion", None)
 
+    def is_open(self, segment):
+        return segment.middle >= 0.25
+
     def capacity(self, x):
         return math.inf
 
@@ -147,12 +151,16 @@ class _SecondBrake(AbstractCoupling):
         return 0.0
 
 
-def test_couplings_holding_the_same_motion_twice_are_refused():
-    s = _scene(brake={"release_time": "0.5 s"})
-    elements = elements_for(s) + (_SecondBrake(),)
-    with pytest.raises(ScenarioError, match="pinion_brake: would hold a motion that clutch, brake already holds"):
-        check_couplings(Layout(elements))
-    check_couplings(Layout(elements_for(s)))  # the clutch and one brake are independent
+def test_two_couplings_holding_the_same_motion_share_it_by_order():
+    # The drum brake holds the output shaft, and a second brake holds it again until 0.25 s: the torque
+    # is statically indeterminate; the first in the machine's order takes it all, and the run is the
+    # same as with the drum brake alone.
+    plan, _ = build_plan(_scene(brake={"release_time": "0.5 s"}))
+    both = dataclasses.replace(plan, elements=plan.elements + (_SecondBrake(),))
+    sizes = loop_sizes(plan, 64)
+    alone, twice = (jax.device_get(compiled_run("tsit5", *sizes)(p)) for p in (plan, both))
+    assert int(twice.counters[2]) == OK
+    assert np.array_equal(twice.grid_state, alone.grid_state)
 
 
 def test_the_core_names_no_part_of_the_machine():

@@ -79,7 +79,14 @@ def test_a_pawl_on_a_lowering_drum_is_refused():
         scenario_from_text(text + "ratchet: {}\n", overrides=["initial.drum_speed=-1 rad/s"])
 
 
-def test_a_pawl_and_a_holding_brake_on_the_drum_are_refused():
-    text = (SCENARIOS / "runback_slipping_clutch.yaml").read_text()
-    with pytest.raises(ScenarioError, match="ratchet: would hold a motion that .*brake already holds"):
-        simulate(scenario_from_text(text + "ratchet: {}\nbrake:\n  release_time: 1 s\n"))
+def test_a_pawl_beside_a_brake_leaves_the_brake_the_load_until_it_lets_go():
+    # Both hold the drum while the brake is on: the torque is statically indeterminate, and the brake,
+    # first in the machine's order, carries it all; once released, the pawl takes the load at once.
+    run = simulate(_runback("ratchet: {}\nbrake:\n  release_time: 1 s\n"))
+    on = run.time < 1.0
+    assert np.abs(run["ratchet_torque"][on]).max() == 0.0 and run["brake_torque"][on].min() > 0
+    assert run["ratchet_torque"][~on].min() > 0 and run["ratchet_engaged"][~on].all()
+    assert np.abs(run["drum_speed"]).max() < 1e-20
+    # what the drum needs held is the same whoever holds it
+    assert run["ratchet_torque"][-1] == pytest.approx(run["brake_torque"][on][-1], rel=1e-12)
+    assert run.summary["energy_relative_residual"] < 1e-8

@@ -7,8 +7,8 @@ pass, and the same system on speeds keeps momentum when couplings lock.  M is
 diagonal (one inertia per body) and there are a handful of couplings, so the
 system is a few scalars, solved by elimination written out at trace time: one
 compiled program for every combination of stuck couplings, vmappable, with no
-linear-algebra call.  The assembly refuses couplings that would constrain the
-same motion twice, so the system is never singular.
+linear-algebra call.  Couplings that hold the same motion twice (two holds on
+one shaft) share it by order: the first takes the torque, the other carries none.
 
 While the modes hold (a pass of the loop) the solution is a fixed linear map
 from the bodies' torques tau and the slipping couplings' torques sigma to the
@@ -42,20 +42,34 @@ def _dot(weights, values):
     return sum((w * v for w, v in zip(weights, values) if not (_absent(w) or _absent(v))), 0.0)
 
 
-def solve_stuck(matrix, columns, stuck):
-    """Solve the stuck rows of a small symmetric positive-definite system for several right-hand sides.
+# A stuck coupling whose pivot, once the couplings before it are eliminated, is below this fraction of
+# its own diagonal holds a motion those couplings already hold (exactly zero but for round-off).
+REDUNDANT_PIVOT = 1e-9
+
+
+def solve_stuck(matrix, columns, stuck, order=None):
+    """Solve the stuck rows of a small symmetric positive-semidefinite system for several right-hand sides.
 
     ``matrix`` is a list of lists of scalars, each of ``columns`` a list of
     scalars, ``stuck`` a list of booleans; rows and columns of couplings that
     are not stuck become identity rows with a zero right-hand side, so their
-    unknowns are zero.  Gaussian elimination without pivoting is exact enough
-    here: the masked matrix is positive definite.
+    unknowns are zero.  Gaussian elimination without pivoting, in ``order``
+    (default: as given), is exact enough here: the masked matrix is positive
+    definite unless stuck couplings hold the same motion twice (two holds on
+    one shaft).  Then the torque is statically indeterminate: a
+    coupling that the ones before it in ``order`` already hold is given none
+    (its pivot vanishes but for round-off), and they carry it all.
     """
     n = len(stuck)
-    a = [[jnp.where(stuck[i] & stuck[j], matrix[i][j], 1.0 if i == j else 0.0) for j in range(n)]
-         for i in range(n)]
-    bs = [[jnp.where(stuck[i], column[i], 0.0) for i in range(n)] for column in columns]
+    order = list(range(n)) if order is None else list(order)
+    a = [[jnp.where(stuck[i] & stuck[j], matrix[i][j], 1.0 if i == j else 0.0) for j in order] for i in order]
+    bs = [[jnp.where(stuck[i], column[i], 0.0) for i in order] for column in columns]
+    diagonal = [a[i][i] for i in range(n)]
     for k in range(n):
+        held = a[k][k] <= REDUNDANT_PIVOT * diagonal[k]
+        a[k] = [jnp.where(held, 1.0 if j == k else 0.0, a[k][j]) for j in range(n)]
+        for b in bs:
+            b[k] = jnp.where(held, 0.0, b[k])
         for i in range(k + 1, n):
             factor = a[i][k] / a[k][k]
             a[i] = [a[i][j] - factor * a[k][j] for j in range(n)]
@@ -66,7 +80,10 @@ def solve_stuck(matrix, columns, stuck):
         x = [None] * n
         for i in reversed(range(n)):
             x[i] = (b[i] - sum((a[i][j] * x[j] for j in range(i + 1, n)), 0.0)) / a[i][i]
-        out.append(x)
+        solved = [None] * n
+        for position, i in enumerate(order):
+            solved[i] = x[position]
+        out.append(solved)
     return out
 
 
@@ -117,6 +134,12 @@ class Bodies:
 
         return [(e, shaft, value, slope) for e in self.layout.elements if e.inertia_varies
                 for shaft, value, slope in e.varying_inertias(angle)]
+
+    @property
+    def order(self) -> list:
+        """The couplings in the order they take a torque that two of them could hold: those that yield last."""
+        couplings = self.layout.coupling_elements
+        return sorted(range(len(couplings)), key=lambda k: couplings[k].yields)
 
     def relative(self, k, values):
         """Coupling k's relative speed (or acceleration) for body speeds (or accelerations)."""
@@ -201,7 +224,7 @@ def solve_response(layout: Layout, stuck, y=None) -> Response:
 
     inputs = [([1.0 if i == j else 0.0 for i in range(nb)], [0.0] * nc) for j in range(nb)]
     inputs += [([0.0] * nb, [1.0 if i == k and not never_slips[k] else 0.0 for i in range(nc)]) for k in range(nc)]
-    held = solve_stuck(bodies.schur(), [unknowns(tau, sigma) for tau, sigma in inputs], stuck)
+    held = solve_stuck(bodies.schur(), [unknowns(tau, sigma) for tau, sigma in inputs], stuck, bodies.order)
     accel, torque = [], []
     for (tau, sigma), h in zip(inputs, held):
         passed = [jnp.where(stuck[k], h[k], sigma[k]) for k in range(nc)]
@@ -371,7 +394,7 @@ def keep_momentum(layout: Layout, y, stuck):
         return y
     speeds = [y[i] for i in range(len(bodies.inertia))]
     rel = [bodies.relative(k, speeds) for k in range(len(bodies.rows))]
-    (impulse,) = solve_stuck(bodies.schur(), [rel], stuck)
+    (impulse,) = solve_stuck(bodies.schur(), [rel], stuck, bodies.order)
     speeds = [v + dv / m for v, dv, m in zip(speeds, bodies.push(impulse), bodies.inertia)]
     speeds = bodies.align(speeds, stuck)
     return y.at[: len(speeds)].set(jnp.stack(speeds))

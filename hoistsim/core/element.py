@@ -193,6 +193,9 @@ class AbstractCoupling(AbstractElement):
     can_slip: ClassVar[bool] = True
     reports_switches: ClassVar[bool] = True
     holds_one_way: ClassVar[bool] = False  # capacity_toward is zero one way: settled last (core.switching)
+    # Stuck together with others that already hold the same motion (two holds on one shaft), the torque is
+    # statically indeterminate: the couplings take it in their order, those that yield after the rest.
+    yields: ClassVar[bool] = False
 
     def joins(self) -> tuple:
         raise NotImplementedError
