@@ -146,6 +146,20 @@ class GearSpec(Section):
     pressure_angle: u.quantity(u.ANGLE, gt=0.0, lt=math.pi / 2) = math.radians(20.0)
     pinion_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0
     wheel_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0
+    # the mesh's efficiency when the pinion drives the wheel, and when the wheel drives the pinion
+    # (default: the same); either given, the mesh is lossy (absent: ideal, as in exercise 6)
+    efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
+    backdrive_efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
+
+    @property
+    def characteristic(self) -> str:
+        """Which variant: ``ideal`` (power passes unchanged) or ``lossy`` (an efficiency either way)."""
+        return "ideal" if self.efficiency is None and self.backdrive_efficiency is None else "lossy"
+
+    @property
+    def mesh(self) -> "GearSpec | None":
+        """The lossy mesh's friction (the same keys), or None for an ideal mesh."""
+        return self if self.characteristic == "lossy" else None
 
 
 class DrumSpec(Section):

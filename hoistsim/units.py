@@ -196,7 +196,8 @@ def show(x: float, dimension: Dimension) -> str:
 
 
 def check_range(x: float, value: object, dimension: Dimension, *, gt: float | None = None,
-                ge: float | None = None, lt: float | None = None, hint: str = "") -> float:
+                ge: float | None = None, lt: float | None = None, le: float | None = None,
+                hint: str = "") -> float:
     """Check an SI value against its physical limits; the message names them in the user's terms."""
     problem = None
     if gt is not None and not x > gt:
@@ -205,6 +206,8 @@ def check_range(x: float, value: object, dimension: Dimension, *, gt: float | No
         problem = "must not be negative" if ge == 0 else f"must be at least {show(ge, dimension)}"
     elif lt is not None and not x < lt:
         problem = f"must be less than {show(lt, dimension)}"
+    elif le is not None and not x <= le:
+        problem = f"must be at most {show(le, dimension)}"
     if problem is None:
         return x
     if isinstance(value, str):
@@ -304,7 +307,7 @@ def angle_torque_table(value: object) -> tuple[tuple[float, float], ...]:
 
 
 def quantity(dimension: Dimension, hint: str = "", **limits: float):
-    """A float field given as a number (SI) or text with units, checked against ``limits`` (gt, ge, lt)."""
+    """A float field given as a number (SI) or text with units, checked against ``limits`` (gt, ge, lt, le)."""
 
     def convert(value: Any) -> float:
         return check_range(to_si(value, dimension), value, dimension, hint=hint, **limits)

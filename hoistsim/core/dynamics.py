@@ -356,9 +356,51 @@ class Instant:
         tau = self.body_torques()
         sigma = [slip_sign(self.modes[k]) * e.sliding_torque(self) if e.can_slip else 0.0
                  for k, e in enumerate(self.layout.coupling_elements)]
+        for k, e in enumerate(self.layout.coupling_elements):
+            if e.can_slip and e.pressed_by is not None:
+                sigma[k] = sigma[k] + self._pressed(r, tau, sigma, k, e)
+        self._solved = self._responded(r, tau, sigma)
+
+    @staticmethod
+    def _responded(r: Response, tau, sigma):
         accel = [_dot(p, tau) + _dot(q, sigma) for p, q in zip(r.accel_from_torque, r.accel_from_sliding)]
         torque = [_dot(p, tau) + _dot(q, sigma) for p, q in zip(r.torque_from_torque, r.torque_from_sliding)]
-        self._solved = (accel, torque)
+        return accel, torque
+
+    def _pressed(self, r: Response, tau, sigma, k, coupling):
+        """What coupling k's faces add to its sliding torque (with its slip's sign), pressed by a shaft's torque.
+
+        The pressing torque P = P0 + dP/dsigma_k sigma_k responds to what k
+        passes, and k passes s f |P|: with the side fixed by the sign of P0 (the
+        same as P's, the factor being positive and the machine passive),
+        P = P0 / (1 - dP/dsigma_k s f sign(P0)).
+        """
+        s = slip_sign(self.modes[k])
+        pressing = self._into(coupling.pressed_by, *self._responded(r, tau, sigma), applied=True)
+        unit = [1.0 if j == k else 0.0 for j in range(len(sigma))]
+        change = self._into(coupling.pressed_by, *self._responded(r, [0.0] * len(tau), unit), applied=False)
+        factor = s * coupling.sliding_per_load(self, jnp.sign(s * pressing)) * jnp.sign(pressing)
+        return factor * pressing / (1.0 - change * factor)
+
+    def _into(self, shaft, accel, passed, applied: bool):
+        """The torque a shaft's body passes into the shaft (N*m at it): what its inertia takes, less the
+        torques applied to it, plus what couplings at it pass on; linear in the accelerations and the
+        coupling torques (``applied`` False: their part alone)."""
+        body, ratio = self.layout.shaft(shaft)
+        into = 0.0
+        for element in self.layout.elements:
+            for on, inertia in element.inertias():
+                into = into + (inertia * ratio * accel[body] if on == shaft else 0.0)
+            if applied:
+                into = into - sum((t for on, t in element.torques(self) if on == shaft), 0.0)
+        for k, coupling in enumerate(self.layout.coupling_elements):
+            a, b = coupling.joins()
+            into = into + (passed[k] if a == shaft else 0.0) - (passed[k] if b == shaft else 0.0)
+        return into
+
+    def torque_into(self, shaft):
+        """The torque the rest of its body passes into a shaft (N*m at the shaft): what presses a mesh's teeth."""
+        return self._into(shaft, self.accelerations, self.coupling_torques, applied=True)
 
     @property
     def accelerations(self):

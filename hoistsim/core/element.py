@@ -186,16 +186,22 @@ class AbstractCoupling(AbstractElement):
     - ``sliding_torque(x)``: the torque it passes while slipping (N*m, >= 0);
     - ``is_open(segment)``: whether it carries nothing over a whole segment.
     ``can_slip`` False: it is stuck or open, never slipping (no slip guards).
+    ``pressed_by``: a shaft whose torque presses this coupling's faces (the
+    torque a mesh's teeth pass presses their flanks): the torque its body
+    passes into it, ``x.torque_into(shaft)``.  The sliding torque then grows
+    by ``sliding_per_load(x, side)`` times that torque's magnitude, ``side``
+    +1 where it pushes the way the coupling slips, -1 the other way (the core
+    solves for the two together).
     ``reports_switches`` False: its mode changes are not events of their own
     (its scheduled events say what happened).
     """
 
     can_slip: ClassVar[bool] = True
     reports_switches: ClassVar[bool] = True
-    holds_one_way: ClassVar[bool] = False  # capacity_toward is zero one way: settled last (core.switching)
     # Stuck together with others that already hold the same motion (two holds on one shaft), the torque is
     # statically indeterminate: the couplings take it in their order, those that yield after the rest.
     yields: ClassVar[bool] = False
+    pressed_by: ClassVar[str | None] = None
 
     def joins(self) -> tuple:
         raise NotImplementedError
@@ -210,6 +216,9 @@ class AbstractCoupling(AbstractElement):
 
     def sliding_torque(self, x):
         raise NotImplementedError
+
+    def sliding_per_load(self, x, side):
+        return 0.0
 
     def is_open(self, segment):
         return False

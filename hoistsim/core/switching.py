@@ -202,16 +202,27 @@ def settle(layout: Layout, segment, t, y, modes, candidates):
             slips = (worst == k) & (excess[k] > 0.0)
             direction = jnp.where(x.coupling_torques[k] > 0, SLIP_FORWARD, SLIP_BACKWARD)
             modes = modes.at[k].set(jnp.where(slips, direction, modes[k]))
-    # A coupling that holds one way only is let go first when the trial with every candidate stuck
-    # pushes it its free way; once a coupling beside it slips, it may be pushed the way it holds:
-    # then it is held again (with the others as decided), not left to slip and lock an instant later.
+    # Let go in turn, the most overstressed first, a coupling may have slipped only because the others
+    # were still held: once a coupling beside it slips, it may hold after all (a pawl pushed its free way
+    # by the all-stuck trial, then the way it holds; a mesh's flank friction let go before the coupling
+    # that drives it).  Each is tried stuck again, with the others as decided, and held where it can.
     for k, coupling in enumerate(couplings):
-        if not coupling.holds_one_way:
+        if not coupling.can_slip:
             continue
         x = Instant(layout, t, met, modes.at[k].set(STUCK), segment.table)
         torque = x.coupling_torques[k]
         held = jnp.abs(torque) <= holding_capacity(coupling, x, jnp.sign(torque))
         modes = modes.at[k].set(jnp.where(candidates[k] & (modes[k] != STUCK) & held, STUCK, modes[k]))
+    # A coupling let go slips the way its torque pushed while it was tried stuck; with others slipping
+    # beside it, its sides may part the other way (the coupling driving a mesh lets go and what the mesh
+    # lifts turns it back): it then slips the way they part.
+    for k, coupling in enumerate(couplings):
+        if not coupling.can_slip:
+            continue
+        x = Instant(layout, t, met, modes, segment.table)
+        parting = slip_sign(modes[k]) * x.relative_acceleration(coupling.section)
+        flipped = jnp.where(modes[k] == SLIP_FORWARD, SLIP_BACKWARD, SLIP_FORWARD)
+        modes = modes.at[k].set(jnp.where(candidates[k] & (parting < 0.0), flipped, modes[k]))
     return modes, met
 
 

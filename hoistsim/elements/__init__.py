@@ -19,6 +19,7 @@ from .friction_brake import FrictionBrake as FrictionBrake
 from .gear_pair import GearPair as GearPair
 from .holding_brake import HoldingBrake as HoldingBrake
 from .linear_motor import LinearMotor as LinearMotor
+from .mesh_friction import MeshFriction as MeshFriction
 from .motor_ripple import MotorRipple as MotorRipple
 from .motor_table import TableMotor as TableMotor
 from .ratchet import Ratchet as Ratchet
@@ -34,6 +35,7 @@ REGISTRY: dict[str, object] = {
     "motor": {"linear": LinearMotor, "torque_speed": TableMotor, "torque": ConstantTorqueMotor},
     "motor.ripple": MotorRipple,
     "gears": GearPair,
+    "gears.mesh": MeshFriction,  # a lossy mesh's friction: scenario.gears.mesh, given with an efficiency
     "clutch": ConeClutch,
     "drum": Drum,
     "drum.resisting_ripple": ResistingRipple,

@@ -24,7 +24,6 @@ class Ratchet(AbstractDrumHold):
 
     section: ClassVar[str] = "ratchet"
     release_event: ClassVar[str] = "ratchet_release"
-    holds_one_way: ClassVar[bool] = True
     event_kinds: ClassVar[tuple] = ("ratchet_release",)
     columns: ClassVar[dict] = {
         "ratchet_torque": ("N*m", "torque the pawl applies to the drum, positive holding the load up"),

@@ -1,0 +1,108 @@
+"""The lossy gear mesh against independent answers.
+
+A mesh that drives forward throughout is the ideal machine with the load torque
+and the drum-side inertia divided by the efficiency; one that the load drives
+back throughout is the ideal machine with them multiplied by the backdrive
+efficiency: the closed form of the canonical scene, either way.  Its losses are
+(1/eta - 1) times the energy the drum side has gained, or (1 - eta_b) times what
+it has given.  Efficiency 1 is the ideal mesh; a mesh whose backdrive losses
+exceed what the load can overhaul holds the load at rest.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+from conftest import SCENARIOS
+
+from hoistsim import scenario_from_text, simulate
+from hoistsim.exact import solve_exact
+from hoistsim.model import ForceSchedule, Machine, initial_speeds
+
+TIGHT = ["simulation.rtol=1e-10", "simulation.atol=1e-12"]
+
+
+def _scene(name: str, *overrides: str):
+    return scenario_from_text((SCENARIOS / name).read_text(), overrides=[*TIGHT, *overrides])
+
+
+def _ideal_with_drum_side_scaled(scenario, factor: float):
+    """The closed form of the ideal machine whose drum side (inertia and load torque) is multiplied by factor."""
+    machine = Machine.from_scenario(scenario)
+    d = machine.reduced()
+    pinion_side = machine.driven_inertia + machine.gears.pinion_inertia
+    scaled = dataclasses.replace(d, output_inertia=pinion_side + (d.output_inertia - pinion_side) * factor,
+                                 load_torque=d.load_torque * factor)
+    schedule = ForceSchedule.from_scenario(scenario)
+    motor_speed, output_speed = initial_speeds(scenario, d)
+    brake = getattr(scenario, "brake", None)
+    return d, scaled, solve_exact(scaled, schedule.times, schedule.forces, scenario.simulation.duration,
+                                  initial_motor_speed=motor_speed, initial_output_speed=output_speed,
+                                  brake_release=brake.release_time if brake else None)
+
+
+def _drum_side_energy(scenario, run):
+    """Kinetic energy of the drum side (wheel, drum, load) and the load's potential energy (J)."""
+    machine = Machine.from_scenario(scenario)
+    d = machine.reduced()
+    pinion_side = machine.driven_inertia + machine.gears.pinion_inertia
+    drum_side = (d.output_inertia - pinion_side) * d.ratio**2  # at the drum shaft
+    return 0.5 * drum_side * run["drum_speed"] ** 2 + d.load_weight * run["load_position"]
+
+
+def test_a_mesh_that_drives_forward_throughout_is_the_ideal_machine_with_its_drum_side_divided_by_eta():
+    eta = 0.9
+    scenario = _scene("engage_at_speed_with_brake.yaml", f"gears.efficiency={eta}", "gears.backdrive_efficiency=0.6")
+    run = simulate(scenario)
+    d, _, exact = _ideal_with_drum_side_scaled(scenario, 1.0 / eta)
+    closed = exact.evaluate(run.time)
+    scale = d.no_load_speed
+    assert np.abs(run["motor_speed"] - closed["motor_speed"]).max() < 1e-8 * scale
+    assert np.abs(run["drum_speed"] * d.ratio - closed["output_speed"]).max() < 1e-8 * scale
+    assert np.abs(run["load_position"] - closed["load_position"]).max() < 1e-8 * closed["load_position"].max()
+    locks = run.events["time"][(run.events["kind"] == "lock") & (run.events["element"] == "clutch")]
+    exact_locks = [e.time for e in exact.events if e.kind == "lock"]
+    assert locks == pytest.approx(exact_locks, abs=1e-8)
+    moving = run.time >= scenario.brake.release_time  # the row at the release holds the state after it
+    assert (run["mesh_mode"][moving] == 1).all() and (run["mesh_mode"][~moving] == 0).all()
+    # the losses: (1/eta - 1) of what the drum side gained
+    gained = _drum_side_energy(scenario, run)
+    assert run["mesh_loss_energy"] == pytest.approx((1.0 / eta - 1.0) * gained, rel=1e-8, abs=1e-6)
+    assert run.summary["energy_relative_residual"] < 1e-8
+
+
+def test_a_mesh_the_load_drives_back_throughout_is_the_ideal_machine_with_its_drum_side_times_eta_b():
+    eta_b = 0.8
+    scenario = _scene("runback_slipping_clutch.yaml", "gears.efficiency=0.95", f"gears.backdrive_efficiency={eta_b}")
+    run = simulate(scenario)
+    d, _, exact = _ideal_with_drum_side_scaled(scenario, eta_b)
+    closed = exact.evaluate(run.time)
+    assert np.abs(run["motor_speed"] - closed["motor_speed"]).max() < 1e-8 * d.no_load_speed
+    assert np.abs(run["drum_speed"] * d.ratio - closed["output_speed"]).max() < 1e-8 * d.no_load_speed
+    going = run.time > 0
+    assert (run["drum_speed"][going] < 0).all() and (run["mesh_mode"][going] == 2).all()
+    given = -_drum_side_energy(scenario, run)
+    assert run["mesh_loss_energy"] == pytest.approx((1.0 - eta_b) * given, rel=1e-8, abs=1e-6)
+    assert run.summary["energy_relative_residual"] < 1e-8
+
+
+def test_efficiency_one_is_the_ideal_mesh():
+    ideal = simulate(_scene("engage_at_speed_with_brake.yaml"))
+    lossless = simulate(_scene("engage_at_speed_with_brake.yaml", "gears.efficiency=1"))
+    for column in ("motor_speed", "drum_speed", "load_position", "clutch_torque"):
+        assert np.abs(lossless[column] - ideal[column]).max() <= 1e-9 * np.abs(ideal[column]).max()
+    assert np.abs(lossless["mesh_loss_energy"]).max() == 0.0
+    assert "mesh_loss_energy" not in ideal.summary and "mesh_torque" not in ideal.series
+
+
+def test_a_mesh_that_loses_more_than_the_load_can_overhaul_holds_it_at_rest():
+    # The slipping clutch passes 104 N*m to the pinion; the load pulls back 185 N*m there, 92.6 N*m of it
+    # through a mesh that gives back half: the gear stays still, and forward the pinion passes 94 N*m of
+    # the 185 it would need.  Self-locking: the load neither runs back nor rises.
+    run = simulate(_scene("runback_slipping_clutch.yaml", "gears.efficiency=0.9", "gears.backdrive_efficiency=0.5"))
+    assert np.abs(run["drum_speed"]).max() == 0.0 and np.abs(run["load_position"]).max() < 1e-20  # round-off
+    assert (run["mesh_mode"] == 0).all() and run.summary["mesh_loss_energy"] == 0.0
+    assert run["motor_speed"][-1] > 20.0  # the motor runs up, the clutch slipping all along
+    assert run.summary["energy_relative_residual"] < 1e-8
