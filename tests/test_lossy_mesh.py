@@ -106,3 +106,53 @@ def test_a_mesh_that_loses_more_than_the_load_can_overhaul_holds_it_at_rest():
     assert (run["mesh_mode"] == 0).all() and run.summary["mesh_loss_energy"] == 0.0
     assert run["motor_speed"][-1] > 20.0  # the motor runs up, the clutch slipping all along
     assert run.summary["energy_relative_residual"] < 1e-8
+
+
+def _coasting(*overrides: str):
+    """The drum thrown up at 30 rpm, the motor off and heavy: the clutch brakes the pinion until it locks."""
+    text = (SCENARIOS / "runback_slipping_clutch.yaml").read_text()
+    text = text.replace("  stall_torque: 500 N*m\n  no_load_speed: 300 rpm\n", "  torque: 0 N*m\n")
+    text = text.replace("rotor_mass: 40 kg", "rotor_mass: 400 kg")
+    return scenario_from_text(text, overrides=[*TIGHT, "gears.efficiency=0.9", "gears.backdrive_efficiency=0.8",
+                                               "gears.pinion_inertia=0.5 kg*m^2", "initial.drum_speed=30 rpm",
+                                               *overrides])
+
+
+def test_the_power_flow_reverses_at_the_instant_the_clutch_locks():
+    # Before the lock the clutch brakes the pinion harder than the load brakes the drum: the wheel drives
+    # (the drum side times eta_b); locked, the motor's inertia carries the drum up: the pinion drives
+    # (the drum side over eta).  Each phase is uniformly decelerated: lock and stop in closed form.
+    eta, eta_b = 0.9, 0.8
+    scenario = _coasting("clutch.engagement_force=3000 N")
+    run = simulate(scenario)
+    machine = Machine.from_scenario(scenario.model_copy(update={"motor": scenario.motor.model_copy(
+        update={"torque": None, "stall_torque": 1.0, "no_load_speed": 1.0})}))
+    d = machine.reduced()
+    pinion_side = machine.driven_inertia + machine.gears.pinion_inertia
+    drum_side = d.output_inertia - pinion_side
+    kinetic = d.kinetic_torque(3000.0)
+    w0 = scenario.initial.drum_speed * d.ratio
+    motor_accel = kinetic / d.motor_inertia
+    pinion_accel = (-kinetic - eta_b * d.load_torque) / (pinion_side + eta_b * drum_side)
+    lock = w0 / (motor_accel - pinion_accel)
+    together = -(d.load_torque / eta) / (d.motor_inertia + pinion_side + drum_side / eta)
+    stop = lock + motor_accel * lock / -together
+    events = list(zip(run.events["kind"], run.events["element"], run.events["time"]))
+    assert [(k, e) for k, e, _ in events] == [("lock", "clutch"), ("reversal", "mesh")]
+    assert events[0][2] == pytest.approx(lock, abs=1e-9) and events[1][2] == pytest.approx(stop, abs=1e-9)
+    at = np.flatnonzero(run.time == events[0][2])[0]
+    assert run["mesh_torque"][at - 1] < 0 < run["mesh_torque"][at]
+    assert run["mesh_mode"][at - 1] == 2 and run["mesh_mode"][at] == 1
+    assert run.summary["energy_relative_residual"] < 1e-8
+
+
+def test_a_tooth_load_changing_sign_while_the_gear_rolls_is_found_exactly():
+    # The clutch force ramps up while the load runs back: the tooth load falls through zero with the gear
+    # turning, and the law of the losses changes there: a row of its own at the zero, not a step across it.
+    run = simulate(_coasting("clutch.engagement_force=[[0 s, 0 N], [1 s, 3000 N]]"))
+    found = run.instants["time"][run.instants["kind"] == "power_reversal"]
+    assert len(found) == 1 and run.instants["element"][run.instants["kind"] == "power_reversal"][0] == "mesh"
+    at = np.flatnonzero(run.time == found[0])[0]
+    assert abs(run["mesh_torque"][at]) < 1e-9 * np.abs(run["mesh_torque"]).max()
+    assert run["drum_speed"][at] < 0 and run["mesh_mode"][at - 1] == 2 and run["mesh_mode"][at] == 1
+    assert run.summary["energy_relative_residual"] < 1e-8

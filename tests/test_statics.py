@@ -140,3 +140,23 @@ def test_statics_warns_of_a_load_the_motor_or_the_clutch_cannot_hold():
     assert result.exit_code == 0
     assert result.stderr.count("hoistsim: warning: ") == 2
     assert "least_force_for_start" in result.stdout
+
+
+def _lossy(force="3201 N", efficiency=0.9):
+    s = scene(force=force, mass="500 kg", duration="1 s", rtol=1e-10, atol=1e-12)
+    return s.model_copy(update={"gears": s.gears.model_copy(update={"efficiency": efficiency})})
+
+
+def test_a_lossy_mesh_in_the_static_answers_and_the_least_start_force():
+    # Exercise 6 assumes an ideal mesh: with efficiency eta the heaviest load takes eta, and lifting from
+    # rest weighs the drum side 1/eta as much, so the least start force rises; the simulation agrees.
+    ideal, lossy = as_dict(scene(mass="500 kg")), as_dict(_lossy())
+    assert ideal["mesh_efficiency"] == 1.0 and lossy["mesh_efficiency"] == 0.9
+    assert lossy["max_load_weight"] == pytest.approx(0.9 * ideal["max_load_weight"], rel=1e-14)
+    least = least_force_for_start(_lossy())
+    assert least > ideal["least_force_for_start"]
+    above = simulate(_lossy(force=f"{least * (1 + 1e-6)} N"))
+    assert len(above.events["kind"]) == 0 and np.all(above["clutch_locked"] == 1)
+    assert above["load_position"][-1] > 0 and (above["mesh_mode"][1:] == 1).all()
+    below = simulate(_lossy(force=f"{least * (1 - 1e-6)} N"))
+    assert below["clutch_locked"][0] == 0

@@ -34,7 +34,9 @@ Contributions, all read at trace time (``x`` is the machine at one instant,
 - ``boundaries()`` and ``boundary_events(t)``: scheduled times and the events
   recorded at them (kinds listed in ``event_kinds``);
 - ``observations(x)``: guards whose zero is recorded as an output row (kinds in
-  ``observation_kinds``), positive before it;
+  ``observation_kinds``), positive before it; those named in ``crossings`` are
+  recorded where they change sign either way (a value whose sign switches the
+  element's law, found exactly instead of stepped across);
 - ``kinks(x)``: knot coordinates (named by ``kink_names()``), continuous in the
   state and whole numbers exactly where the element's torque has a kink (a
   table's knot in angle): the integration stops at the next whole number either
@@ -92,6 +94,7 @@ class AbstractElement:
     columns: ClassVar[dict[str, tuple[str, str]]] = {}
     event_kinds: ClassVar[tuple[str, ...]] = ()  # scheduled events
     observation_kinds: ClassVar[tuple[str, ...]] = ()  # guards recorded as rows
+    crossings: ClassVar[tuple[str, ...]] = ()  # of those, the ones recorded where they change sign either way
     summaries: ClassVar[dict[str, str]] = {}  # summary name -> units
     ledger_kinds: ClassVar[dict[str, str]] = {}  # energy term -> "work", "loss" or "potential"
     cycles: ClassVar[dict[str, str]] = {}  # kink -> event kind recorded where it is crossed

@@ -82,6 +82,7 @@ class Args:
     offsets: dict  # observation, valley and kink guards -> what is taken off them this pass (see switching)
     kinking: jax.Array  # whether kinks still stop the integration (their budget is not spent)
     anchors: dict  # knot coordinates where the pass started (see switching.guards)
+    orients: dict  # two-way observations -> +1 or -1: the way each leaves where the pass started
 
     @cached_property
     def layout(self) -> Layout:
@@ -225,14 +226,18 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
     observing = observations < plan.max_switches
     kinking = kinks < KINK_BUDGET * plan.max_switches
     anchors = switching.kink_anchors(plan.layout, _instant(plan, segment, c.t, c.y, c.modes, reply))
-    args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply,
-                {name: jnp.zeros(()) for name in c.fired}, kinking, anchors)
+    unset = {name: jnp.zeros(()) for name in c.fired}
+    orients = switching.orients(plan.layout, c.t, c.y,
+                                Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, unset,
+                                     kinking, anchors, {}))
+    args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, unset, kinking, anchors, orients)
     # a guard that ended the last pass starts this one at or below zero (see switching)
     offsets = {name: jnp.where(c.fired[name], jnp.maximum(g(c.t, c.y, args), 0.0), 0.0)
                for _, name, g in guards if name in c.fired}
     event = diffrax.Event(cond_fn=[g for _, _, g in guards], root_finder=CrossingBisection(), direction=False)
     save_times = jnp.clip(plan.grid, c.t, segment.end)
-    pass_args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, offsets, kinking, anchors)
+    pass_args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, offsets, kinking, anchors,
+                     args.orients)
     # The guards other than switches where the pass starts (those above zero are armed).
     armed = {name: g(c.t, c.y, pass_args) for role, name, g in guards if role != "switch"}
     return pass_args, armed, diffrax.diffeqsolve(

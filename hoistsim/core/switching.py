@@ -34,9 +34,10 @@ or below zero and cannot fire before it has genuinely risen again (``offsets``).
 
 from __future__ import annotations
 
+import jax
 import jax.numpy as jnp
 
-from .dynamics import Instant, keep_momentum, slip_sign
+from .dynamics import Instant, keep_momentum, slip_sign, vector_field
 from .element import OPEN, SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STICK_TOLERANCE, STUCK
 from .layout import DISENGAGE, ENGAGE, LOCK, NO_EVENT, REVERSAL, UNLOCK, Layout
 
@@ -106,8 +107,9 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
     for element in layout.elements:
         for kind in element.observation_kinds:
             def seen(t, y, args, element=element, kind=kind, **_):
-                value = element.observations(_instant(t, y, args))[kind]
-                return jnp.where(args.observing, value - args.offsets[f"{element.section}.{kind}"], 1.0)
+                name = f"{element.section}.{kind}"
+                value = element.observations(_instant(t, y, args))[kind] * args.orients.get(name, 1.0)
+                return jnp.where(args.observing, value - args.offsets[name], 1.0)
             observe.append(("observe", f"{element.section}.{kind}", seen))
     kinks = []
     for element in layout.elements:
@@ -125,6 +127,26 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
                 return jnp.where(args.kinking, u - jnp.ceil(args.anchors[anchor] - KNOT_RESOLUTION) + 1.0, 1.0)
             kinks += [("kink", f"{anchor}+", ahead), ("kink", f"{anchor}-", behind)]
     return switch + observe + valley + kinks
+
+
+def orients(layout: Layout, t, y, args) -> dict:
+    """The way each two-way observation (an element's ``crossings``) leaves (t, y): +1 rising, -1 falling.
+
+    Its guard is the value times this, positive as the pass goes on, so that it
+    fires where the value next changes sign, either way.  At its own zero (a
+    pass that starts where the last one found it) the value's rate says which
+    way it goes.
+    """
+    out = {}
+    for element in layout.elements:
+        for kind in element.crossings:
+            def value(t, y, element=element, kind=kind):
+                return element.observations(Instant(layout, t, y, args.modes, args.segment.table, args.reply))[kind]
+
+            rate_y = vector_field(t, y, args)
+            now, rate = jax.jvp(value, (jnp.asarray(t, y.dtype), y), (jnp.ones((), y.dtype), rate_y))
+            out[f"{element.section}.{kind}"] = jnp.where(now != 0.0, jnp.sign(now), jnp.where(rate < 0.0, -1.0, 1.0))
+    return out
 
 
 def crossed_together(guards, args, t, y, armed: dict, masks: dict):

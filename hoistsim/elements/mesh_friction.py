@@ -41,6 +41,10 @@ class MeshFriction(AbstractCoupling):
     section: ClassVar[str] = "mesh"
     pressed_by: ClassVar[str] = "drum"  # the tooth load: what the pinion passes into the drum shaft
     yields: ClassVar[bool] = True
+    # where the tooth load changes sign while the gear rolls, the side that drives changes and with it the
+    # law of the losses: a row of its own, and no step across it
+    observation_kinds: ClassVar[tuple] = ("power_reversal",)
+    crossings: ClassVar[tuple] = ("power_reversal",)
     summaries: ClassVar[dict] = {"mesh_loss_energy": "J"}
     ledger_kinds: ClassVar[dict] = {"mesh_loss_energy": "loss"}
     columns: ClassVar[dict] = {
@@ -85,6 +89,10 @@ class MeshFriction(AbstractCoupling):
 
     def capacity(self, x):
         return jnp.maximum(self.capacity_toward(x, 1.0), self.capacity_toward(x, -1.0))
+
+    def observations(self, x) -> dict:
+        rolling = (x.mode("mesh") != STUCK) & (x.mode("mesh") != OPEN)
+        return {"power_reversal": jnp.where(rolling, x.torque_into("drum"), 1.0)}
 
     def states(self) -> dict:
         return {"mesh_loss_energy": 0.0}
