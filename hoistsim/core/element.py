@@ -78,6 +78,10 @@ MODE_NAMES = {STUCK: "locked", SLIP_FORWARD: "slipping+", SLIP_BACKWARD: "slippi
 # breakaway guard; that moves a genuine breakaway by ~1e-12 of its torque ramp's
 # time scale, far inside any solver tolerance.
 STICK_TOLERANCE = 1e-12
+# And an absolute 1e-9 N*m above it: a coupling stuck at a restart with no capacity and no torque (a pawl
+# that nothing pushes yet, a mesh at rest that nothing presses) has a breakaway guard of exactly zero there,
+# and a guard that starts at zero cannot fire however far the torque then grows past the capacity.
+TORQUE_RESOLUTION = 1e-9
 
 # A relative speed below this fraction of the machine's speed scale is no slip at
 # all when modes are decided at a boundary (and at t = 0).  Without it a slip of

@@ -38,7 +38,7 @@ import jax
 import jax.numpy as jnp
 
 from .dynamics import Instant, keep_momentum, slip_sign, vector_field
-from .element import OPEN, SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STICK_TOLERANCE, STUCK
+from .element import OPEN, SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STICK_TOLERANCE, STUCK, TORQUE_RESOLUTION
 from .layout import DISENGAGE, ENGAGE, LOCK, NO_EVENT, REVERSAL, UNLOCK, Layout
 
 # A pass that starts within this of a knot (in knots) starts at it: the next ones are a whole knot away.
@@ -48,7 +48,7 @@ KNOT_RESOLUTION = 1e-9
 def holding_capacity(coupling, x, sign):
     """The capacity with the stick tolerance: what a stuck coupling is allowed to carry against a torque
     pushing side a forwards (``sign`` > 0) or backwards."""
-    return coupling.capacity_toward(x, sign) * (1.0 + STICK_TOLERANCE)
+    return coupling.capacity_toward(x, sign) * (1.0 + STICK_TOLERANCE) + TORQUE_RESOLUTION
 
 
 def _instant(t, y, args) -> Instant:
