@@ -71,6 +71,9 @@ FIGURES = {
     "engage_at_speed_with_brake": ("hoistsim run + plot scenarios/engage_at_speed_with_brake.yaml",
                                    _run_and_plot("engage_at_speed_with_brake.yaml",
                                                  {"": "engage_at_speed_with_brake.png"})),
+    "lift_and_run_back_through_a_lossy_mesh": (
+        "hoistsim run + plot scenarios/lift_and_run_back_through_a_lossy_mesh.yaml",
+        _run_and_plot("lift_and_run_back_through_a_lossy_mesh.yaml", {"": "lift_and_run_back_through_a_lossy_mesh.png"})),
     "start_against_a_slipping_brake": ("hoistsim run + plot scenarios/start_against_a_slipping_brake.yaml",
                                        _run_and_plot("start_against_a_slipping_brake.yaml",
                                                      {"": "start_against_a_slipping_brake.png"})),

@@ -15,6 +15,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from .core.layout import SWITCH_KINDS
 from .plotting import colour_scale, element_classes, swept_label
 
 FEW = 4  # more runs than this are drawn as a colour-mapped family
@@ -191,29 +192,37 @@ def _shade(axes, run, shading):
                             label=phase.label if ax is axes[0] else None)
 
 
+def _event_text(row) -> str:
+    """What a line's label says: a coupling's switch names the coupling ("mesh unlock"), a scheduled event
+    names itself ("brake release")."""
+    kind = _kind(row)
+    text = f"{_text(row, 'element')} {kind}" if kind in SWITCH_KINDS else kind
+    return text.replace("_", " ")
+
+
 def _draw_events(axes, runs, run_colours, mode, quiet):
     """Switches and scheduled instants as lines in every panel; named at the top (one run) or by style."""
     seen = set()
     for run, colour in zip(runs, run_colours):
-        rows = [(float(row["time"]), _kind(row)) for row in run["events"] if _kind(row) not in quiet]
+        rows = [(float(row["time"]), _kind(row), _event_text(row)) for row in run["events"] if _kind(row) not in quiet]
         if len(rows) > MAX_EVENT_LINES:
             axes[0].annotate(f"{len(rows)} switches: listed in the file's events, not drawn",
                              (0.01, 0.02), xycoords="axes fraction", fontsize=8, color="0.3")
             continue
         named: dict = {}  # time -> the kinds named there: events at one instant share one label
-        for time, kind in rows:
+        for time, kind, text in rows:
             kind_colour, style = _EVENT_STYLE.get(kind, ("#888888", ":"))
             for ax in axes:
                 ax.axvline(time, color=kind_colour if mode == "one" else colour, ls=style, lw=0.9, alpha=0.75)
             if mode == "one":
                 if time in named:
-                    named[time][1].append(kind.replace("_", " "))
+                    named[time][1].append(text)
                     named[time][0].set_text(", ".join(named[time][1]))
                     continue
-                label = axes[0].annotate(kind.replace("_", " "), (time, 1.0), xycoords=("data", "axes fraction"),
+                label = axes[0].annotate(text, (time, 1.0), xycoords=("data", "axes fraction"),
                                          xytext=(2, -3), textcoords="offset points", fontsize=7, rotation=90,
                                          va="top", color=kind_colour)
-                named[time] = (label, [kind.replace("_", " ")])
+                named[time] = (label, [text])
             elif kind not in seen:
                 axes[0].plot([], [], color="0.3", ls=style, lw=0.9, label=f"event: {kind.replace('_', ' ')}")
             seen.add(kind)

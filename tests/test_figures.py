@@ -84,7 +84,7 @@ def test_one_run_shades_its_phases_and_marks_every_event_in_every_panel(results)
     for ax in panels:
         assert sorted(line.get_xdata()[0] for line in _vertical_lines(ax)) == sorted(events.values())
     names = [t.get_text() for t in panels[0].texts]
-    assert sorted(names) == ["brake release", "engage", "lock"]  # named once, at the top
+    assert sorted(names) == ["brake release", "clutch engage", "clutch lock"]  # named once, at the top, by element
     assert all(not ax.texts for ax in panels[1:])
     plt.close(fig)
 

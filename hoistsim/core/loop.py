@@ -25,7 +25,7 @@ from ..rootfind import CrossingBisection
 from ..schema import SOLVERS as SOLVER_NAMES
 from . import switching
 from .dynamics import Instant, Response, keep_momentum, response, response_table, slip_sign, vector_field
-from .element import SLIP_BACKWARD, SLIP_FORWARD, STUCK
+from .element import SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STUCK
 from .layout import NO_EVENT, Layout
 from .columns import row_outputs, summary_values
 from .eventlog import LOG_FIELDS, record, unpack
@@ -41,6 +41,9 @@ STATUS_TEXT = {OK: "ok", CHATTERING: "chattering", SOLVER_FAILED: "solver failed
 SOLVERS = {name: getattr(diffrax, name.capitalize()) for name in SOLVER_NAMES}
 
 MAX_STEPS_PER_SEGMENT = 200_000
+# Where one coupling's sides meet, another's meet at the same instant if their relative speed is within
+# this many slip resolutions (the round-off of the located root).
+SHARED_ZERO = 16
 # Passes that may end at a kink, per allowed switch (beyond, kinks are stepped across).
 KINK_BUDGET = 100
 _REDUCTIONS = {"max": -jnp.inf, "min": jnp.inf, "first": jnp.nan, "duration": 0.0}
@@ -209,6 +212,18 @@ def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit
         modes = modes.at[k].set(jnp.where(up, SLIP_FORWARD, jnp.where(down, SLIP_BACKWARD,
                                                                        jnp.where(met, STUCK, modes[k]))))
         candidates[k] = (candidates[k] & ~up & ~down) | met
+    # Sides that meet where another coupling's sides meet (one zero of speed shared by both, a shaft
+    # stopping against a brake and a mesh at once) are tried stuck too: diffrax reports one guard a step.
+    meeting = functools.reduce(jnp.logical_or, [masks[f"{e.section}.slip"] for e in layout.coupling_elements
+                                                if e.can_slip], jnp.zeros((), bool))
+    x = Instant(layout, t, y)
+    for k, coupling in enumerate(layout.coupling_elements):
+        if not coupling.can_slip:
+            continue
+        together = meeting & (slip_sign(modes[k]) != 0.0) & (
+            jnp.abs(x.relative_speed(coupling.section)) <= SHARED_ZERO * SLIP_RESOLUTION * plan.speed_scale)
+        modes = modes.at[k].set(jnp.where(together, STUCK, modes[k]))
+        candidates[k] = candidates[k] | together
     new_modes, new_y = switching.settle(layout, segment, t, y, modes, candidates)
     c = _record_transitions(plan, segment, c, hit, t, new_y, c.modes, new_modes, columns)
     return eqx.tree_at(lambda k: (k.y, k.modes), c,

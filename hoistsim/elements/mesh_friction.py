@@ -50,7 +50,7 @@ class MeshFriction(AbstractCoupling):
     columns: ClassVar[dict] = {
         "mesh_torque": ("N*m", "tooth load: the torque the pinion passes to the wheel, at the drum shaft"),
         "mesh_loss_power": ("W", "power the tooth flanks' friction turns into heat"),
-        "mesh_loss_energy": ("J", "energy the mesh has lost so far (the summary's at the end)"),
+        "mesh_heat": ("J", "energy the mesh has lost so far (the summary's mesh_loss_energy at the end)"),
         "mesh_mode": ("1", "0 the gear held at rest, 1 the pinion drives the wheel, 2 the wheel drives the pinion"),
     }
     panels: ClassVar[tuple] = (Panel("mesh", "mesh [N*m]\n(tooth load at the drum)", 45, (
@@ -115,5 +115,5 @@ class MeshFriction(AbstractCoupling):
         load = x.torque_into("drum")
         drives = load * slip_sign(mode) >= 0.0  # the load pushes the way the gear rolls: the pinion drives
         return {"mesh_torque": load, "mesh_loss_power": self._loss_power(x),
-                "mesh_loss_energy": x.state("mesh_loss_energy"),
+                "mesh_heat": x.state("mesh_loss_energy"),
                 "mesh_mode": jnp.where(rolling, jnp.where(drives, 1, 2), 0).astype(jnp.int8)}
