@@ -157,6 +157,12 @@ class GearSpec(Section):
         return "ideal" if self.efficiency is None and self.backdrive_efficiency is None else "lossy"
 
     @property
+    def efficiencies(self) -> tuple[float, float]:
+        """(pinion driving, wheel driving): 1 and 1 for the ideal mesh; the second defaults to the first."""
+        forward = 1.0 if self.efficiency is None else self.efficiency
+        return forward, forward if self.backdrive_efficiency is None else self.backdrive_efficiency
+
+    @property
     def mesh(self) -> "GearSpec | None":
         """The lossy mesh's friction (the same keys), or None for an ideal mesh."""
         return self if self.characteristic == "lossy" else None

@@ -39,18 +39,11 @@ def holding_force(scenario: Scenario) -> float:
     return scenario.clutch.engagement_force.forces[-1]
 
 
-def mesh_efficiency(scenario: Scenario) -> tuple[float, float]:
-    """(pinion driving, wheel driving) efficiencies of the mesh: 1 and 1 for the ideal mesh of exercise 6."""
-    gears = scenario.gears
-    forward = 1.0 if gears.efficiency is None else gears.efficiency
-    return forward, forward if gears.backdrive_efficiency is None else gears.backdrive_efficiency
-
-
 def _lifting(scenario: Scenario):
     """The reduced machine as the clutch sees it lifting: drum side (inertia, load torque) over eta."""
     machine = Machine.from_scenario(scenario)
     d = machine.reduced()
-    eta, _ = mesh_efficiency(scenario)
+    eta, _ = scenario.gears.efficiencies
     pinion_side = machine.driven_inertia + machine.gears.pinion_inertia
     return replace(d, output_inertia=pinion_side + (d.output_inertia - pinion_side) / eta,
                    load_torque=d.load_torque / eta)
@@ -75,7 +68,7 @@ def warnings(scenario: Scenario) -> list[str]:
         out.append(f"load.mass: {mass:g} kg puts {d.load_torque:.4g} N*m on the motor shaft, more than the motor's "
                    f"stall torque ({d.stall_torque:.4g} N*m): no engagement force lifts it, and the least start "
                    "force (least_force_for_start) only says when the clutch would not slip")
-    eta, eta_back = mesh_efficiency(scenario)
+    eta, eta_back = scenario.gears.efficiencies
     overhauling = d.load_torque * eta * eta_back  # what the load passes back through the mesh
     if capacity <= overhauling:
         out.append(f"clutch.engagement_force: at {force:g} N the clutch holds {capacity:.4g} N*m, less than the "
@@ -91,7 +84,7 @@ def answers(scenario: Scenario) -> list[Answer]:
     tangential = gears.tangential_force(capacity)  # T = M_f / r1
     radial = gears.radial_force(tangential)  # N = T tan(alpha)
     # Wheel torque eta T r2 holds the rope at the drum radius: P = eta T r2 / R = eta M_f tau / R.
-    eta, eta_back = mesh_efficiency(scenario)
+    eta, eta_back = scenario.gears.efficiencies
     max_weight = eta * tangential * gears.wheel_pitch_radius / machine.drum.rope_radius
     rows = [
         Answer("engagement_force_for_stall_torque", "F_A", "axial force for C0 without slip (Q1)",

@@ -12,7 +12,7 @@ from ..core.element import AbstractElement
 from ..core.panel import Panel, Trace
 
 _DESCRIPTIONS = {
-    "tooth_tangential_force": "tooth force along the pitch-circle tangent, from the torque the pinion passes",
+    "tooth_tangential_force": "tooth force along the pitch-circle tangent, from the torque the wheel receives",
     "tooth_radial_force": "separating tooth force, T tan(pressure angle)",
     "tooth_force": "total tooth force",
     "rope_tension": "rope tension M (g + a)",
@@ -28,15 +28,15 @@ _DESCRIPTIONS = {
 class DrumShaftLoads(AbstractElement):
     """The exercise's question 3 at every output row, with the inertia forces of the start.
 
-    The tooth force comes from the torque the pinion actually passes to the wheel:
-    the clutch torque less what accelerates the driven clutch half and the pinion.
+    The tooth force comes from the torque the wheel actually receives, the tooth
+    load: what the drum shaft's inertia, load, brake and pawl take from it (with
+    a lossy mesh, less than the pinion gives by the flanks' friction).
     The rope tension is M (g + a) with a the load's acceleration.  Adds no state
     and no term to the equations of motion: only output columns.
     """
 
-    pinion_pitch_radius: object  # r1, m
+    wheel_pitch_radius: object  # r2, m
     tan_pressure_angle: object
-    pinion_side_inertia: object  # kg*m^2: driven clutch half + pinion
     load_mass: object  # kg
     gravity: object  # m/s^2
     rope_radius: object  # m
@@ -55,9 +55,8 @@ class DrumShaftLoads(AbstractElement):
     def from_spec(cls, spec, scenario) -> "DrumShaftLoads":
         gears = scenario.gears
         return cls(
-            pinion_pitch_radius=0.5 * gears.module * gears.pinion_teeth,
+            wheel_pitch_radius=0.5 * gears.module * gears.wheel_teeth,
             tan_pressure_angle=math.tan(gears.pressure_angle),
-            pinion_side_inertia=scenario.clutch.driven_inertia + gears.pinion_inertia,
             load_mass=scenario.load.mass,
             gravity=scenario.gravity,
             rope_radius=0.5 * scenario.drum.diameter,
@@ -67,8 +66,7 @@ class DrumShaftLoads(AbstractElement):
         )
 
     def outputs(self, x) -> dict:
-        teeth_torque = x.coupling_torque("clutch") - self.pinion_side_inertia * x.acceleration("pinion")
-        tangential = teeth_torque / self.pinion_pitch_radius
+        tangential = x.torque_into("drum") / self.wheel_pitch_radius
         radial = jnp.abs(tangential) * self.tan_pressure_angle
         rope_tension = self.load_mass * (self.gravity + self.rope_radius * x.acceleration("drum"))
         shaft = DrumShaft(self.gear_offset, self.rope_offset, self.span)

@@ -60,8 +60,7 @@ class MeshFriction(AbstractCoupling):
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "MeshFriction":
-        efficiency = 1.0 if spec.efficiency is None else spec.efficiency
-        backdrive = efficiency if spec.backdrive_efficiency is None else spec.backdrive_efficiency
+        efficiency, backdrive = spec.efficiencies
         return cls(efficiency=efficiency, backdrive_efficiency=backdrive,
                    ratio=float(spec.pinion_teeth) / float(spec.wheel_teeth))
 
