@@ -213,7 +213,7 @@ def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit
                                                                        jnp.where(met, STUCK, modes[k]))))
         candidates[k] = (candidates[k] & ~up & ~down) | met
     # Sides that meet where another coupling's sides meet (one zero of speed shared by both, a shaft
-    # stopping against a brake and a mesh at once) are tried stuck too: diffrax reports one guard a step.
+    # stopping against two holds at once) are tried stuck too: diffrax reports one guard a step.
     meeting = functools.reduce(jnp.logical_or, [masks[f"{e.section}.slip"] for e in layout.coupling_elements
                                                 if e.can_slip], jnp.zeros((), bool))
     x = Instant(layout, t, y)
