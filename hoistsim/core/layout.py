@@ -72,7 +72,8 @@ class Layout:
         self.cycles = [(i, kink, kind) for i, e in enumerate(elements) for kink, kind in e.cycles.items()]
         self.event_kinds += [kind for _, _, kind in self.cycles if kind not in self.event_kinds]
         self.inertia_varies = any(e.inertia_varies for e in elements)
-        self.observation_kinds = ["slip_peak"] if any(e.can_slip for e in self.coupling_elements) else []
+        self.observation_kinds = ["slip_peak"] if any(e.can_slip and e.observes_slip_peak
+                                                      for e in self.coupling_elements) else []
         for element in elements:
             self.observation_kinds += [k for k in element.observation_kinds
                                        if k not in self.observation_kinds]

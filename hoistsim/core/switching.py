@@ -102,7 +102,8 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
 
         switch += [("switch", f"{name}.slip", slip), ("switch", f"{name}.breakaway+", breakaway(1.0)),
                    ("switch", f"{name}.breakaway-", breakaway(-1.0))]
-        observe.append(("observe", f"{name}.slip_peak", peak))
+        if coupling.observes_slip_peak:
+            observe.append(("observe", f"{name}.slip_peak", peak))
         valley.append(("valley", f"{name}.slip_valley", dip))
     for element in layout.elements:
         for kind in element.observation_kinds:

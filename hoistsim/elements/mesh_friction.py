@@ -41,6 +41,7 @@ class MeshFriction(AbstractCoupling):
     section: ClassVar[str] = "mesh"
     pressed_by: ClassVar[str] = "drum"  # the tooth load: what the pinion passes into the drum shaft
     yields: ClassVar[bool] = True
+    observes_slip_peak: ClassVar[bool] = False
     # where the tooth load changes sign while the gear rolls, the side that drives changes and with it the
     # law of the losses: a row of its own, and no step across it
     observation_kinds: ClassVar[tuple] = ("power_reversal",)

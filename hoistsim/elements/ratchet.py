@@ -24,6 +24,7 @@ class Ratchet(AbstractDrumHold):
 
     section: ClassVar[str] = "ratchet"
     release_event: ClassVar[str] = "ratchet_release"
+    observes_slip_peak: ClassVar[bool] = False
     event_kinds: ClassVar[tuple] = ("ratchet_release",)
     columns: ClassVar[dict] = {
         "ratchet_torque": ("N*m", "torque the pawl applies to the drum, positive holding the load up"),
