@@ -316,9 +316,12 @@ def clutch_torque(drivetrain, mode, force, motor_speed, held):
 
 
 def _holding_brake_only(scenario) -> None:
-    """The closed form knows the holding brake (the drum held, then free), not one that slips or a pawl."""
+    """The closed form knows the holding brake (the drum held, then free) and the ideal mesh, not a brake
+    that slips, a pawl or a lossy mesh."""
     brake = getattr(scenario, "brake", None)
     if brake is not None and brake.static_torque is not None:
         raise ValueError("the closed form covers a holding brake only, not one with static_torque")
     if getattr(scenario, "ratchet", None) is not None:
         raise ValueError("the closed form does not cover a ratchet")
+    if scenario.gears.characteristic != "ideal":
+        raise ValueError("the closed form covers the ideal mesh only, not gears.efficiency")

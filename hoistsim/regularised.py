@@ -61,8 +61,8 @@ def _field(t, y, args):
     here = Segment(start=t, end=t, lines=lines)
     modes = jnp.stack([jnp.asarray(SLIP_FORWARD) if c.can_slip else jnp.where(c.is_open(here), OPEN, STUCK)
                        for c in elements if isinstance(c, AbstractCoupling)])
-    return vector_field(t, y, Args(elements, here, modes, jnp.asarray(False), plan.speed_scale, None, {}, jnp.asarray(False), {},
-                                          {}))
+    args = Args(elements, here, modes, jnp.asarray(False), plan.speed_scale, None, {}, jnp.asarray(False), {}, {})
+    return vector_field(t, y, args)
 
 
 def _solve(plan, width, solver):

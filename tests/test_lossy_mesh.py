@@ -166,3 +166,30 @@ def test_the_shipped_scene_lifts_with_the_pinion_driving_and_runs_back_with_the_
     assert (run["mesh_mode"][lifting] == 1).all() and (run["mesh_mode"][run.time > turn[0]] == 2).all()
     assert run["load_position"][-1] < 0 and run.summary["mesh_loss_energy"] > 0
     assert run.summary["energy_relative_residual"] < 1e-8
+
+
+def test_a_drum_stopped_by_the_brake_locks_brake_pawl_and_mesh_at_one_instant():
+    # Every friction element at once: the friction brake applied again at 2.5 s catches the rising drum
+    # against the clutch; where the drum stops the brake, the pawl and the gear held at rest all lock at
+    # the same instant (one zero of the drum's speed), the brake taking the load (first in order).
+    text = (SCENARIOS / "engage_at_speed_with_brake.yaml").read_text() + "ratchet: {}\n"
+    run = simulate(scenario_from_text(text, overrides=[*TIGHT, "brake.static_torque=3000 N*m",
+                                                      "brake.kinetic_torque=2000 N*m", "brake.apply_time=2.5 s",
+                                                      "gears.efficiency=0.95", "gears.backdrive_efficiency=0.9"]))
+    locks = {e: t for k, e, t in zip(run.events["kind"], run.events["element"], run.events["time"])
+             if k == "lock" and t > 2.5}
+    assert set(locks) == {"mesh", "brake", "ratchet"} and len(set(locks.values())) == 1
+    held = run.time >= locks["brake"]
+    assert np.abs(run["drum_speed"][held]).max() == 0.0 and (run["mesh_mode"][held] == 0).all()
+    assert np.abs(run["brake_torque"][held]).min() > 0 and np.abs(run["ratchet_torque"][held]).max() == 0.0
+    assert run.summary["energy_relative_residual"] < 1e-8
+
+
+def test_the_closed_form_and_the_scipy_peer_refuse_a_lossy_mesh():
+    from hoistsim.exact import exact_from_scenario
+    from hoistsim.scipy_reference import solve_scenario_with_scipy
+
+    scenario = _scene("engage_at_speed_with_brake.yaml", "gears.efficiency=0.9")
+    for solve in (exact_from_scenario, solve_scenario_with_scipy):
+        with pytest.raises(ValueError, match="ideal mesh only"):
+            solve(scenario)

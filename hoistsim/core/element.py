@@ -208,8 +208,8 @@ class AbstractCoupling(AbstractElement):
     # Stuck together with others that already hold the same motion (two holds on one shaft), the torque is
     # statically indeterminate: the couplings take it in their order, those that yield after the rest.
     yields: ClassVar[bool] = False
-    # its slip's peaks are rows (a clutch's peak slip speed); False where the slip is a shaft turning
-    # freely (a pawl clicking over, a gear rolling) and its peaks say nothing the shaft's speed does not
+    # its slip's peaks are rows (the peak slip speed of a friction coupling); False where the slip is a
+    # shaft turning freely (a pawl clicking over, a mesh rolling): its peaks say nothing its speed does not
     observes_slip_peak: ClassVar[bool] = True
     pressed_by: ClassVar[str | None] = None
 

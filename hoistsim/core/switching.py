@@ -233,17 +233,24 @@ def settle(layout: Layout, segment, t, y, modes, candidates):
     # Let go in turn, the most overstressed first, a coupling may have slipped only because the others
     # were still held: once a coupling beside it slips, it may hold after all (a pawl pushed its free way
     # by the all-stuck trial, then the way it holds; a mesh's flank friction let go before the coupling
-    # that drives it).  Each is tried stuck again, with the others as decided: held where it can, else
-    # let go the way its torque pushes now (its sliding torque being at most what it holds, its sides
-    # part that way), which may not be the way the all-stuck trial pushed it.
+    # that drives it).  Each is tried stuck again, with the others as decided, and held where it can.
     for k, coupling in enumerate(couplings):
         if not coupling.can_slip:
             continue
         x = Instant(layout, t, met, modes.at[k].set(STUCK), segment.table)
         torque = x.coupling_torques[k]
         held = jnp.abs(torque) <= holding_capacity(coupling, x, jnp.sign(torque))
-        decided = jnp.where(held, STUCK, jnp.where(torque > 0, SLIP_FORWARD, SLIP_BACKWARD))
-        modes = modes.at[k].set(jnp.where(candidates[k] & (modes[k] != STUCK), decided, modes[k]))
+        modes = modes.at[k].set(jnp.where(candidates[k] & (modes[k] != STUCK) & held, STUCK, modes[k]))
+    # A coupling let go slips the way its torque pushed while it was tried stuck; with others decided
+    # beside it, its sides may part the other way (the coupling driving a mesh lets go and what the mesh
+    # lifts turns it back): it then slips the way they part.
+    for k, coupling in enumerate(couplings):
+        if not coupling.can_slip:
+            continue
+        x = Instant(layout, t, met, modes, segment.table)
+        parting = slip_sign(modes[k]) * x.relative_acceleration(coupling.section)
+        flipped = jnp.where(modes[k] == SLIP_FORWARD, SLIP_BACKWARD, SLIP_FORWARD)
+        modes = modes.at[k].set(jnp.where(candidates[k] & (parting < 0.0), flipped, modes[k]))
     return modes, met
 
 
