@@ -151,6 +151,7 @@ class _SecondBrake(AbstractCoupling):
         return 0.0
 
 
+@pytest.mark.slow
 def test_two_couplings_holding_the_same_motion_share_it_by_order():
     # The drum brake holds the output shaft, and a second brake holds it again until 0.25 s: the torque
     # is statically indeterminate; the first in the machine's order takes it all, and the run is the

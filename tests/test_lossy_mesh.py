@@ -73,6 +73,7 @@ def test_a_mesh_that_drives_forward_throughout_is_the_ideal_machine_with_its_dru
     assert run.summary["energy_relative_residual"] < 1e-8
 
 
+@pytest.mark.slow
 def test_a_mesh_the_load_drives_back_throughout_is_the_ideal_machine_with_its_drum_side_times_eta_b():
     eta_b = 0.8
     scenario = _scene("runback_slipping_clutch.yaml", "gears.efficiency=0.95", f"gears.backdrive_efficiency={eta_b}")
@@ -118,6 +119,7 @@ def _coasting(*overrides: str):
                                                *overrides])
 
 
+@pytest.mark.slow
 def test_the_power_flow_reverses_at_the_instant_the_clutch_locks():
     # Before the lock the clutch brakes the pinion harder than the load brakes the drum: the wheel drives
     # (the drum side times eta_b); locked, the motor's inertia carries the drum up: the pinion drives
@@ -146,6 +148,7 @@ def test_the_power_flow_reverses_at_the_instant_the_clutch_locks():
     assert run.summary["energy_relative_residual"] < 1e-8
 
 
+@pytest.mark.slow
 def test_a_tooth_load_changing_sign_while_the_gear_rolls_is_found_exactly():
     # The clutch force ramps up while the load runs back: the tooth load falls through zero with the gear
     # turning, and the law of the losses changes there: a row of its own at the zero, not a step across it.
@@ -158,6 +161,7 @@ def test_a_tooth_load_changing_sign_while_the_gear_rolls_is_found_exactly():
     assert run.summary["energy_relative_residual"] < 1e-8
 
 
+@pytest.mark.slow
 def test_the_shipped_scene_lifts_with_the_pinion_driving_and_runs_back_with_the_wheel_driving():
     run = simulate(_scene("lift_and_run_back_through_a_lossy_mesh.yaml"))
     turn = run.events["time"][(run.events["element"] == "mesh") & (run.events["kind"] == "reversal")]
@@ -168,6 +172,7 @@ def test_the_shipped_scene_lifts_with_the_pinion_driving_and_runs_back_with_the_
     assert run.summary["energy_relative_residual"] < 1e-8
 
 
+@pytest.mark.slow
 def test_a_drum_stopped_by_the_brake_locks_brake_pawl_and_mesh_at_one_instant():
     # Every friction element at once: the friction brake applied again at 2.5 s catches the rising drum
     # against the clutch; where the drum stops the brake, the pawl and the gear held at rest all lock at

@@ -147,6 +147,7 @@ def _lossy(force="3201 N", efficiency=0.9):
     return s.model_copy(update={"gears": s.gears.model_copy(update={"efficiency": efficiency})})
 
 
+@pytest.mark.slow
 def test_a_lossy_mesh_in_the_static_answers_and_the_least_start_force():
     # Exercise 6 assumes an ideal mesh: with efficiency eta the heaviest load takes eta, and lifting from
     # rest weighs the drum side 1/eta as much, so the least start force rises; the simulation agrees.
