@@ -342,13 +342,22 @@ class Instant:
             self._reply = response(self.layout, self.modes, self.y)
         return self._reply
 
+    @cached_property
+    def shaft_torques(self) -> dict:
+        """External torques by the shaft they act on (N*m at it), each element asked once."""
+        torques: dict = {}
+        for element in self.layout.elements:
+            for shaft, value in element.torques(self):
+                self.layout.shaft(shaft, element)  # a shaft the machine has, or a one-line error
+                torques[shaft] = torques.get(shaft, 0.0) + value
+        return torques
+
     def body_torques(self):
         """External torques on the bodies (couplings aside), by equal power."""
         torque = [0.0] * len(self.layout.bodies)
-        for element in self.layout.elements:
-            for shaft, value in element.torques(self):
-                body, ratio = self.layout.shaft(shaft, element)
-                torque[body] = torque[body] + value * ratio
+        for shaft, value in self.shaft_torques.items():
+            body, ratio = self.layout.shaft(shaft)
+            torque[body] = torque[body] + value * ratio
         return torque
 
     def _solve(self):
@@ -356,29 +365,29 @@ class Instant:
         tau = self.body_torques()
         sigma = [slip_sign(self.modes[k]) * e.sliding_torque(self) if e.can_slip else 0.0
                  for k, e in enumerate(self.layout.coupling_elements)]
-        for k, e in enumerate(self.layout.coupling_elements):
-            if e.can_slip and e.pressed_by is not None:
-                sigma[k] = sigma[k] + self._pressed(r, tau, sigma, k, e)
-        self._solved = self._responded(r, tau, sigma)
-
-    @staticmethod
-    def _responded(r: Response, tau, sigma):
         accel = [_dot(p, tau) + _dot(q, sigma) for p, q in zip(r.accel_from_torque, r.accel_from_sliding)]
         torque = [_dot(p, tau) + _dot(q, sigma) for p, q in zip(r.torque_from_torque, r.torque_from_sliding)]
-        return accel, torque
+        for k, e in enumerate(self.layout.coupling_elements):
+            if e.can_slip and e.pressed_by is not None:
+                # what k passes besides moves everything along its column of the response
+                column = ([q[k] for q in r.accel_from_sliding], [u[k] for u in r.torque_from_sliding])
+                added = self._pressed(k, e, (accel, torque), column)
+                accel = [v + added * c for v, c in zip(accel, column[0])]
+                torque = [v + added * c for v, c in zip(torque, column[1])]
+        self._solved = (accel, torque)
 
-    def _pressed(self, r: Response, tau, sigma, k, coupling):
+    def _pressed(self, k, coupling, solved, column):
         """What coupling k's faces add to its sliding torque (with its slip's sign), pressed by a shaft's torque.
 
         The pressing torque P = P0 + dP/dsigma_k sigma_k responds to what k
-        passes, and k passes s f |P|: with the side fixed by the sign of P0 (the
-        same as P's, the factor being positive and the machine passive),
+        passes (``solved``: the machine without it; ``column``: its response to a
+        unit of it), and k passes s f |P|: with the side fixed by the sign of P0
+        (the same as P's, the factor being positive and the machine passive),
         P = P0 / (1 - dP/dsigma_k s f sign(P0)).
         """
         s = slip_sign(self.modes[k])
-        pressing = self._into(coupling.pressed_by, *self._responded(r, tau, sigma), applied=True)
-        unit = [1.0 if j == k else 0.0 for j in range(len(sigma))]
-        change = self._into(coupling.pressed_by, *self._responded(r, [0.0] * len(tau), unit), applied=False)
+        pressing = self._into(coupling.pressed_by, *solved, applied=True)
+        change = self._into(coupling.pressed_by, *column, applied=False)
         factor = s * coupling.sliding_per_load(self, jnp.sign(s * pressing)) * jnp.sign(pressing)
         return factor * pressing / (1.0 - change * factor)
 
@@ -387,12 +396,10 @@ class Instant:
         torques applied to it, plus what couplings at it pass on; linear in the accelerations and the
         coupling torques (``applied`` False: their part alone)."""
         body, ratio = self.layout.shaft(shaft)
-        into = 0.0
-        for element in self.layout.elements:
-            for on, inertia in element.inertias():
-                into = into + (inertia * ratio * accel[body] if on == shaft else 0.0)
-            if applied:
-                into = into - sum((t for on, t in element.torques(self) if on == shaft), 0.0)
+        inertia = sum((value for e in self.layout.elements for on, value in e.inertias() if on == shaft), 0.0)
+        into = inertia * ratio * accel[body]
+        if applied:
+            into = into - self.shaft_torques.get(shaft, 0.0)
         for k, coupling in enumerate(self.layout.coupling_elements):
             a, b = coupling.joins()
             into = into + (passed[k] if a == shaft else 0.0) - (passed[k] if b == shaft else 0.0)
