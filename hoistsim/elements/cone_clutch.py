@@ -9,11 +9,12 @@ import numpy as np
 
 from .. import components
 
-from ..core.element import OPEN, SLIP_BACKWARD, SLIP_FORWARD, STUCK, AbstractCoupling
+from ..core.element import OPEN, SLIP_BACKWARD, SLIP_FORWARD, STUCK
 from ..core.panel import Outcome, Panel, Phase, SummaryPanel, Trace, speed_panel
+from ._slip_heat import AbstractSlipHeat
 
 
-class ConeClutch(AbstractCoupling):
+class ConeClutch(AbstractSlipHeat):
     """A friction coupling pressed by an engagement force F(t), a table of time.
 
     Static capacity f_a c F and sliding torque f c F, with the geometry constant
@@ -31,6 +32,7 @@ class ConeClutch(AbstractCoupling):
     driven_inertia: object  # kg*m^2, the half on the pinion shaft
 
     section: ClassVar[str] = "clutch"
+    heat_state: ClassVar[str] = "clutch_energy"
     summaries: ClassVar[dict] = {"lockup_time": "s", "slip_duration": "s", "peak_clutch_torque": "N*m",
                                  "peak_slip_speed": "rad/s", "slip_energy": "J"}
     ledger_kinds: ClassVar[dict] = {"clutch_energy": "loss"}
@@ -107,15 +109,6 @@ class ConeClutch(AbstractCoupling):
 
     def inertias(self) -> tuple:
         return (("motor", self.driving_inertia), ("pinion", self.driven_inertia))
-
-    def states(self) -> dict:
-        return {"clutch_energy": 0.0}
-
-    def rates(self, x) -> dict:
-        return {"clutch_energy": x.coupling_torque("clutch") * x.relative_speed("clutch")}
-
-    def ledger(self, x) -> dict:
-        return {"clutch_energy": x.state("clutch_energy")}
 
     def extremes(self, x) -> dict:
         mode = x.mode("clutch")

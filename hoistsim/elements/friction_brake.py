@@ -10,10 +10,11 @@ import numpy as np
 from ..core.element import OPEN
 from ..core.panel import Panel, SummaryPanel, Trace
 from ._drum_hold import AbstractDrumHold
+from ._slip_heat import AbstractSlipHeat
 from .holding_brake import HoldingBrake
 
 
-class FrictionBrake(AbstractDrumHold):
+class FrictionBrake(AbstractSlipHeat, AbstractDrumHold):
     """A friction coupling of the drum shaft to the ground, closed until ``release_time`` and again from
     ``apply_time`` (never, when not given).
 
@@ -31,6 +32,7 @@ class FrictionBrake(AbstractDrumHold):
     apply_time: object  # s (inf: never closes again)
 
     section: ClassVar[str] = "brake"
+    heat_state: ClassVar[str] = "brake_energy"
     release_event: ClassVar[str] = "brake_release"
     event_kinds: ClassVar[tuple] = ("brake_release", "brake_apply")
     summaries: ClassVar[dict] = {"brake_energy": "J"}
@@ -77,15 +79,6 @@ class FrictionBrake(AbstractDrumHold):
 
     def boundary_events(self, t) -> tuple:
         return (*super().boundary_events(t), ("brake_apply", t == self.apply_time))
-
-    def states(self) -> dict:
-        return {"brake_energy": 0.0}
-
-    def rates(self, x) -> dict:
-        return {"brake_energy": x.coupling_torque("brake") * x.relative_speed("brake")}
-
-    def ledger(self, x) -> dict:
-        return {"brake_energy": x.state("brake_energy")}
 
     def summary(self, x) -> dict:
         return {"brake_energy": x.state("brake_energy")}

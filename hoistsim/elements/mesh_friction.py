@@ -7,11 +7,12 @@ from typing import ClassVar
 import jax.numpy as jnp
 
 from ..core.dynamics import slip_sign
-from ..core.element import OPEN, STUCK, AbstractCoupling
+from ..core.element import OPEN, STUCK
 from ..core.panel import Panel, Phase, SummaryPanel, Trace
+from ._slip_heat import AbstractSlipHeat
 
 
-class MeshFriction(AbstractCoupling):
+class MeshFriction(AbstractSlipHeat):
     """The mesh's losses as a friction torque of the pinion shaft against the gearbox, pressed by the tooth load.
 
     Modelica's LossyGear, in this machine's terms: with the tooth load T (the
@@ -39,6 +40,7 @@ class MeshFriction(AbstractCoupling):
     ratio: object  # z1/z2: the drum's speed over the pinion's
 
     section: ClassVar[str] = "mesh"
+    heat_state: ClassVar[str] = "mesh_loss_energy"
     pressed_by: ClassVar[str] = "drum"  # the tooth load: what the pinion passes into the drum shaft
     yields: ClassVar[bool] = True
     observes_slip_peak: ClassVar[bool] = False
@@ -94,18 +96,6 @@ class MeshFriction(AbstractCoupling):
         rolling = (x.mode("mesh") != STUCK) & (x.mode("mesh") != OPEN)
         return {"power_reversal": jnp.where(rolling, x.torque_into("drum"), 1.0)}
 
-    def states(self) -> dict:
-        return {"mesh_loss_energy": 0.0}
-
-    def rates(self, x) -> dict:
-        return {"mesh_loss_energy": self._loss_power(x)}
-
-    def _loss_power(self, x):
-        return x.coupling_torque("mesh") * x.relative_speed("mesh")
-
-    def ledger(self, x) -> dict:
-        return {"mesh_loss_energy": x.state("mesh_loss_energy")}
-
     def summary(self, x) -> dict:
         return {"mesh_loss_energy": x.state("mesh_loss_energy")}
 
@@ -114,6 +104,6 @@ class MeshFriction(AbstractCoupling):
         rolling = (mode != STUCK) & (mode != OPEN)
         load = x.torque_into("drum")
         drives = load * slip_sign(mode) >= 0.0  # the load pushes the way the gear rolls: the pinion drives
-        return {"mesh_torque": load, "mesh_loss_power": self._loss_power(x),
+        return {"mesh_torque": load, "mesh_loss_power": self.slip_power(x),
                 "mesh_heat": x.state("mesh_loss_energy"),
                 "mesh_mode": jnp.where(rolling, jnp.where(drives, 1, 2), 0).astype(jnp.int8)}
