@@ -159,7 +159,7 @@ def compare_table(rows: list[dict], units: dict[str, str], columns: list[str] | 
 def reduced_model_table(scenario) -> str:
     """The machine as the simulator sees it: each body's inertia, then the two-shaft numbers of exercise 6."""
     from .assemble import machine_elements
-    from .core.dynamics import Bodies
+    from .core.bodies import Bodies
     from .core.layout import Layout
     from .errors import ScenarioError
 

@@ -24,7 +24,8 @@ from .._pytree import pytree_dataclass
 from ..rootfind import CrossingBisection
 from ..schema import SOLVERS as SOLVER_NAMES
 from . import switching
-from .dynamics import Instant, Response, keep_momentum, response, response_table, slip_sign, vector_field
+from .bodies import Response, keep_momentum, response, response_table
+from .dynamics import Instant, slip_sign, vector_field
 from .element import SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STUCK
 from .layout import NO_EVENT, Layout
 from .columns import row_outputs, summary_values

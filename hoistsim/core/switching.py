@@ -37,7 +37,8 @@ from __future__ import annotations
 import jax
 import jax.numpy as jnp
 
-from .dynamics import Instant, keep_momentum, slip_sign, vector_field
+from .bodies import keep_momentum
+from .dynamics import Instant, slip_sign, vector_field
 from .element import OPEN, SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STICK_TOLERANCE, STUCK, TORQUE_RESOLUTION
 from .layout import DISENGAGE, ENGAGE, LOCK, NO_EVENT, REVERSAL, UNLOCK, Layout
 

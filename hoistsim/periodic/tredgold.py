@@ -26,7 +26,8 @@ import numpy as np
 from scipy.optimize import brentq
 
 from .. import _jax  # noqa: F401  (float64 before any array)
-from ..core.dynamics import Bodies, Instant
+from ..core.bodies import Bodies
+from ..core.dynamics import Instant
 from ..core.element import OPEN, STUCK
 from ..core.layout import Layout, angle_state
 from ..core.schedule import table_at, tables_of
