@@ -183,6 +183,12 @@ class ExactSolution:
         locks = [e.time for e in events if e.mode == LOCKED]
         self.lockup_time = 0.0 if initial_mode == LOCKED else (locks[0] if locks else math.nan)
 
+    def slip_power(self, t):
+        """The clutch's heat of slip (W) at times t, right-continuous at switches."""
+        flat = np.atleast_1d(np.asarray(t, dtype=float))
+        index = np.clip(np.searchsorted(self._starts, flat, side="right") - 1, 0, None)
+        return np.asarray([self._pieces[i].slip_power(u - self._pieces[i].start) for i, u in zip(index, flat)])
+
     def evaluate(self, t):
         t = np.asarray(t, dtype=float)
         flat = np.atleast_1d(t).ravel()
@@ -316,8 +322,9 @@ def clutch_torque(drivetrain, mode, force, motor_speed, held):
 
 
 def _holding_brake_only(scenario) -> None:
-    """The closed form knows the holding brake (the drum held, then free) and the ideal mesh, not a brake
-    that slips, a pawl or a lossy mesh."""
+    """The closed form knows the holding brake (the drum held, then free), the ideal mesh and constant
+    friction, not a brake that slips, a pawl, a lossy mesh or friction that fades with temperature (the
+    clutch's temperature itself changes nothing it solves)."""
     brake = getattr(scenario, "brake", None)
     if brake is not None and brake.static_torque is not None:
         raise ValueError("the closed form covers a holding brake only, not one with static_torque")
@@ -325,3 +332,6 @@ def _holding_brake_only(scenario) -> None:
         raise ValueError("the closed form does not cover a ratchet")
     if scenario.gears.characteristic != "ideal":
         raise ValueError("the closed form covers the ideal mesh only, not gears.efficiency")
+    heating = getattr(scenario, "clutch_heating", None)
+    if heating is not None and heating.fades:
+        raise ValueError("the closed form covers constant friction only, not clutch_heating's friction tables")

@@ -138,7 +138,7 @@ def _run_extras(runs) -> dict:
     extras = {}
     balances = [run.energy_balance for run in runs]  # each closes the run's ledger: once a run
     for key in balances[0]:
-        extras[f"energy_{key}"] = ("J" if key != "relative_residual" else "1",
+        extras[f"energy_{key}"] = ("1" if key.endswith("relative_residual") else "J",
                                    np.asarray([balance[key] for balance in balances], dtype=float))
     for key in runs[0].stats:
         extras[f"solver_{key}"] = ("s" if key == "wall_time" else "1",
@@ -392,7 +392,7 @@ def _write_periods(group: h5py.Group, regime) -> None:
 
 # Summary columns the host adds to the elements' own (which declare their units).
 _HOST_SUMMARY_UNITS = {"lock_events": "1", "unlock_events": "1", "energy_residual": "J",
-                       "energy_relative_residual": "1"}
+                       "energy_relative_residual": "1", "heat_relative_residual": "1"}
 
 
 def _summary_units(scenario) -> dict[str, str]:

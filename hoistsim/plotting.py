@@ -52,7 +52,7 @@ def plot_file(path, output) -> list[str]:
         save(periodic_figure(periodic[0], plt), output.with_name(output.stem + "_periodic" + output.suffix))
     if len(summaries) > 1 or not runs:
         target = output.with_name(output.stem + "_summary" + output.suffix) if runs else output
-        save(summary_figure(summaries, swept, plt, scenario_name(path)), target)
+        save(summary_figure(summaries, swept, plt, scenario_name(path), scenario_parameters(path)), target)
     return written
 
 
@@ -77,6 +77,17 @@ def runs_columns() -> set[str]:
                 names.update(trace.columns())
         names.update(phase.column for phase in cls.shading)
     return names
+
+
+def scenario_parameters(path) -> dict:
+    """The scenario in SI numbers as the file keeps it (the resolved base of a sweep), {} where it has none."""
+    import json
+
+    import h5py
+
+    with h5py.File(path, "r") as f:
+        text = f["runs"].attrs.get("parameters") if "runs" in f else None
+    return json.loads(text) if text else {}
 
 
 def scenario_name(path) -> str:

@@ -28,17 +28,20 @@ _EVENT_STYLE = {"lock": ("#1b7837", "-"), "unlock": ("#b2182b", "--"), "reversal
                 "brake_release": ("#8c510a", "-."), "engage": ("#2166ac", (0, (1, 1))),
                 "disengage": ("#2166ac", (0, (3, 1, 1, 1)))}
 _MARK_NAMES = {"lock": "clutch locks", "load_lowest": "lowest point"}
+_LIMIT_MARK = "#b2182b"
 _CURVE = "curve"  # the gid of a run's curve (not a zero line, an event line or a legend's sample)
 _LEGEND = dict(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False, borderaxespad=0.0)
 
 
 def runs_figure(runs, plt, swept):
     classes = element_classes()
+    for run in runs:  # what traces read beside the columns (a limit the scenario gives)
+        _parameters(run)
     present = set(runs[0])
     panels = _panels(classes, present)
     shading = list({id(phase): phase for cls in classes for phase in cls.shading if phase.column in present}.values())
     # events that are not switches or scheduled instants (observations, period marks) get no line
-    quiet = {"slip_peak"} | {k for cls in classes for k in cls.observation_kinds} | {
+    quiet = {"slip_peak"} | {k for cls in classes for k in cls.observation_kinds if k not in cls.limits} | {
         kind for cls in classes for kind in cls.cycles.values()}
 
     heights = [panel.height for panel in panels]
@@ -173,7 +176,10 @@ def _marks(ax, trace, scale, runs, run_colours, mode):
         if not xs:
             continue
         name = _MARK_NAMES.get(kind, kind.replace("_", " "))
-        if mode == "family":
+        if kind in {k for cls in element_classes() for k in cls.limits}:  # a limit crossed: a warning, in red
+            ax.scatter(xs, ys, s=40 if mode != "family" else 14, c=_LIMIT_MARK, marker="v", lw=0, zorder=4,
+                       label=name)
+        elif mode == "family":
             ax.scatter(xs, ys, s=6, c="k", marker="o", lw=0, zorder=3, label=name)
         else:
             ax.scatter(xs, ys, s=28, facecolors="white", edgecolors=cs, marker="o", lw=1.3, zorder=3, label=name)

@@ -17,7 +17,7 @@ from .plotting import element_classes, swept_label
 POINTS = 60  # up to this many runs, each is a marked point
 
 
-def summary_figure(summaries, swept, plt, name: str = ""):
+def summary_figure(summaries, swept, plt, name: str = "", parameters: dict | None = None):
     classes = element_classes()
     names = set(summaries[0])
     panels = sorted((p for cls in classes for p in cls.summary_panels if p.name in names), key=lambda p: p.order)
@@ -33,7 +33,7 @@ def summary_figure(summaries, swept, plt, name: str = ""):
     never_locks = next((mask for o, mask in outcomes if o.label == "never locks"), np.zeros(len(x), bool))
 
     for ax, panel in zip(axes.flat, panels):
-        y = np.asarray([row[panel.name] for row in summaries], dtype=float) * panel.scale
+        y = np.asarray([row[panel.name] for row in summaries], dtype=float) * panel.scale + panel.offset
         partial = never_locks if panel.partial else np.zeros(len(x), bool)
         ax.plot(x[order], y[order], color="#1f4e79", lw=1.4, zorder=2)
         if few:
@@ -51,6 +51,11 @@ def summary_figure(summaries, swept, plt, name: str = ""):
                 ax.plot(x[mask], y[mask], outcome.marker, color=outcome.colour, ms=6, zorder=4)
         if panel.zero_line:
             ax.axhline(0.0, color="k", lw=0.6)
+        limit = panel.limit[1](parameters or {}) if panel.limit else None
+        if limit is not None:
+            value = limit * panel.scale + panel.offset
+            ax.axhline(value, color="0.25", ls=":", lw=1.0, zorder=1,
+                       label=f"{panel.limit[0]} ({value:.4g} {panel.ylabel.rsplit('[', 1)[-1].rstrip(']')})")
         ax.set_ylabel(panel.ylabel)
         ax.grid(True, lw=0.4, alpha=0.6)
     for ax in axes.flat[len(panels):]:

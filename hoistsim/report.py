@@ -45,20 +45,26 @@ SUMMARY_COLUMNS = [  # (summary key, header, scale)
     ("unlock_events", "unlocks", 1),
     ("energy_relative_residual", "energy residual", None),
 ]
+# shown where the runs have them (a part the scene names): after the clutch's heat
+OPTIONAL_COLUMNS = {"slip_energy": [("peak_clutch_temperature", "peak clutch [degC]", lambda kelvin: kelvin - 273.15),
+                                    ("overheat_time", "overheats [s]", 1.0)]}
 
 
 def summary_table(summaries: list[dict], head: int = 12, tail: int = 6) -> str:
     """Runs as rows, the summary as columns; long sweeps show their first and last runs."""
-    def row(s):
-        cells = [s["label"]]
-        for key, _, scale in SUMMARY_COLUMNS:
-            value = s[key]
-            cells.append(f"{value:.1e}" if scale is None else fmt(value * scale if scale != 1 else value))
-        return cells
+    columns = []
+    for column in SUMMARY_COLUMNS:
+        columns += [column] + [extra for extra in OPTIONAL_COLUMNS.get(column[0], ()) if extra[0] in summaries[0]]
+
+    def cell(value, scale):
+        if scale is None:
+            return f"{value:.1e}"
+        return fmt(scale(value) if callable(scale) else value * scale if scale != 1 else value)
 
     shown = summaries if len(summaries) <= head + tail else summaries[:head] + [None] + summaries[-tail:]
-    rows = [row(s) if s is not None else ["..."] + [""] * len(SUMMARY_COLUMNS) for s in shown]
-    text = table(["run"] + [header for _, header, _ in SUMMARY_COLUMNS], rows)
+    rows = [[s["label"]] + [cell(s[key], scale) for key, _, scale in columns] if s is not None
+            else ["..."] + [""] * len(columns) for s in shown]
+    text = table(["run"] + [header for _, header, _ in columns], rows)
     if len(summaries) > head + tail:
         text += f"\n({len(summaries)} runs; all of them: hoistsim compare OUT.h5 [--csv])"
     return text

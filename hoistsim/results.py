@@ -121,6 +121,7 @@ def summarize(label: str, values: dict, ledger: dict, locks: int, unlocks: int) 
         "unlock_events": int(unlocks),
         "energy_residual": energy["residual"],
         "energy_relative_residual": energy["relative_residual"],
+        **_heat_residual(energy),
     }
 
 
@@ -134,7 +135,13 @@ def summary_columns(labels: list[str], values: dict, ledger: dict, locks, unlock
         "unlock_events": np.asarray(unlocks, dtype=np.int64),
         "energy_residual": energy["residual"],
         "energy_relative_residual": energy["relative_residual"],
+        **_heat_residual(energy),
     }
+
+
+def _heat_residual(energy: dict) -> dict:
+    """Where a part's heat is followed (stored, passed to ambient), how well it accounts for the loss."""
+    return {"heat_relative_residual": energy["heat_relative_residual"]} if "heat_relative_residual" in energy else {}
 
 
 class Summaries(Sequence):

@@ -10,6 +10,7 @@ import json
 import math
 from typing import Any, Literal
 
+import numpy as np
 from pydantic import BaseModel, ConfigDict, PrivateAttr, model_validator
 
 from . import units as u
@@ -281,6 +282,36 @@ class RatchetSpec(Section):
     release_time: u.quantity(u.TIME, ge=0.0) | None = None  # the pawl is lifted at this time (absent: never)
 
 
+class ClutchHeatingSpec(Section):
+    """The clutch's friction surfaces as one lump of heat: C dT/dt = slip power - G (T - T_ambient)."""
+
+    heat_capacity: u.quantity(u.HEAT_CAPACITY, gt=0.0)
+    cooling: u.quantity(u.CONDUCTANCE, " (the conductance to ambient)", ge=0.0)
+    ambient_temperature: u.quantity(u.TEMPERATURE, gt=0.0)
+    initial_temperature: u.quantity(u.TEMPERATURE, gt=0.0) | None = None  # ambient
+    # friction against temperature, replacing clutch.static_friction / kinetic_friction where given
+    static_friction: u.StaticFrictionTable | None = None
+    kinetic_friction: u.KineticFrictionTable | None = None
+    max_temperature: u.quantity(u.TEMPERATURE, gt=0.0) | None = None  # overheat event
+
+    @property
+    def start_temperature(self) -> float:
+        return self.ambient_temperature if self.initial_temperature is None else self.initial_temperature
+
+    @property
+    def fades(self) -> bool:
+        """Whether friction depends on temperature (a table is given)."""
+        return self.static_friction is not None or self.kinetic_friction is not None
+
+    @model_validator(mode="after")
+    def _limit_above_start(self):
+        if self.max_temperature is not None and self.max_temperature <= self.start_temperature:
+            raise ScenarioError("clutch_heating.max_temperature", f"must be above the initial temperature "
+                                f"({u.show(self.start_temperature, u.TEMPERATURE)}), got "
+                                f"{u.show(self.max_temperature, u.TEMPERATURE)}")
+        return self
+
+
 class BearingsSpec(Section):
     gear_offset: u.quantity(u.LENGTH, gt=0.0)  # a: bearing A to the gear, away from B
     rope_offset: u.quantity(u.LENGTH, gt=0.0)  # bearing A to the rope, towards B
@@ -321,6 +352,7 @@ class Scenario(Section):
     periodic: PeriodicSpec | None = None
     brake: BrakeSpec | None = None
     ratchet: RatchetSpec | None = None
+    clutch_heating: ClutchHeatingSpec | None = None
     bearings: BearingsSpec | None = None
     simulation: SimulationSpec
     sweep: dict[str, Any] | None = None  # checked by _check_sweep
@@ -354,6 +386,24 @@ class Scenario(Section):
         if self.ratchet is not None and self.initial.drum_speed < 0.0:
             raise ScenarioError("initial.drum_speed", "must not be negative with a ratchet: the pawl would stop "
                                 "a lowering drum dead")
+        return self
+
+    @model_validator(mode="after")
+    def _kinetic_within_static_when_hot(self):
+        heating = self.clutch_heating
+        if heating is None or not heating.fades:
+            return self
+        static = heating.static_friction or ((0.0, self.clutch.static_friction),)
+        kinetic = heating.kinetic_friction or ((0.0, self.clutch.kinetic_friction),)
+        # both piecewise linear, flat beyond their ends: compared at every knot of either, compared everywhere
+        given = (heating.static_friction or ()) + (heating.kinetic_friction or ())
+        for temperature in sorted({row[0] for row in given}):
+            mu_s, mu_k = (float(np.interp(temperature, *zip(*table))) for table in (static, kinetic))
+            if mu_k > mu_s:
+                # the table that says it: the kinetic one, or the static one that falls below the constant
+                key = f"clutch_heating.{'kinetic' if heating.kinetic_friction else 'static'}_friction"
+                raise ScenarioError(key, f"the kinetic friction {mu_k:g} is above the static friction {mu_s:g} at "
+                                    f"{u.show(temperature, u.TEMPERATURE)}; it must not exceed it at any temperature")
         return self
 
     @model_validator(mode="after")

@@ -58,6 +58,9 @@ TIME = Dimension("time", "s", "'0.5 s'")
 ACCELERATION = Dimension("acceleration", "m/s^2", "'9.81 m/s^2'")
 DIMENSIONLESS = Dimension("pure number", "", "0.3")
 DENSITY = Dimension("density", "kg/m^3", "'7200 kg/m^3'")
+TEMPERATURE = Dimension("temperature", "K", "'25 degC'", shown_in="degC")  # absolute: degC and degF are offsets
+HEAT_CAPACITY = Dimension("heat capacity", "J/K", "'2.4 kJ/K'")
+CONDUCTANCE = Dimension("thermal conductance", "W/K", "'20 W/K'")
 
 # dimensionality (as pint prints it, radian power) -> what an engineer calls it
 _KNOWN = {
@@ -76,6 +79,8 @@ _KNOWN = {
     ("[mass] / [length] / [time] ** 2", 0): "pressure",
     ("[mass] * [length] ** 2 / [time] ** 3", 0): "power",
     ("[temperature]", 0): "temperature",
+    ("[mass] * [length] ** 2 / [temperature] / [time] ** 2", 0): "heat capacity",
+    ("[mass] * [length] ** 2 / [temperature] / [time] ** 3", 0): "thermal conductance",
     ("dimensionless", 0): "pure number",
     ("dimensionless", 1): "angle",
 }
@@ -201,7 +206,8 @@ def check_range(x: float, value: object, dimension: Dimension, *, gt: float | No
     """Check an SI value against its physical limits; the message names them in the user's terms."""
     problem = None
     if gt is not None and not x > gt:
-        problem = "must be positive" if gt == 0 else f"must be more than {show(gt, dimension)}"
+        positive = "must be above absolute zero (0 K)" if dimension is TEMPERATURE else "must be positive"
+        problem = positive if gt == 0 else f"must be more than {show(gt, dimension)}"
     elif ge is not None and not x >= ge:
         problem = "must not be negative" if ge == 0 else f"must be at least {show(ge, dimension)}"
     elif lt is not None and not x < lt:
@@ -292,6 +298,20 @@ def pair_table(value: object, first: Dimension, second: Dimension, what: str, ex
     return tuple(rows)
 
 
+def friction_temperature_table(value: object, positive: bool) -> tuple[tuple[float, float], ...]:
+    """A friction coefficient against the surfaces' temperature: rows ``[temperature, friction]``,
+    temperatures strictly increasing and above absolute zero, each friction positive (a static
+    coefficient) or at least not negative (a kinetic one)."""
+    rows = pair_table(value, TEMPERATURE, DIMENSIONLESS, "temperatures", "like [[25 degC, 0.3], [300 degC, 0.22]]")
+    for i, (temperature, friction) in enumerate(rows):
+        try:
+            check_range(temperature, value[i][0], TEMPERATURE, gt=0)
+            check_range(friction, value[i][1], DIMENSIONLESS, **({"gt": 0.0} if positive else {"ge": 0.0}))
+        except UnitError as exc:
+            raise TableError(i, str(exc)) from None
+    return rows
+
+
 def torque_speed_table(value: object) -> tuple[tuple[float, float], ...]:
     """A motor characteristic: rows ``[speed, torque]``, at least two, speeds strictly increasing."""
     return pair_table(value, ANGULAR_SPEED, TORQUE, "speeds", "like [[0 rpm, 500 N*m], [300 rpm, 0 N*m]]")
@@ -328,8 +348,14 @@ def dimension_of(field) -> Dimension | None:
 
 
 def bare_number_note(value: float, dimension: Dimension) -> str | None:
-    """What a bare number means for an angle or an angular speed, where the unit is easily forgotten."""
-    if not dimension.radians or isinstance(value, bool) or not isinstance(value, (int, float)) or value == 0:
+    """What a bare number means for an angle, an angular speed or a temperature, where the unit is easily
+    forgotten (25 read as 25 K)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or value == 0:
+        return None
+    if dimension is TEMPERATURE:
+        return (f"the bare number {value:g} is read as {value:g} K ({show(value, dimension)}); "
+                f"write the unit, like {dimension.example}, to say which you mean")
+    if not dimension.radians:
         return None
     shown = value * (30 / math.pi if dimension.shown_in == "rpm" else 180 / math.pi)
     return (f"the bare number {value:g} is read as {value:g} {dimension.si_unit} ({shown:.4g} {dimension.shown_in}); "
@@ -378,6 +404,10 @@ def _to_force_table(value: Any) -> ForceTable:
 EngagementForce = Annotated[ForceTable, BeforeValidator(_to_force_table), FORCE]  # swept as its force
 TorqueSpeedTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
     lambda value: value if isinstance(value, tuple) else torque_speed_table(value))]
+StaticFrictionTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
+    lambda value: value if isinstance(value, tuple) else friction_temperature_table(value, positive=True))]
+KineticFrictionTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
+    lambda value: value if isinstance(value, tuple) else friction_temperature_table(value, positive=False))]
 AngleTorqueTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
     lambda value: value if isinstance(value, tuple) else angle_torque_table(value))]
 

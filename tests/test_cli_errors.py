@@ -25,6 +25,7 @@ MOTOR_GEOMETRY = "  rotor_mass: 40 kg\n  radius_of_gyration: 15 cm\n"
 
 
 BASE = core(SHIPPED)  # mutated by the tests
+HEATING = "clutch_heating:\n  heat_capacity: 2.4 kJ/K\n  cooling: 20 W/K\n  ambient_temperature: 25 degC\n"
 
 
 @dataclass(frozen=True)
@@ -122,6 +123,36 @@ CASES = [
     Case("negative backdrive efficiency", "pressure_angle: 20 deg",
          "pressure_angle: 20 deg\n  backdrive_efficiency: -0.2", "gears.backdrive_efficiency", "backdrive_efficiency",
          "must be positive"),
+    # clutch heating
+    Case("zero heat capacity", None, HEATING.replace("2.4 kJ/K", "0 J/K"), "clutch_heating.heat_capacity",
+         "heat_capacity", "must be positive"),
+    Case("heat capacity in the wrong unit", None, HEATING.replace("2.4 kJ/K", "2.4 kJ"),
+         "clutch_heating.heat_capacity", "heat_capacity", "expected a heat capacity"),
+    Case("negative conductance", None, HEATING.replace("20 W/K", "-3 W/K"), "clutch_heating.cooling", "cooling",
+         "must not be negative"),
+    Case("ambient below absolute zero", None, HEATING.replace("ambient_temperature: 25 degC",
+                                                              "ambient_temperature: -300 degC"),
+         "clutch_heating.ambient_temperature", "ambient_temperature", "must be above absolute zero"),
+    Case("initial temperature in kelvin below zero", None, HEATING + "  initial_temperature: -5 K\n",
+         "clutch_heating.initial_temperature", "initial_temperature", "must be above absolute zero"),
+    Case("friction table with temperatures going back", None,
+         HEATING + "  static_friction: [[25 degC, 0.3], [300 degC, 0.25], [200 degC, 0.22]]\n",
+         "clutch_heating.static_friction", "static_friction: [[25", "row 3: temperatures must increase"),
+    Case("friction table with a negative kinetic friction", None,
+         HEATING + "  kinetic_friction: [[25 degC, 0.1], [300 degC, -0.02]]\n", "clutch_heating.kinetic_friction",
+         "kinetic_friction: [[25", "row 2: must not be negative"),
+    Case("friction table in degrees of angle", None,
+         HEATING + "  static_friction: [[25 deg, 0.3], [300 deg, 0.22]]\n", "clutch_heating.static_friction",
+         "static_friction: [[25", "expected a temperature"),
+    Case("kinetic friction above static when hot", None,
+         HEATING + "  static_friction: [[25 degC, 0.3], [300 degC, 0.08]]\n", "clutch_heating.static_friction",
+         "static_friction: [[25", "above the static friction 0.08 at 300 degC"),
+    Case("kinetic table above static table between their knots", None,
+         HEATING + "  static_friction: [[25 degC, 0.3], [300 degC, 0.1]]\n"
+         "  kinetic_friction: [[100 degC, 0.1], [200 degC, 0.25]]\n", "clutch_heating.kinetic_friction",
+         "kinetic_friction: [[100", "above the static friction"),
+    Case("max temperature below the start", None, HEATING + "  max_temperature: 20 degC\n",
+         "clutch_heating.max_temperature", "max_temperature", "must be above the initial temperature (25 degC)"),
     Case("efficiency as a percentage", "pressure_angle: 20 deg", "pressure_angle: 20 deg\n  efficiency: 97",
          "gears.efficiency", "efficiency", "must be at most 1"),
     Case("output interval longer than the run", "output_interval: 1 ms", "output_interval: 5 s",

@@ -236,3 +236,34 @@ def test_round_off_is_drawn_flat_not_zoomed_into(results):
     fig, _ = _figure(results["exercise6_direct_start"])
     assert _panels(fig)[1].get_ylim() == (-1.0, 1.0)
     plt.close(fig)
+
+
+def test_the_clutch_temperature_against_its_limit_run_by_run_and_across_the_sweep(tmp_path):
+    """Three forces of the force-window scenario: the temperature panel draws the limit and marks where each
+    run overheats; the summary figure's peak-temperature panel draws the limit and bands the runs that
+    overheat, the picture of the force window."""
+    path = tmp_path / "window.h5"
+    result = CliRunner().invoke(main, ["run", str(SCENARIOS / "clutch_force_window.yaml"), "-o", str(path),
+                                       "--sweep", "clutch.engagement_force=4 kN,4.4 kN,6 kN"])
+    assert result.exit_code == 0, result.output
+    fig, runs = _figure(path, ("clutch.engagement_force", np.array([4000.0, 4400.0, 6000.0]), "N"))
+    panel = next(ax for ax in _panels(fig) if ax.get_ylabel().startswith("clutch temperature"))
+    limit = [line for line in panel.get_lines() if line.get_linestyle() == ":"]
+    assert limit and np.allclose(limit[0].get_ydata(), 80.0)  # degC, across the run
+    overheats = [c for c in panel.collections if c.get_label() == "overheat"]
+    assert len(overheats) == 1 and len(overheats[0].get_offsets()) == 2  # the 4 and 4.4 kN runs
+    plt.close(fig)
+    from hoistsim.plotting import plot_file
+
+    written = plot_file(path, tmp_path / "window.png")
+    assert [p.rsplit("/", 1)[-1] for p in written] == ["window.png", "window_summary.png"]
+    from hoistsim.plotting import scenario_parameters, swept_axis
+    from hoistsim.reading import read_summary
+
+    rows = read_summary(path)
+    fig = summary_figure(rows, swept_axis(path, rows), plt, "window", scenario_parameters(path))
+    peak = next(ax for ax in fig.axes if ax.get_ylabel() == "peak clutch temperature [degC]")
+    assert [line.get_ydata()[0] for line in peak.get_lines() if line.get_linestyle() == ":"] == [80.0]
+    legend = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert "overheats (2 of 3 runs)" in legend and "max temperature (80 degC)" in legend
+    plt.close(fig)

@@ -27,8 +27,9 @@ Contributions, all read at trace time (``x`` is the machine at one instant,
   the start): the core keeps one state and one output column ``<shaft>_angle``
   for each shaft some element asks for, and none otherwise;
 - ``ledger(x)``: energy terms by name (J), each declared in ``ledger_kinds`` as
-  "work" (done on the machine), "loss" (dissipated) or "potential" (stored);
-  kinetic energy is the core's;
+  "work" (done on the machine), "loss" (dissipated) or "potential" (stored),
+  or "heat of <loss>" (where a loss went: its terms sum to that loss, a ledger
+  of their own); kinetic energy is the core's;
 - ``tables()``: piecewise-linear tables of time, name -> (times field, values field);
   their knots are segment boundaries and ``x.table(name)`` reads them;
 - ``boundaries()`` and ``boundary_events(t)``: scheduled times and the events
@@ -36,7 +37,11 @@ Contributions, all read at trace time (``x`` is the machine at one instant,
 - ``observations(x)``: guards whose zero is recorded as an output row (kinds in
   ``observation_kinds``), positive before it; those named in ``crossings`` are
   recorded where they change sign either way (a value whose sign switches the
-  element's law, found exactly instead of stepped across);
+  element's law, found exactly instead of stepped across); those named in
+  ``limits`` are thresholds crossed (a temperature limit): recorded even where
+  another guard is located at the same instant, and located as tightly as a
+  switch; ``observes(kind)`` False leaves a kind unwatched in this element as
+  built (an optional limit not given: no guard at all);
 - ``kinks(x)``: knot coordinates (named by ``kink_names()``), continuous in the
   state and whole numbers exactly where the element's torque has a kink (a
   table's knot in angle): the integration stops at the next whole number either
@@ -99,8 +104,9 @@ class AbstractElement:
     event_kinds: ClassVar[tuple[str, ...]] = ()  # scheduled events
     observation_kinds: ClassVar[tuple[str, ...]] = ()  # guards recorded as rows
     crossings: ClassVar[tuple[str, ...]] = ()  # of those, the ones recorded where they change sign either way
+    limits: ClassVar[tuple[str, ...]] = ()  # of those, thresholds: never lost to a coinciding event
     summaries: ClassVar[dict[str, str]] = {}  # summary name -> units
-    ledger_kinds: ClassVar[dict[str, str]] = {}  # energy term -> "work", "loss" or "potential"
+    ledger_kinds: ClassVar[dict[str, str]] = {}  # energy term -> "work", "loss", "potential" or "heat of <loss>"
     cycles: ClassVar[dict[str, str]] = {}  # kink -> event kind recorded where it is crossed
     inertia_varies: ClassVar[bool] = False  # brings varying_inertias
     # what it shows (hoistsim.core.panel): run-figure panels, shaded phases, summary-figure panels,
@@ -157,6 +163,9 @@ class AbstractElement:
 
     def observations(self, x) -> dict:
         return {}
+
+    def observes(self, kind: str) -> bool:
+        return True
 
     def kink_names(self) -> tuple:
         return ()

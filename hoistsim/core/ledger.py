@@ -3,7 +3,8 @@
 Assembled from what the elements declare (``ledger`` and ``ledger_kinds``):
 work terms (what a source does), potential terms (a raised mass) and losses
 (heat of a slipping coupling), plus the bodies' kinetic energy, which is the
-core's.  A run's ledger is evaluated at its first and last state inside the
+core's; and where a loss's heat went (stored, passed to ambient), a ledger of
+its own.  A run's ledger is evaluated at its first and last state inside the
 compiled call; :func:`balance` closes it on the host.
 """
 
@@ -13,6 +14,8 @@ import numpy as np
 
 from .dynamics import Instant
 from .layout import Layout
+
+HEAT_OF = "heat of "  # the kind of a term that says where a loss went: "heat of " and the loss's name
 
 
 def ledger_values(layout: Layout, y) -> list:
@@ -35,14 +38,30 @@ def balance(terms: dict) -> dict[str, float]:
 
 
 def balance_columns(terms: dict) -> dict[str, np.ndarray]:
-    """:func:`balance` for many runs at once: each start and end an array over the runs."""
+    """:func:`balance` for many runs at once: each start and end an array over the runs.
+
+    Terms of kind "heat of <loss>" say where a loss went (stored in a part's
+    heat capacity, passed to ambient): they close a ledger of their own against
+    that loss, ``heat_residual`` = their sum - the loss (relative to the loss
+    in ``heat_relative_residual``), and stay out of the energy residual, where
+    the loss already counts.
+    """
     out: dict = {}
-    residual = 0.0
+    residual, heat = 0.0, {}
     for name, (kind, start, end) in terms.items():
         change = np.asarray(end, dtype=float) - np.asarray(start, dtype=float)
         out[f"{name}_change" if kind == "potential" else name] = change
+        if kind.startswith(HEAT_OF):
+            heat[kind[len(HEAT_OF):]] = heat.get(kind[len(HEAT_OF):], 0.0) + change
+            continue
         residual = residual + change if kind == "work" else residual - change
     scale = np.max(np.abs(np.asarray([*out.values(), np.full(np.shape(residual), 1e-300)])), axis=0)
     out["residual"] = np.asarray(residual, dtype=float)
     out["relative_residual"] = np.abs(residual) / scale
+    if heat:
+        accounted = sum(total - out[loss] for loss, total in heat.items())
+        losses = np.max(np.abs(np.asarray([out[loss] for loss in heat] + [np.full(np.shape(accounted), 1e-300)])),
+                        axis=0)
+        out["heat_residual"] = np.asarray(accounted, dtype=float)
+        out["heat_relative_residual"] = np.abs(accounted) / losses
     return out

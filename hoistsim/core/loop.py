@@ -87,6 +87,7 @@ class Args:
     kinking: jax.Array  # whether kinks still stop the integration (their budget is not spent)
     anchors: dict  # knot coordinates where the pass started (see switching.guards)
     orients: dict  # two-way observations -> +1 or -1: the way each leaves where the pass started
+    switches_from: object = None  # s: switch guards held off before this time (None: never; see _step)
 
     @cached_property
     def layout(self) -> Layout:
@@ -112,6 +113,7 @@ class _Carry(eqx.Module):
     kinks: jax.Array  # passes ended at a kink
     cycle_start: jax.Array  # switches, observations and kinks when the last cycle began (see AbstractElement.cycles)
     step_cap: jax.Array  # s: the largest step allowed (inf but while re-solving a missed crossing)
+    switches_from: jax.Array  # s: switches held off before this time (-inf but while re-solving for a limit)
     fired: dict  # observation and valley guards -> whether one ended the last pass
     extremes: dict  # running reductions of the run, for its summary (exact: every extremum is a row)
 
@@ -180,12 +182,19 @@ def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit
     # At most one guard fires at a time (diffrax reports the first): one row for any observation.
     observed, kind, element = jnp.zeros((), bool), NO_EVENT, -1
     for role, name, _ in switching.guards(layout):
-        if role == "observe":
+        if role in ("observe", "limit"):
             section, what = name.rsplit(".", 1)
             kind = jnp.where(masks[name], layout.kind_code(what), kind)
             element = jnp.where(masks[name], layout.sections.index(section), element)
             observed = observed | masks[name]
     c = record(c, observed, t, kind, element, y, c.modes, jnp.nan)
+    # A limit crossed at the same instant as the located guard: a row of its own, at that instant.
+    for role, name, _ in switching.guards(layout):
+        if role == "limit":
+            section, what = name.rsplit(".", 1)
+            c = record(c, coinciding[name], t, layout.kind_code(what), layout.sections.index(section), y, c.modes,
+                       jnp.nan)
+            c = eqx.tree_at(lambda k: k.observations, c, c.observations + coinciding[name])
     valley = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in switching.guards(layout) if r == "valley"],
                               jnp.zeros((), bool))
     kinked = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in switching.guards(layout) if r == "kink"],
@@ -251,16 +260,18 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
     offsets = {name: jnp.where(c.fired[name], jnp.maximum(g(c.t, c.y, args), 0.0), 0.0)
                for _, name, g in guards if name in c.fired}
     event = diffrax.Event(cond_fn=[g for _, _, g in guards], root_finder=CrossingBisection(), direction=False)
-    save_times = jnp.clip(plan.grid, c.t, segment.end)
+    # the pass ends at the segment's end, or where a pass solved again for a limit must stop (see _step)
+    end = jnp.where(jnp.isneginf(c.switches_from), segment.end, jnp.minimum(segment.end, c.switches_from))
+    save_times = jnp.clip(plan.grid, c.t, end)
     pass_args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, offsets, kinking, anchors,
-                     args.orients)
+                     args.orients, c.switches_from)
     # The guards other than switches where the pass starts (those above zero are armed).
     armed = {name: g(c.t, c.y, pass_args) for role, name, g in guards if role != "switch"}
     return pass_args, armed, diffrax.diffeqsolve(
         diffrax.ODETerm(vector_field),
         solver,
         t0=c.t,
-        t1=segment.end,
+        t1=end,
         dt0=None,
         y0=c.y,
         args=pass_args,
@@ -301,10 +312,18 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
         if coupling.can_slip:
             wrong = slip_sign(c.modes[k]) * end.relative_speed(coupling.section) < 0
             missed = missed | (masks[f"{coupling.section}.slip_valley"] & wrong)
-    overtaken, coinciding = switching.crossed_together(guards, pass_args, t_end, y_end, armed, masks)
+    overtaken, limit_overtaken, coinciding = switching.crossed_together(guards, pass_args, t_end, y_end, armed,
+                                                                        masks)
     cap = jnp.minimum(c.step_cap, t_end - start_t) / 8.0
     # the pass is solved again with shorter steps (at most three times), so that each crossing has a step
     missed = missed | (hit & overtaken & (cap * 8.0**3 >= t_end - start_t))
+    # A limit crossed earlier in the step than the switch diffrax located (which it lists first): the
+    # pass is solved again once, only up to that switch's instant and with the switches held off, so
+    # that the limit's own root is found; the next pass meets the switch again.  (Should the limit not
+    # cross on the way after all, the pass ends there as at a boundary, where the modes are decided anew.)
+    limit_first = hit & limit_overtaken & ~missed & jnp.isneginf(c.switches_from)
+    shrink = missed
+    missed = missed | limit_first
     kept = ~missed
     masks = {name: m & kept for name, m in masks.items()}
     rows = (plan.grid >= c.t) & (plan.grid < t_end) & kept
@@ -316,23 +335,25 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     spent = jnp.where(~failed & kept, t_end - start_t, 0.0)
     extremes = dict(c.extremes, **{name: c.extremes[name] + jnp.where(on, spent, 0.0)
                                    for name, on in durations.items()})
+    coinciding = {name: reached & kept for name, reached in coinciding.items()}
+    # a limit recorded where another guard was located has ended this pass as if it had fired
+    fired = {name: masks[name] | coinciding.get(name, False) for name in c.fired}
     c = eqx.tree_at(
         lambda k: (k.extremes, k.grid_state, k.grid_modes, k.steps, k.rejected, k.segments, k.fired),
         c,
         (extremes, grid_state, grid_modes, c.steps + sol.stats["num_steps"],
-         c.rejected + sol.stats["num_rejected_steps"], c.segments + 1, {name: masks[name] for name in c.fired}),
+         c.rejected + sol.stats["num_rejected_steps"], c.segments + 1, fired),
     )
-    coinciding = {name: reached & kept for name, reached in coinciding.items()}
     c = _apply_event(plan, segment, eqx.tree_at(lambda k: k.y, c, y_end), t_end, y_end, masks, hit & kept,
                      columns, coinciding)
     c = _note(plan, segment, c, t_reached, c.y, c.modes)
     switches, _, _ = _in_cycle(c)
     status = jnp.where(failed, SOLVER_FAILED, jnp.where(switches > plan.max_switches, CHATTERING, c.status))
     return eqx.tree_at(
-        lambda k: (k.t, k.at_boundary, k.status, k.step_cap),
+        lambda k: (k.t, k.at_boundary, k.status, k.step_cap, k.switches_from),
         c,
         (t_reached, kept & (~hit | (t_end >= segment.end)), status,
-         jnp.where(missed, cap, jnp.inf)),
+         jnp.where(shrink, cap, jnp.inf), jnp.where(limit_first, t_end, -jnp.inf)),
     )
 
 
@@ -363,7 +384,8 @@ def _run(plan: Plan, solver, max_segments: int, log_size: int, columns: bool = T
         kinks=jnp.array(0),
         cycle_start=jnp.zeros((3,), int),
         step_cap=jnp.full((), jnp.inf),
-        fired={name: jnp.array(False) for role, name, _ in switching.guards(layout) if role in ("observe", "valley")},
+        switches_from=jnp.full((), -jnp.inf),
+        fired={name: jnp.array(False) for role, name, _ in switching.guards(layout) if role in ("observe", "limit", "valley")},
         extremes=_initial_extremes(plan),
     )
 

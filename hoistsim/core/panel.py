@@ -90,6 +90,9 @@ class SummaryPanel:
     scale: float = 1.0
     zero_line: bool = False
     partial: str | None = None
+    offset: float = 0.0  # added after the scale: kelvin to degrees Celsius
+    # a line across the panel: (its label, its SI value from the scenario's resolved parameters, None: none)
+    limit: tuple[str, Callable] | None = None
 
 
 @dataclass(frozen=True)

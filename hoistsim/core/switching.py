@@ -69,7 +69,8 @@ def _instant(t, y, args) -> Instant:
 def guards(layout: Layout) -> list[tuple[str, str, object]]:
     """(role, name, guard function) of every guard, in the order diffrax must see them.
 
-    Roles: "switch" (a mode change), "observe" (a row is recorded), "valley", "kink" (a restart).
+    Roles: "switch" (a mode change), "observe" (a row is recorded), "limit" (a row, never lost to a
+    coinciding event), "valley", "kink" (a restart).
     Names are "<section>.<guard>" for couplings and "<section>.<kind>" for elements' observations.
     """
     switch, observe, valley = [], [], []
@@ -101,18 +102,20 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
             return jnp.where((s != 0.0) & args.observing,
                              -s * x.relative_acceleration(name) - args.offsets[f"{name}.slip_valley"], 1.0)
 
-        switch += [("switch", f"{name}.slip", slip), ("switch", f"{name}.breakaway+", breakaway(1.0)),
-                   ("switch", f"{name}.breakaway-", breakaway(-1.0))]
+        switch += [("switch", f"{name}.slip", held_off(slip)),
+                   ("switch", f"{name}.breakaway+", held_off(breakaway(1.0))),
+                   ("switch", f"{name}.breakaway-", held_off(breakaway(-1.0)))]
         if coupling.observes_slip_peak:
             observe.append(("observe", f"{name}.slip_peak", peak))
         valley.append(("valley", f"{name}.slip_valley", dip))
     for element in layout.elements:
-        for kind in element.observation_kinds:
+        for kind in (k for k in element.observation_kinds if element.observes(k)):
             def seen(t, y, args, element=element, kind=kind, **_):
                 name = f"{element.section}.{kind}"
                 value = element.observations(_instant(t, y, args))[kind] * args.orients.get(name, 1.0)
                 return jnp.where(args.observing, value - args.offsets[name], 1.0)
-            observe.append(("observe", f"{element.section}.{kind}", seen))
+            role = "limit" if kind in element.limits else "observe"
+            observe.append((role, f"{element.section}.{kind}", seen))
     kinks = []
     for element in layout.elements:
         for kink in element.kink_names():
@@ -129,6 +132,15 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
                 return jnp.where(args.kinking, u - jnp.ceil(args.anchors[anchor] - KNOT_RESOLUTION) + 1.0, 1.0)
             kinks += [("kink", f"{anchor}+", ahead), ("kink", f"{anchor}-", behind)]
     return switch + observe + valley + kinks
+
+
+def held_off(guard):
+    """A switch guard that stays positive up to ``args.switches_from``: a pass solved again, up to that
+    instant, to find a limit that the switch's crossing, listed first, hid in the same step (loop._step)."""
+    def held(t, y, args, **kwargs):
+        value = guard(t, y, args, **kwargs)
+        return value if args.switches_from is None else jnp.where(t <= args.switches_from, 1.0, value)
+    return held
 
 
 def orients(layout: Layout, t, y, args) -> dict:
@@ -161,19 +173,29 @@ def crossed_together(guards, args, t, y, armed: dict, masks: dict):
     one, as far as a row can tell: a knot coordinate by less than the knot
     resolution; an observation by less than 1e-4 of its value where the pass
     started (``armed``), a root so close that the row already there misses its
-    extreme by ~1e-8.  Returns (overtaken, the knots reached at (t, y) along
-    with the located guard: a period that ends on a table's knot is reached).
+    extreme by ~1e-8; a limit by less than 1e-9 of it (a threshold's instant is
+    an answer, not a row beside one).  Returns (an observation overtaken, a
+    limit overtaken, the knots reached and the limits crossed at (t, y) along
+    with the located guard: a period that ends on a table's knot is reached; a
+    limit reached as a coupling locks was crossed, there).
     """
-    overtaken, coinciding = jnp.zeros((), bool), {}
+    overtaken, limit_overtaken, coinciding = jnp.zeros((), bool), jnp.zeros((), bool), {}
     for role, name, g in guards:
         if role == "switch":
             continue
         value = g(t, y, args)
-        resolution = KNOT_RESOLUTION if role == "kink" else 1e-4 * jnp.abs(armed[name])
-        overtaken = overtaken | ((armed[name] > 0.0) & ~masks[name] & (value < -resolution))
+        resolution = {"kink": KNOT_RESOLUTION, "limit": 1e-9 * jnp.abs(armed[name])}.get(
+            role, 1e-4 * jnp.abs(armed[name]))
+        passed = (armed[name] > 0.0) & ~masks[name] & (value < -resolution)
+        if role == "limit":
+            limit_overtaken = limit_overtaken | passed
+        else:
+            overtaken = overtaken | passed
         if role == "kink":
             coinciding[name] = (armed[name] > 0.0) & (value <= KNOT_RESOLUTION)
-    return overtaken, coinciding
+        if role == "limit":
+            coinciding[name] = (armed[name] > 0.0) & ~masks[name] & (value <= 0.0)
+    return overtaken, limit_overtaken, coinciding
 
 
 def kink_anchors(layout: Layout, x: Instant) -> dict:

@@ -11,6 +11,7 @@ from __future__ import annotations
 from ..core.element import AbstractCoupling as AbstractCoupling
 from ..core.element import AbstractElement as AbstractElement
 from .bearings import DrumShaftLoads as DrumShaftLoads
+from .clutch_heating import ClutchHeating as ClutchHeating
 from .cone_clutch import ConeClutch as ConeClutch
 from .constant_torque_motor import ConstantTorqueMotor as ConstantTorqueMotor
 from .drum import Drum as Drum
@@ -37,6 +38,7 @@ REGISTRY: dict[str, object] = {
     "gears": GearPair,
     "gears.mesh": MeshFriction,  # a lossy mesh's friction: scenario.gears.mesh, given with an efficiency
     "clutch": ConeClutch,
+    "clutch_heating": ClutchHeating,
     "drum": Drum,
     "drum.resisting_ripple": ResistingRipple,
     "load": RigidLoad,

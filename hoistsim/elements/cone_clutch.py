@@ -8,6 +8,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from .. import components
+from .._pytree import static
 
 from ..core.element import OPEN, SLIP_BACKWARD, SLIP_FORWARD, STUCK
 from ..core.panel import Outcome, Panel, Phase, SummaryPanel, Trace, speed_panel
@@ -30,6 +31,12 @@ class ConeClutch(AbstractSlipHeat):
     force_values: object  # N
     driving_inertia: object  # kg*m^2, the half on the motor shaft
     driven_inertia: object  # kg*m^2, the half on the pinion shaft
+    # friction against the surfaces' temperature (clutch_heating's tables, both on the knots of either),
+    # in place of the constants where ``fades``; the temperature is clutch_heating's state
+    friction_temperatures: object = None  # K
+    static_frictions: object = None
+    kinetic_frictions: object = None
+    fades: bool = static(False)
 
     section: ClassVar[str] = "clutch"
     heat_state: ClassVar[str] = "clutch_energy"
@@ -87,10 +94,12 @@ class ConeClutch(AbstractSlipHeat):
                                          spec.static_friction, spec.kinetic_friction, spec.surfaces,
                                          spec.mean_radius)
         table = spec.engagement_force
+        heating = scenario.clutch_heating
+        fading = fade_tables(heating, spec) if heating is not None and heating.fades else {}
         return cls(clutch_constant=geometry.torque_per_newton, static_friction=spec.static_friction,
                    kinetic_friction=spec.kinetic_friction, force_times=np.asarray(table.times, float),
                    force_values=np.asarray(table.forces, float), driving_inertia=spec.driving_inertia,
-                   driven_inertia=spec.driven_inertia)
+                   driven_inertia=spec.driven_inertia, **fading)
 
     def joins(self) -> tuple:
         return ("motor", "pinion")
@@ -98,11 +107,28 @@ class ConeClutch(AbstractSlipHeat):
     def tables(self) -> dict:
         return {"engagement_force": ("force_times", "force_values")}
 
+    def friction(self, x):
+        """(static, kinetic) friction coefficients now: the constants, or the tables at the temperature."""
+        if not self.fades:
+            return self.static_friction, self.kinetic_friction
+        temperature = x.state("clutch_temperature")
+        return (jnp.interp(temperature, self.friction_temperatures, self.static_frictions),
+                jnp.interp(temperature, self.friction_temperatures, self.kinetic_frictions))
+
     def capacity(self, x):
-        return self.static_friction * self.clutch_constant * x.table("engagement_force")
+        return self.friction(x)[0] * self.clutch_constant * x.table("engagement_force")
 
     def sliding_torque(self, x):
-        return self.kinetic_friction * self.clutch_constant * x.table("engagement_force")
+        return self.friction(x)[1] * self.clutch_constant * x.table("engagement_force")
+
+    def kink_names(self) -> tuple:
+        return ("friction_knots",) if self.fades else ()
+
+    def kinks(self, x) -> dict:
+        # the friction's slope changes at each knot of its tables: no step straddles one
+        if not self.fades:
+            return {}
+        return {"friction_knots": knots_passed(x.state("clutch_temperature"), self.friction_temperatures)}
 
     def is_open(self, segment):
         return segment.zero_throughout("engagement_force")
@@ -133,3 +159,33 @@ class ConeClutch(AbstractSlipHeat):
 
     def summary(self, x) -> dict:
         return {"slip_energy": x.state("clutch_energy")}
+
+
+# Beyond the tables' last knot the knot coordinate grows by one every this many kelvin: steadily, so that no
+# crossing is missed, and slowly, so that the whole numbers it passes there (no knots) are 1e6 K apart.
+BEYOND_THE_TABLE = 1e6  # K
+
+
+def knots_passed(temperature, knots):
+    """The tables' knots counted along the temperature: a whole number exactly at each knot, rising
+    steadily with the temperature everywhere (below the first knot, -1 at absolute zero)."""
+    inside = jnp.interp(temperature, knots, jnp.arange(knots.shape[0], dtype=knots.dtype))
+    below = (temperature - knots[0]) / knots[0]
+    above = knots.shape[0] - 1 + (temperature - knots[-1]) / BEYOND_THE_TABLE
+    return jnp.where(temperature < knots[0], below, jnp.where(temperature > knots[-1], above, inside))
+
+
+def fade_tables(heating, spec) -> dict:
+    """The clutch's fields for friction against temperature: clutch_heating's tables (a table not given is
+    the clutch's constant), both on the knots of either, which leaves each unchanged (linear between)."""
+    given = [table for table in (heating.static_friction, heating.kinetic_friction) if table is not None]
+    knots = np.asarray(sorted({row[0] for table in given for row in table}), float)
+
+    def on_knots(table, constant):
+        if table is None:
+            return np.full(knots.shape, float(constant))
+        temperatures, values = (np.asarray(column, float) for column in zip(*table))
+        return np.interp(knots, temperatures, values)
+
+    return {"friction_temperatures": knots, "static_frictions": on_knots(heating.static_friction, spec.static_friction),
+            "kinetic_frictions": on_knots(heating.kinetic_friction, spec.kinetic_friction), "fades": True}
