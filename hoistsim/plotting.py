@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from .core.panel import RPM
-from .reading import read_runs, read_summary
+from .reading import read_runs, read_summary, read_swept_keys
 
 
 def plot_file(path, output) -> list[str]:
@@ -35,7 +35,7 @@ def plot_file(path, output) -> list[str]:
     output = Path(output)
     summaries = read_summary(path)
     swept = swept_axis(path, summaries)
-    runs = read_runs(path, columns=runs_columns(), attributes=("label", "name"))
+    runs = read_runs(path, columns=runs_columns(), attributes=("label", "name", *read_swept_keys(path)))
     written = []
 
     def save(fig, target):

@@ -272,10 +272,19 @@ def _right_axis(ax, right_axis, run):
 
 
 def _parameters(run) -> dict:
+    """The run's scenario in SI numbers: the file's base, with this run's swept values put in."""
     import json
 
     if "parameters" not in run:
-        run["parameters"] = json.loads(run["attrs"]["parameters"])
+        parameters = json.loads(run["attrs"]["parameters"])
+        for key, value in run["attrs"].items():  # a swept scalar: "clutch_heating.max_temperature"
+            *sections, last = key.split(".")
+            holder = parameters
+            for section in sections:
+                holder = holder.get(section) if isinstance(holder, dict) else None
+            if sections and isinstance(holder, dict) and np.ndim(value) == 0 and np.isfinite(value):
+                holder[last] = float(value)
+        run["parameters"] = parameters
     return run["parameters"]
 
 

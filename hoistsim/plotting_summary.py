@@ -51,7 +51,8 @@ def summary_figure(summaries, swept, plt, name: str = "", parameters: dict | Non
                 ax.plot(x[mask], y[mask], outcome.marker, color=outcome.colour, ms=6, zorder=4)
         if panel.zero_line:
             ax.axhline(0.0, color="k", lw=0.6)
-        limit = panel.limit[1](parameters or {}) if panel.limit else None
+        swept_limit = panel.limit is not None and panel.limit[1] in summaries[0]  # a swept key is a column
+        limit = _given(parameters or {}, panel.limit[1]) if panel.limit and not swept_limit else None
         if limit is not None:
             value = limit * panel.scale + panel.offset
             ax.axhline(value, color="0.25", ls=":", lw=1.0, zorder=1,
@@ -76,6 +77,13 @@ def summary_figure(summaries, swept, plt, name: str = "", parameters: dict | Non
     if handles:
         fig.legend(handles=handles, loc="outside lower center", ncols=min(len(handles), 2), fontsize=8, frameon=False)
     return fig
+
+
+def _given(parameters: dict, key: str):
+    """A dotted key's value in the resolved scenario, None where the scenario does not give it."""
+    for part in key.split("."):
+        parameters = parameters.get(part) if isinstance(parameters, dict) else None
+    return parameters
 
 
 def _applies(outcome, summaries):

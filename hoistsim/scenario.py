@@ -114,7 +114,7 @@ def _check_tree(data: dict, model: type[BaseModel], path: tuple, tree: Any, sour
 
 
 def bare_angles(data: dict, model: type[BaseModel], path: tuple, tree: Any, source: str) -> list[str]:
-    """Warnings for angles and angular speeds given as bare numbers (read as rad and rad/s).
+    """Warnings for angles, angular speeds and temperatures given as bare numbers (read as rad, rad/s, K).
 
     A bare 300 on no_load_speed is 300 rad/s, 2865 rpm: accepted (SI is the
     rule), but said, with the key and where it is.
@@ -130,6 +130,11 @@ def bare_angles(data: dict, model: type[BaseModel], path: tuple, tree: Any, sour
             continue
         dimension = u.dimension_of(field)
         note = u.bare_number_note(value, dimension) if dimension is not None else None
+        column = u.first_column_of(field)
+        if column is not None and isinstance(value, list):  # a table's first column: the first bare entry
+            firsts = [row[0] for row in value if isinstance(row, list) and row]
+            note = next((f"row {i + 1}: {n}" for i, n in enumerate(u.bare_number_note(x, column) for x in firsts)
+                         if n), None)
         if note:
             line = _line_of(tree, (*path, key))
             notes.append(str(ScenarioError(".".join((*path, key)), note, source=source, line=line)))

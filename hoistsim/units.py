@@ -336,6 +336,21 @@ def quantity(dimension: Dimension, hint: str = "", **limits: float):
     return Annotated[float, BeforeValidator(convert), dimension]
 
 
+@dataclass(frozen=True)
+class FirstColumn:
+    """Metadata of a table field: the dimension of its rows' first entries (for the bare-number note)."""
+
+    dimension: Dimension
+
+
+def first_column_of(field) -> Dimension | None:
+    """The dimension of a table field's first column (a FirstColumn in its metadata), or None."""
+    found = [m for m in field.metadata if isinstance(m, FirstColumn)]
+    for member in get_args(field.annotation):
+        found += [m for m in getattr(member, "__metadata__", ()) if isinstance(m, FirstColumn)]
+    return found[0].dimension if found else None
+
+
 def dimension_of(field) -> Dimension | None:
     """The dimension of a quantity field of the schema (a pydantic FieldInfo), or None.
 
@@ -405,9 +420,11 @@ EngagementForce = Annotated[ForceTable, BeforeValidator(_to_force_table), FORCE]
 TorqueSpeedTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
     lambda value: value if isinstance(value, tuple) else torque_speed_table(value))]
 StaticFrictionTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
-    lambda value: value if isinstance(value, tuple) else friction_temperature_table(value, positive=True))]
+    lambda value: value if isinstance(value, tuple) else friction_temperature_table(value, positive=True)),
+    FirstColumn(TEMPERATURE)]
 KineticFrictionTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
-    lambda value: value if isinstance(value, tuple) else friction_temperature_table(value, positive=False))]
+    lambda value: value if isinstance(value, tuple) else friction_temperature_table(value, positive=False)),
+    FirstColumn(TEMPERATURE)]
 AngleTorqueTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
     lambda value: value if isinstance(value, tuple) else angle_torque_table(value))]
 

@@ -300,3 +300,43 @@ def test_overheat_at_the_lock(offset):
     assert len(overheat) == 1
     assert overheat[0] == pytest.approx(crossing, abs=1e-10)
     assert run.values["overheat_time"] == overheat[0] and run.summary["lock_events"] == 1
+
+
+def test_a_bare_temperature_is_kelvin_and_said():
+    data = copy.deepcopy(EXERCISE6)
+    data["clutch_heating"] = {**CONSTANT_HEATING, "ambient_temperature": 298,
+                              "kinetic_friction": [[25, 0.1], ["60 degC", 0.08]]}
+    s = scenario_from_dict(data, name="bare")
+    assert s.clutch_heating.ambient_temperature == 298.0
+    assert s.clutch_heating.kinetic_friction[0] == (25.0, 0.1)
+    said = " | ".join(s.warnings)
+    assert "clutch_heating.ambient_temperature: the bare number 298 is read as 298 K (24.85 degC)" in said
+    assert "clutch_heating.kinetic_friction: row 1: the bare number 25 is read as 25 K (-248.15 degC)" in said
+
+
+def test_the_closed_form_refuses_friction_that_fades():
+    with pytest.raises(ValueError, match="clutch_heating's friction tables"):
+        exact_from_scenario(heated(FADING))
+
+
+@pytest.mark.slow
+def test_the_duty_cycle_warms_the_clutch_start_by_start():
+    """The shipped duty cycle: six starts 3 s apart, the pawl holding the load between.  Each start finds the
+    clutch warmer, its friction lower and its lock-up later; the sixth passes the limit; the load only rises."""
+    from hoistsim import load_scenario
+    from conftest import SCENARIOS
+
+    run = simulate(load_scenario(SCENARIOS / "clutch_duty_cycle.yaml"))
+    rows = run.instants
+    clutch = rows["element"] == "clutch"
+    engages = rows["time"][clutch & (rows["kind"] == "engage")]
+    locks = rows["time"][clutch & (rows["kind"] == "lock")]
+    assert len(engages) == len(locks) == 6
+    assert np.all(np.diff(locks - engages) > 0.05)  # each lock-up at least 50 ms later than the last
+    at_engage = np.interp(engages, run.time, run.series["clutch_temperature"])
+    assert np.all(np.diff(at_engage) > 5.0)  # K: the clutch starts each time warmer
+    overheat = _instants(run, "overheat")
+    assert len(overheat) == 1 and engages[5] < overheat[0] < locks[5]
+    assert run.values["overheat_time"] == overheat[0]
+    assert np.all(np.diff(run.series["load_position"]) > -1e-12)  # held by the pawl between starts
+    assert run.summary["heat_relative_residual"] < 1e-10 and run.summary["energy_relative_residual"] < 1e-8

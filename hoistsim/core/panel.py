@@ -91,8 +91,9 @@ class SummaryPanel:
     zero_line: bool = False
     partial: str | None = None
     offset: float = 0.0  # added after the scale: kelvin to degrees Celsius
-    # a line across the panel: (its label, its SI value from the scenario's resolved parameters, None: none)
-    limit: tuple[str, Callable] | None = None
+    # a line across the panel: (its label, the dotted scenario key that gives it in SI; none where the
+    # scenario does not give it, nor where that key is swept: the line would be one run's)
+    limit: tuple[str, str] | None = None
 
 
 @dataclass(frozen=True)

@@ -58,7 +58,7 @@ class ClutchHeating(AbstractElement):
     )),)
     summary_panels: ClassVar[tuple] = (
         SummaryPanel("peak_clutch_temperature", "peak clutch temperature [degC]", 3, offset=-ZERO_CELSIUS,
-                     limit=("max temperature", lambda parameters: _max_temperature(parameters))),
+                     limit=("max temperature", "clutch_heating.max_temperature")),
     )
     outcomes: ClassVar[tuple] = (
         Outcome("overheats", lambda row: not np.isnan(row["overheat_time"]), "#e08214", "v"),
