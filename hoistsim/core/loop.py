@@ -314,16 +314,17 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
             missed = missed | (masks[f"{coupling.section}.slip_valley"] & wrong)
     overtaken, limit_overtaken, coinciding = switching.crossed_together(guards, pass_args, t_end, y_end, armed,
                                                                         masks)
+    # An observation or a limit crossed earlier in the step than the switch diffrax located (it lists the
+    # switches first): the pass is solved again once, only up to that switch's instant and with the
+    # switches held off, so that its own root is found; the next pass meets the switch again.  (Should it
+    # not cross on the way after all, the pass ends there as at a boundary, where the modes are decided anew.)
+    located_switch = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in guards if r == "switch"],
+                                      jnp.zeros((), bool))
+    found_first = hit & located_switch & (overtaken | limit_overtaken) & ~missed & jnp.isneginf(c.switches_from)
     cap = jnp.minimum(c.step_cap, t_end - start_t) / 8.0
-    # the pass is solved again with shorter steps (at most three times), so that each crossing has a step
-    missed = missed | (hit & overtaken & (cap * 8.0**3 >= t_end - start_t))
-    # A limit crossed earlier in the step than the switch diffrax located (which it lists first): the
-    # pass is solved again once, only up to that switch's instant and with the switches held off, so
-    # that the limit's own root is found; the next pass meets the switch again.  (Should the limit not
-    # cross on the way after all, the pass ends there as at a boundary, where the modes are decided anew.)
-    limit_first = hit & limit_overtaken & ~missed & jnp.isneginf(c.switches_from)
-    shrink = missed
-    missed = missed | limit_first
+    # else the pass is solved again with shorter steps (at most three times), so that each crossing has a step
+    shrink = missed | (hit & overtaken & ~found_first & (cap * 8.0**3 >= t_end - start_t))
+    missed = shrink | found_first
     kept = ~missed
     masks = {name: m & kept for name, m in masks.items()}
     rows = (plan.grid >= c.t) & (plan.grid < t_end) & kept
@@ -336,8 +337,9 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     extremes = dict(c.extremes, **{name: c.extremes[name] + jnp.where(on, spent, 0.0)
                                    for name, on in durations.items()})
     coinciding = {name: reached & kept for name, reached in coinciding.items()}
-    # a limit recorded where another guard was located has ended this pass as if it had fired
-    fired = {name: masks[name] | coinciding.get(name, False) for name in c.fired}
+    # a limit recorded where another guard was located has ended this pass as if it had fired; a pass thrown
+    # away leaves what ended the one before it as it was (its guard starts the pass solved again lowered)
+    fired = {name: jnp.where(kept, masks[name] | coinciding.get(name, False), c.fired[name]) for name in c.fired}
     c = eqx.tree_at(
         lambda k: (k.extremes, k.grid_state, k.grid_modes, k.steps, k.rejected, k.segments, k.fired),
         c,
@@ -353,7 +355,7 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
         lambda k: (k.t, k.at_boundary, k.status, k.step_cap, k.switches_from),
         c,
         (t_reached, kept & (~hit | (t_end >= segment.end)), status,
-         jnp.where(shrink, cap, jnp.inf), jnp.where(limit_first, t_end, -jnp.inf)),
+         jnp.where(shrink, cap, jnp.inf), jnp.where(found_first, t_end, -jnp.inf)),
     )
 
 

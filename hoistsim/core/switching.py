@@ -21,7 +21,10 @@ so a guard that is exactly zero at a restart cannot fire.
   wrong sign the loop re-solves with shorter steps.
 
 Switching guards come first: when two guards cross in one step, diffrax locates
-the first in this order, and a switch must never be skipped for an observation.
+the first in this order, and a switch must never be skipped for an observation
+(one that crossed before the switch in that step is found by a pass solved again
+with the switches held off: see ``held_off``).  Limits come next, before the
+other observations: a threshold's instant is an answer of its own.
 
 Observations and valleys restart at their own zero, where round-off alone
 decides the sign of a rate that is passing through zero: a restart state a few
@@ -73,7 +76,7 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
     coinciding event), "valley", "kink" (a restart).
     Names are "<section>.<guard>" for couplings and "<section>.<kind>" for elements' observations.
     """
-    switch, observe, valley = [], [], []
+    switch, limit, observe, valley = [], [], [], []
     for k, coupling in enumerate(layout.coupling_elements):
         if not coupling.can_slip:
             continue
@@ -114,8 +117,8 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
                 name = f"{element.section}.{kind}"
                 value = element.observations(_instant(t, y, args))[kind] * args.orients.get(name, 1.0)
                 return jnp.where(args.observing, value - args.offsets[name], 1.0)
-            role = "limit" if kind in element.limits else "observe"
-            observe.append((role, f"{element.section}.{kind}", seen))
+            (limit if kind in element.limits else observe).append(
+                ("limit" if kind in element.limits else "observe", f"{element.section}.{kind}", seen))
     kinks = []
     for element in layout.elements:
         for kink in element.kink_names():
@@ -131,7 +134,7 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
                 u = element.kinks(_instant(t, y, args))[kink]
                 return jnp.where(args.kinking, u - jnp.ceil(args.anchors[anchor] - KNOT_RESOLUTION) + 1.0, 1.0)
             kinks += [("kink", f"{anchor}+", ahead), ("kink", f"{anchor}-", behind)]
-    return switch + observe + valley + kinks
+    return switch + limit + observe + valley + kinks
 
 
 def held_off(guard):
