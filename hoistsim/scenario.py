@@ -18,12 +18,13 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 from ruamel.yaml import YAML
 
+from . import tables
 from . import units as u
 from .errors import ScenarioError as ScenarioError
 from .schema import SOLVERS as SOLVERS  # noqa: F401  (part of this module's interface)
 from .schema import Scenario as Scenario
 from .schema import Section
-from .units import ForceTable as ForceTable  # noqa: F401  (part of this module's interface)
+from .tables import ForceTable as ForceTable  # noqa: F401  (part of this module's interface)
 from .yamlsource import line_of as _line_of
 from .yamlsource import read_yaml as _read_yaml
 from .yamlsource import to_plain as _to_plain
@@ -130,7 +131,7 @@ def bare_angles(data: dict, model: type[BaseModel], path: tuple, tree: Any, sour
             continue
         dimension = u.dimension_of(field)
         note = u.bare_number_note(value, dimension) if dimension is not None else None
-        column = u.first_column_of(field)
+        column = tables.first_column_of(field)
         if column is not None and isinstance(value, list):  # a table's first column: the first bare entry
             firsts = [row[0] for row in value if isinstance(row, list) and row]
             note = next((f"row {i + 1}: {n}" for i, n in enumerate(u.bare_number_note(x, column) for x in firsts)
@@ -302,5 +303,5 @@ def _error_from(err: dict, tree: Any, source: str, overridden: set[str]) -> Scen
     key = ".".join(str(p) for p in loc)
     if key in overridden:
         return ScenarioError(key, message, source="--set")
-    row = (cause.row,) if isinstance(cause, u.TableError) else ()
+    row = (cause.row,) if isinstance(cause, tables.TableError) else ()
     return ScenarioError(key, message, source=source, line=_line_of(tree, (*loc, *row)))

@@ -13,9 +13,11 @@ from typing import Any, Literal
 import numpy as np
 from pydantic import BaseModel, ConfigDict, PrivateAttr, model_validator
 
+from . import tables
 from . import units as u
 from .errors import ScenarioError
-from .units import EngagementForce, FreeText, Text
+from .tables import EngagementForce
+from .units import FreeText, Text
 from .yamlsource import copy_plain
 
 SOLVERS = ("tsit5", "dopri5", "dopri8", "bosh3", "heun", "kvaerno3", "kvaerno5")
@@ -40,7 +42,7 @@ class RippleSpec(Section):
 
     period: u.quantity(u.ANGLE, gt=0.0) = 2 * math.pi
     harmonics: list[HarmonicSpec] | None = None
-    table: u.AngleTorqueTable | None = None
+    table: tables.AngleTorqueTable | None = None
 
     @model_validator(mode="after")
     def _one_form(self):
@@ -65,7 +67,7 @@ class MotorSpec(Section):
     # exactly one characteristic: linear (C0 and omega0), a torque-speed table, or a constant torque
     stall_torque: u.quantity(u.TORQUE, gt=0.0) | None = None  # C0, torque at standstill
     no_load_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) | None = None  # omega0, where the torque reaches 0
-    torque_speed: u.TorqueSpeedTable | None = None
+    torque_speed: tables.TorqueSpeedTable | None = None
     torque: u.quantity(u.TORQUE) | None = None  # 0 N*m: the motor is off and its shaft coasts
     inertia: u.quantity(u.INERTIA, gt=0.0) | None = None
     rotor_mass: u.quantity(u.MASS, gt=0.0) | None = None
@@ -290,8 +292,8 @@ class ClutchHeatingSpec(Section):
     ambient_temperature: u.quantity(u.TEMPERATURE, gt=0.0)
     initial_temperature: u.quantity(u.TEMPERATURE, gt=0.0) | None = None  # ambient
     # friction against temperature, replacing clutch.static_friction / kinetic_friction where given
-    static_friction: u.StaticFrictionTable | None = None
-    kinetic_friction: u.KineticFrictionTable | None = None
+    static_friction: tables.StaticFrictionTable | None = None
+    kinetic_friction: tables.KineticFrictionTable | None = None
     max_temperature: u.quantity(u.TEMPERATURE, gt=0.0) | None = None  # overheat event
 
     @property

@@ -1,6 +1,7 @@
 """Physical quantities in scenario files: "200 daN", "300 rpm", "25 deg" -> SI floats.
 
-A bare number is already SI (angles in radians, speeds in rad/s).  Strings are
+A bare number is already SI (angles in radians, speeds in rad/s, temperatures in
+kelvin).  Strings are
 parsed by pint and converted once, at load time, to the SI unit of the quantity
 the key expects; a string of the wrong dimension is an error that says what was
 expected and what was given.  NaN and infinities are never accepted.
@@ -10,9 +11,9 @@ coefficient and "5 Hz" for an angular speed.  Here the radian counts as a
 dimension of its own whenever a unit is written: an angle needs an angle unit,
 an angular speed needs an angle per time ("rpm", "rad/s"), a pure number none.
 
-Also here: whole-number counts, text and the engagement-force table, the other
-values a scenario holds, and the pydantic field types built on them that the
-schema in :mod:`.scenario` uses.  Every problem is a :class:`UnitError` (a
+Also here: whole-number counts and text, the other values a scenario holds, and
+the pydantic field types built on them that the schema uses (tables of
+quantities are :mod:`.tables`').  Every problem is a :class:`UnitError` (a
 ``ValueError``), which pydantic reports at the key's location.
 """
 
@@ -25,7 +26,7 @@ from functools import lru_cache
 from typing import Annotated, Any, get_args
 
 import pint
-from pydantic import BaseModel, BeforeValidator, ConfigDict
+from pydantic import BeforeValidator
 
 
 @lru_cache(maxsize=1)
@@ -238,90 +239,6 @@ def count(value: object, what: str, minimum: int = 1) -> int:
     return whole
 
 
-class TableError(UnitError):
-    """A bad row of a table; ``row`` is its index from 0."""
-
-    def __init__(self, row: int, message: str):
-        super().__init__(f"row {row + 1}: {message}")
-        self.row = row
-
-
-def force_table(value: object) -> tuple[tuple[float, ...], tuple[float, ...]]:
-    """Engagement force: a constant, or rows ``[time, force]``; a time may repeat once (a step).
-
-    Returns the times (s) and forces (N); a constant holds from t = 0.
-    """
-    if not isinstance(value, (list, tuple)):
-        try:
-            force = to_si(value, FORCE)
-        except UnitError as exc:
-            raise UnitError(f"{exc}; or a table [[time, force], ...]") from None
-        check_range(force, value, FORCE, ge=0, hint=" (a clutch cannot be pushed apart)")
-        return (0.0,), (force,)
-    if not value:
-        raise UnitError("the table is empty; give rows [time, force], like [[0 s, 0 N], [0.5 s, 3000 N]]")
-    times: list[float] = []
-    forces: list[float] = []
-    for i, row in enumerate(value):
-        if not isinstance(row, (list, tuple)) or len(row) != 2:
-            raise TableError(i, f"must be a pair [time, force], like [0.5 s, 3000 N], got {row!r}")
-        try:
-            t = check_range(to_si(row[0], TIME), row[0], TIME, ge=0, hint=" (the run starts at 0 s)")
-            f = check_range(to_si(row[1], FORCE), row[1], FORCE, ge=0, hint=" (a clutch cannot be pushed apart)")
-        except UnitError as exc:
-            raise TableError(i, str(exc)) from None
-        if times and t < times[-1]:
-            raise TableError(i, f"time goes backwards ({t:g} s after {times[-1]:g} s)")
-        if len(times) >= 2 and t == times[-1] == times[-2]:
-            raise TableError(i, f"a time may appear at most twice (a step); {t:g} s appears three times")
-        times.append(t)
-        forces.append(f)
-    return tuple(times), tuple(forces)
-
-
-def pair_table(value: object, first: Dimension, second: Dimension, what: str, example: str
-               ) -> tuple[tuple[float, float], ...]:
-    """Rows ``[first, second]``, at least two, the first column strictly increasing (``what`` names it)."""
-    if not isinstance(value, (list, tuple)) or len(value) < 2:
-        raise UnitError(f"must be a table of at least two rows [{first.name}, {second.name}], {example}")
-    rows: list[tuple[float, float]] = []
-    for i, row in enumerate(value):
-        if not isinstance(row, (list, tuple)) or len(row) != 2:
-            raise TableError(i, f"must be a pair [{first.name}, {second.name}], {example}, got {row!r}")
-        try:
-            x, y = to_si(row[0], first), to_si(row[1], second)
-        except UnitError as exc:
-            raise TableError(i, str(exc)) from None
-        if rows and x <= rows[-1][0]:
-            raise TableError(i, f"{what} must increase ({show(x, first)} after {show(rows[-1][0], first)})")
-        rows.append((x, y))
-    return tuple(rows)
-
-
-def friction_temperature_table(value: object, positive: bool) -> tuple[tuple[float, float], ...]:
-    """A friction coefficient against the surfaces' temperature: rows ``[temperature, friction]``,
-    temperatures strictly increasing and above absolute zero, each friction positive (a static
-    coefficient) or at least not negative (a kinetic one)."""
-    rows = pair_table(value, TEMPERATURE, DIMENSIONLESS, "temperatures", "like [[25 degC, 0.3], [300 degC, 0.22]]")
-    for i, (temperature, friction) in enumerate(rows):
-        try:
-            check_range(temperature, value[i][0], TEMPERATURE, gt=0)
-            check_range(friction, value[i][1], DIMENSIONLESS, **({"gt": 0.0} if positive else {"ge": 0.0}))
-        except UnitError as exc:
-            raise TableError(i, str(exc)) from None
-    return rows
-
-
-def torque_speed_table(value: object) -> tuple[tuple[float, float], ...]:
-    """A motor characteristic: rows ``[speed, torque]``, at least two, speeds strictly increasing."""
-    return pair_table(value, ANGULAR_SPEED, TORQUE, "speeds", "like [[0 rpm, 500 N*m], [300 rpm, 0 N*m]]")
-
-
-def angle_torque_table(value: object) -> tuple[tuple[float, float], ...]:
-    """One period of a torque ripple: rows ``[angle, torque]``, angles strictly increasing."""
-    return pair_table(value, ANGLE, TORQUE, "angles", "like [[0 deg, 0 N*m], [90 deg, 850 N*m], [360 deg, 0 N*m]]")
-
-
 # --------------------------------------------------------------------------------------
 # the value types of the scenario schema (pydantic fields)
 
@@ -334,21 +251,6 @@ def quantity(dimension: Dimension, hint: str = "", **limits: float):
 
     # the dimension rides along as metadata, for checks that read the schema (bare angles, speeds)
     return Annotated[float, BeforeValidator(convert), dimension]
-
-
-@dataclass(frozen=True)
-class FirstColumn:
-    """Metadata of a table field: the dimension of its rows' first entries (for the bare-number note)."""
-
-    dimension: Dimension
-
-
-def first_column_of(field) -> Dimension | None:
-    """The dimension of a table field's first column (a FirstColumn in its metadata), or None."""
-    found = [m for m in field.metadata if isinstance(m, FirstColumn)]
-    for member in get_args(field.annotation):
-        found += [m for m in getattr(member, "__metadata__", ()) if isinstance(m, FirstColumn)]
-    return found[0].dimension if found else None
 
 
 def dimension_of(field) -> Dimension | None:
@@ -392,41 +294,6 @@ def _text(value: Any, required: bool = True) -> str:
 
 Text = Annotated[str, BeforeValidator(_text)]
 FreeText = Annotated[str, BeforeValidator(lambda value: _text(value, required=False))]
-
-
-class ForceTable(BaseModel):
-    """Engagement force against time, piecewise linear; a repeated time is a step.
-
-    Before the first time the first force holds, after the last the last.
-    """
-
-    model_config = ConfigDict(frozen=True)
-    times: tuple[float, ...]
-    forces: tuple[float, ...]
-
-    @property
-    def is_constant(self) -> bool:
-        return len(set(self.forces)) == 1
-
-
-def _to_force_table(value: Any) -> ForceTable:
-    if isinstance(value, ForceTable):
-        return value
-    times, forces = force_table(value)
-    return ForceTable(times=times, forces=forces)
-
-
-EngagementForce = Annotated[ForceTable, BeforeValidator(_to_force_table), FORCE]  # swept as its force
-TorqueSpeedTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
-    lambda value: value if isinstance(value, tuple) else torque_speed_table(value))]
-StaticFrictionTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
-    lambda value: value if isinstance(value, tuple) else friction_temperature_table(value, positive=True)),
-    FirstColumn(TEMPERATURE)]
-KineticFrictionTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
-    lambda value: value if isinstance(value, tuple) else friction_temperature_table(value, positive=False)),
-    FirstColumn(TEMPERATURE)]
-AngleTorqueTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
-    lambda value: value if isinstance(value, tuple) else angle_torque_table(value))]
 
 
 def range_ends(start: object, stop: object) -> tuple[float, float, str]:
