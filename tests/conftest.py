@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import gc
 import os
 import re
 import sys
 from pathlib import Path
+
+import pytest
 
 # The on-disk caches serve fresh `hoistsim` processes; in the test session, commands
 # run in-process and share jit's in-memory cache instead, and nothing is written to
@@ -18,6 +21,30 @@ sys.path.insert(0, str(Path(__file__).parent))
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENARIOS = ROOT / "scenarios"
+
+
+def _memory_maps() -> tuple[int, int]:
+    """(memory maps this process holds, the most the kernel allows it); (0, 1) where /proc cannot tell."""
+    try:
+        with open("/proc/self/maps") as maps, open("/proc/sys/vm/max_map_count") as limit:
+            return sum(1 for _ in maps), int(limit.read())
+    except OSError:
+        return 0, 1
+
+
+@pytest.fixture(autouse=True, scope="module")
+def _compiled_programs_within_the_map_limit():
+    """Each compiled XLA program holds some 600 memory maps, and a process past the kernel's limit
+    (vm.max_map_count, 65 530 by default) aborts in its next compile.  The suite compiles well over a
+    hundred programs in one process: after a test module, once half the limit is used, the compiled
+    programs are let go (the modules after it compile what they need again)."""
+    yield
+    held, limit = _memory_maps()
+    if held > limit // 2:
+        import jax
+
+        jax.clear_caches()
+        gc.collect()
 
 
 def core(text: str) -> str:
