@@ -156,7 +156,7 @@ def test_a_changed_source_is_never_served_a_stored_program(tmp_path):
     original = heat("original")
     clutch = package / "elements" / "cone_clutch.py"
     text = clutch.read_text(encoding="utf-8")
-    edited = text.replace("return self.kinetic_friction * self.clutch_constant", "return 0.5 * self.kinetic_friction * "
+    edited = text.replace("return self.friction(x)[1] * self.clutch_constant", "return 0.5 * self.friction(x)[1] * "
                           "self.clutch_constant")
     assert edited != text
     clutch.write_text(edited, encoding="utf-8")
