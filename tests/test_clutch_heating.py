@@ -210,13 +210,13 @@ def test_constant_tables_leave_every_speed_unchanged(engaged):
 def fading():
     """Friction fading from 0.3/0.1 at 25 degC to 0.15/0.05 at 60 degC, a small clutch heated hard: the
     lock comes later than at constant friction, after the temperature has crossed a knot."""
-    s = heated({**FADING, "heat_capacity": "60 J/K", "initial_temperature": "25 degC"}, duration="1.5 s")
+    s = heated({**FADING, "heat_capacity": "60 J/K", "initial_temperature": "25 degC"})
     return s, simulate(s), reference(s)
 
 
 def test_fading_friction_matches_an_independent_integration(fading):
     s, run, (locks, evaluate) = fading
-    constant = exact_from_scenario(heated({}, duration="1.5 s")).lockup_time
+    constant = exact_from_scenario(heated({})).lockup_time
     assert len(locks) == 1 and locks[0] > constant + 0.01  # the fade delays the lock
     assert run.lockup_time == pytest.approx(locks[0], abs=1e-8)
     expected = evaluate(run.time)
@@ -240,10 +240,10 @@ def test_fade_that_keeps_a_clutch_from_ever_locking():
     strong = {"static_friction": [["25 degC", 0.3], ["40 degC", 0.12], ["60 degC", 0.06]],
               "kinetic_friction": [["25 degC", 0.1], ["40 degC", 0.04], ["60 degC", 0.02]],
               "heat_capacity": "40 J/K", "initial_temperature": "25 degC"}
-    s = heated(strong, duration="1.5 s")
+    s = heated(strong)
     run = simulate(s)
     locks, evaluate = reference(s)
-    assert exact_from_scenario(heated({}, duration="1.5 s")).lockup_time < 0.25
+    assert exact_from_scenario(heated({})).lockup_time < 0.25
     assert locks == [] and np.isnan(run.lockup_time) and run.summary["lock_events"] == 0
     expected = evaluate(run.time)
     np.testing.assert_allclose(run.series["motor_speed"], expected[0], rtol=0, atol=1e-8 * expected[0].max())
