@@ -7,6 +7,11 @@ from typing import ClassVar
 from ..core.element import AbstractCoupling
 
 
+def slip_power(x, section: str):
+    """The heat of slip of a coupling (W): the torque it passes times its sides' relative speed."""
+    return x.coupling_torque(section) * x.relative_speed(section)
+
+
 class AbstractSlipHeat(AbstractCoupling):
     """A coupling whose heat of slip (the torque it passes times its sides' relative speed) is the state
     ``heat_state`` (J so far), declared a loss of the energy ledger."""
@@ -14,7 +19,7 @@ class AbstractSlipHeat(AbstractCoupling):
     heat_state: ClassVar[str]
 
     def slip_power(self, x):
-        return x.coupling_torque(self.section) * x.relative_speed(self.section)
+        return slip_power(x, self.section)
 
     def states(self) -> dict:
         return {self.heat_state: 0.0}

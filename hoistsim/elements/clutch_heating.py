@@ -10,6 +10,7 @@ import numpy as np
 from .._pytree import static
 from ..core.element import AbstractElement
 from ..core.panel import Outcome, Panel, SummaryPanel, Trace
+from ._slip_heat import slip_power
 
 ZERO_CELSIUS = 273.15  # K: the figures speak degrees Celsius, the numbers kelvin
 
@@ -85,9 +86,6 @@ class ClutchHeating(AbstractElement):
         overheat = float(summary.get("overheat_time", np.nan))
         return peak if np.isnan(overheat) else f"{peak}, overheats at {overheat:.3f} s"
 
-    def slip_power(self, x):
-        return x.coupling_torque("clutch") * x.relative_speed("clutch")
-
     def cooling_power(self, x):
         return self.conductance * (x.state("clutch_temperature") - self.ambient_temperature)
 
@@ -96,7 +94,7 @@ class ClutchHeating(AbstractElement):
 
     def rates(self, x) -> dict:
         cooling = self.cooling_power(x)
-        return {"clutch_temperature": (self.slip_power(x) - cooling) / self.heat_capacity,
+        return {"clutch_temperature": (slip_power(x, "clutch") - cooling) / self.heat_capacity,
                 "clutch_heat_to_ambient": cooling}
 
     def ledger(self, x) -> dict:
