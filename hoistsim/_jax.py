@@ -118,10 +118,18 @@ def _falling_back(loaded, jitted, path):
 
     (A long-lived process that has compiled other programs can fail to link a
     loaded CPU executable's kernels; the answer is then computed the usual way.)
+    The first call is waited for, where such a failure shows; later ones return
+    at once, so that a sweep's host work goes on while they run.
     """
+    ran = []
+
     def call(*args):
+        if ran:
+            return loaded(*args)
         try:
-            return jax.block_until_ready(loaded(*args))  # errors surface here, not at the call
+            out = jax.block_until_ready(loaded(*args))  # errors surface here, not at the call
+            ran.append(True)
+            return out
         except Exception:
             try:
                 os.unlink(path)

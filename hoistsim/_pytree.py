@@ -10,6 +10,7 @@ values of it compile two programs.
 from __future__ import annotations
 
 import dataclasses
+import functools
 
 import jax
 
@@ -28,3 +29,13 @@ def pytree_dataclass(cls):
     data = [f.name for f in fields if not f.metadata.get(_STATIC)]
     meta = [f.name for f in fields if f.metadata.get(_STATIC)]
     return jax.tree_util.register_dataclass(cls, data_fields=data, meta_fields=meta)
+
+
+def static_values(obj) -> tuple:
+    """The values of a pytree dataclass's static fields (its structure beside its class)."""
+    return tuple(getattr(obj, name) for name in _static_names(type(obj)))
+
+
+@functools.lru_cache(maxsize=None)
+def _static_names(cls) -> tuple:
+    return tuple(f.name for f in dataclasses.fields(cls) if f.metadata.get(_STATIC))

@@ -78,25 +78,29 @@ def build_plan(scenario: Scenario, summary_only: bool = False) -> tuple[Plan, np
     """
     sim = scenario.simulation
     elements = machine_elements(scenario)
-    scheduled = [0.0, sim.duration, *scheduled_times(elements)]
     grid = np.array([sim.duration]) if summary_only else output_grid(sim.duration, sim.output_interval)
+    return plan_from(elements, sim, grid if summary_only else _padded(grid)), grid
+
+
+def plan_from(elements: tuple, sim, grid: np.ndarray) -> Plan:
+    """The plan of ``elements`` run as ``sim`` says, writing rows at ``grid`` (padded already)."""
+    scheduled = [0.0, sim.duration, *scheduled_times(elements)]
     speeds = [float(v) for e in elements for v in e.bodies().values()]
     # the state in Layout's order: the bodies' speeds, every element's states, the angles read
     angles = {shaft for e in elements for shaft in e.angles()}  # each starts at 0
     initial = speeds + [float(v) for e in elements for v in e.states().values()] + [0.0] * len(angles)
     scales = [float(s) for s in (e.speed_scale() for e in elements) if s is not None]
-    plan = Plan(
+    return Plan(
         elements=elements,  # floats and float arrays already (from_spec); jit takes them as they are
         boundaries=np.clip(np.asarray(scheduled, dtype=np.float64), 0.0, sim.duration),
         initial_state=np.asarray(initial, dtype=np.float64),
         speed_scale=np.asarray(max(scales or [abs(v) for v in speeds] + [1.0]), dtype=np.float64),
         duration=np.asarray(sim.duration, dtype=np.float64),
-        grid=grid if summary_only else _padded(grid),
+        grid=grid,
         rtol=np.asarray(sim.rtol, dtype=np.float64),
         atol=np.asarray(sim.atol, dtype=np.float64),
         max_switches=np.asarray(sim.max_switches),
     )
-    return plan, grid
 
 
 def loop_sizes(plan: Plan, max_switches: int, log_size: int | None = None) -> tuple[int, int]:

@@ -22,6 +22,7 @@ import numpy as np
 
 from . import _jax
 from .assemble import build_plan, loop_sizes
+from .block_plans import block_plans, padded
 from .core.loop import OK, SOLVERS, Plan, _run
 from .core.readout import STATUS, BatchReadout, Readout
 from .periodic.analysis import periodic_regime
@@ -31,9 +32,10 @@ from .simulation import SimulationError, failure_message, run_result, simulate
 
 # Bytes of time series a chunk may hold.  Measured: with full output, small
 # chunks are fastest per run (every segment rewrites the chunk's output arrays);
-# summary-only runs hold one row each and go 1024 at a time.
+# summary-only runs hold one row each and go 2048 at a time (per run, on 2 cores, the
+# stepped force sweep of benchmarks/engine_cost.py: 27 us at 512, 23 at 1024, 20 at 2048, 23 at 4000).
 CHUNK_BYTES = 4 * 2**20
-MAX_CHUNK = 1024
+MAX_CHUNK = 2048
 # A vmapped chunk steps until its slowest run is done: runs of a block go into chunks in the order of their
 # swept values, so that runs of like work share a chunk (benchmarks/sweep.py measures what it gains).
 ORDER_BY_SWEPT_VALUE = True
@@ -71,41 +73,56 @@ def _no_cyclic_collection():
 
 
 def _run_block(runs, start: int, stop: int, *, summary_only: bool, chunk: int) -> Block:
+    steps = _block_steps(runs, start, stop, summary_only=summary_only, chunk=chunk)
+    next(steps)
+    return _finished(steps)
+
+
+def _finished(steps) -> Block:
+    """The block of a :func:`_block_steps` that has launched its runs, once they are done."""
+    try:
+        next(steps)
+    except StopIteration as done:
+        return done.value
+    raise RuntimeError("a block's steps yield once")
+
+
+def run_blocks(runs, blocks, *, summary_only: bool, chunk: int):
+    """Blocks ``(start, stop)`` in order, each built and launched while the one before computes: the
+    compiled calls run on their own threads, so the host's work for the next block (its plans) costs
+    no wall time while there are runs to wait for."""
+    waiting = None
+    with _no_cyclic_collection():
+        for start, stop in blocks:
+            steps = _block_steps(runs, start, stop, summary_only=summary_only, chunk=chunk)
+            next(steps)
+            if waiting is not None:
+                yield _finished(waiting)
+            waiting = steps
+        if waiting is not None:
+            yield _finished(waiting)
+
+
+def _block_steps(runs, start: int, stop: int, *, summary_only: bool, chunk: int):
+    """A block's runs: built, their compiled calls launched (summary-only: all of them, not waited for),
+    one ``yield``, then read back; returns the :class:`Block`."""
     indices = range(start, stop)
-    scenarios = [runs.scenario(i) for i in indices]
-    plans = [build_plan(s, summary_only=summary_only) for s in scenarios]
+    scenarios = _Scenarios(runs, start)
+    # a summary-only sweep's plans from the block's first run's (block_plans), else each built in full
+    fast = block_plans(runs, list(indices)) if summary_only else None
+    if fast is not None:
+        plans, groups = None, [list(range(len(indices)))]
+    else:
+        plans = [build_plan(scenarios[k], summary_only=summary_only) for k in range(len(indices))]
+        groups = _groups(scenarios, plans)
+    launched = [_launch(runs, scenarios, group, plans, fast, summary_only, chunk, start) for group in groups]
+    yield
     warnings: list[str] = []
-    rows: list = [None] * len(scenarios)  # each run's RunResult, or its chunk's summary columns and lane
+    rows: list = [None] * len(indices)  # each run's RunResult, or its chunk's summary columns and lane
     parts: list = []
-    for group in _groups(scenarios, plans):
-        group = _by_swept_value(runs, start, group)
-        group_plans = _padded_tables([plans[k][0] for k in group])
-        first = scenarios[group[0]]
-        max_switches = max(scenarios[k].simulation.max_switches for k in group)
-        sizes = tuple(max(n) for n in zip(*(loop_sizes(plan, max_switches) for plan in group_plans)))
-        periodic = any(e.cycles for e in group_plans[0].elements)
-        lean = summary_only and not periodic
-        if lean:  # the summary needs no event rows, only their counts
-            sizes = (sizes[0], 1)
-        layout = group_plans[0].layout
-        run, built = None, None
-        for offset in range(0, len(group), chunk):
-            part = group[offset:offset + chunk]
-            batch = group_plans[offset:offset + chunk]
-            batch = batch + [batch[-1]] * (chunk - len(batch))  # a full chunk: one compiled shape
-            stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *batch)
-            while True:
-                if built != sizes:
-                    run = _jax.executable(compiled_batch(first.simulation.solver, *sizes, not lean), stacked,
-                                          name=f"sweep-{first.simulation.solver}-{sizes}-{lean}")
-                    built = sizes
-                t0 = time.perf_counter()
-                raw = jax.device_get(run(stacked))
-                elapsed = (time.perf_counter() - t0) / len(part)
-                logged = int(np.max(raw.counters[: len(part), 0]))
-                if lean or logged <= sizes[1]:
-                    break
-                sizes = loop_sizes(group_plans[0], max_switches, log_size=logged + 1)  # room for every row
+    for group in launched:
+        layout, lean, periodic = group["layout"], group["lean"], group["periodic"]
+        for part, raw, elapsed in _results(group):
             _check_status(runs, scenarios, part, start, layout, raw, lean)
             if not summary_only:
                 for k, lane in enumerate(part):
@@ -113,7 +130,7 @@ def _run_block(runs, start: int, stop: int, *, summary_only: bool, chunk: int) -
                     rows[lane] = run_result(scenarios[lane], runs.label(start + lane), plans[lane][1], one, elapsed)
                     warnings.extend(rows[lane].warnings)
                 continue
-            labels = [runs.label(start + lane) or scenarios[lane].name for lane in part]
+            labels = _labels(runs, scenarios, start, part)
             batch_read = BatchReadout(layout, raw, len(part))
             values = batch_read.summary()
             if periodic:
@@ -123,8 +140,88 @@ def _run_block(runs, start: int, stop: int, *, summary_only: bool, chunk: int) -
                                       batch_read.count("unlock"))
             parts.append((np.asarray(part), columns))
     if summary_only:
-        return Block(start, stop, _in_order(parts, len(scenarios)), warnings)
+        return Block(start, stop, _in_order(parts, len(indices)), warnings)
     return Block(start, stop, rows, warnings)
+
+
+def _launch(runs, scenarios, group, plans, fast, summary_only: bool, chunk: int, start: int) -> dict:
+    """A group's chunks stacked and their compiled loop found; summary-only, every chunk's call launched
+    (full output calls are made as they are read: a chunk may need a longer event log)."""
+    group = _by_swept_value(runs, start, group)
+    group_plans = [fast.plan(0)] if fast is not None else _padded_tables([plans[k][0] for k in group])
+    first = scenarios[group[0]]
+    periodic = any(e.cycles for e in group_plans[0].elements)
+    if fast is not None and not periodic:  # one structure and simulation: every plan's sizes are the first's
+        max_switches = first.simulation.max_switches
+        sizes = loop_sizes(group_plans[0], max_switches)
+    elif fast is not None:
+        max_switches = first.simulation.max_switches
+        sizes = tuple(max(n) for n in zip(*(loop_sizes(fast.plan(r), max_switches) for r in group)))
+    else:
+        max_switches = max(scenarios[k].simulation.max_switches for k in group)
+        sizes = tuple(max(n) for n in zip(*(loop_sizes(plan, max_switches) for plan in group_plans)))
+    lean = summary_only and not periodic
+    if lean:  # the summary needs no event rows, only their counts
+        sizes = (sizes[0], 1)
+    chunks = []
+    for offset in range(0, len(group), chunk):
+        part = group[offset:offset + chunk]
+        lanes = part + [part[-1]] * (chunk - len(part))  # a full chunk: one compiled shape
+        if fast is not None:
+            stacked = fast.stacked(lanes)
+        else:
+            batch = group_plans[offset:offset + chunk]
+            stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *batch + [batch[-1]] * (chunk - len(batch)))
+        chunks.append((part, stacked))
+    solver = first.simulation.solver
+    run = _jax.executable(compiled_batch(solver, *sizes, not lean), chunks[0][1],
+                          name=f"sweep-{solver}-{sizes}-{lean}")
+    # launched, not waited for: the host goes on while they run
+    calls = [(time.perf_counter(), run(stacked)) if lean else None for _, stacked in chunks]
+    return dict(chunks=chunks, calls=calls, run=run, sizes=sizes, lean=lean, periodic=periodic, solver=solver,
+                layout=group_plans[0].layout, first_plan=group_plans[0], max_switches=max_switches)
+
+
+def _results(group: dict):
+    """(runs of the chunk, what the compiled loop returned, seconds per run) for each of a group's chunks."""
+    run, sizes, built = group["run"], group["sizes"], group["sizes"]
+    for (part, stacked), call in zip(group["chunks"], group["calls"]):
+        while True:
+            if built != sizes:
+                run = _jax.executable(compiled_batch(group["solver"], *sizes, True), stacked,
+                                      name=f"sweep-{group['solver']}-{sizes}-False")
+                built = sizes
+            started, pending = call if call is not None else (time.perf_counter(), run(stacked))
+            raw = jax.device_get(pending)
+            elapsed = (time.perf_counter() - started) / len(part)
+            logged = int(np.max(raw.counters[: len(part), 0]))
+            if group["lean"] or logged <= sizes[1]:
+                break
+            call = None
+            sizes = loop_sizes(group["first_plan"], group["max_switches"], log_size=logged + 1)  # room for every row
+        yield part, raw, elapsed
+
+
+def _labels(runs, scenarios, start: int, part: list[int]):
+    """The labels of a block's runs ``part`` (a run without one: its scenario's name)."""
+    if getattr(runs, "keys", None):  # a sweep's: made from its values' labels, all at once
+        return runs.labels_of(np.asarray(part) + start)
+    return [runs.label(start + lane) or scenarios[lane].name for lane in part]
+
+
+class _Scenarios:
+    """The scenarios of a block's runs, each built when first asked for (a summary-only sweep asks for few)."""
+
+    def __init__(self, runs, start: int):
+        self.runs, self.start, self.built = runs, start, {}
+
+    def __getitem__(self, k: int):
+        if k not in self.built:
+            self.built[k] = self.runs.scenario(self.start + k)
+        return self.built[k]
+
+    def __iter__(self):
+        raise TypeError("index the block's scenarios: iterating would build them all")
 
 
 def _by_swept_value(runs, start: int, group: list[int]) -> list[int]:
@@ -178,9 +275,9 @@ def _check_status(runs, scenarios, part, start, layout, raw, lean) -> None:
 def _groups(scenarios, plans) -> list[list[int]]:
     """Runs that can share one compiled loop: same solver, effects and grid."""
     groups: dict = {}
-    for i, (scenario, (plan, grid)) in enumerate(zip(scenarios, plans)):
+    for i, (plan, grid) in enumerate(plans):
         structure = jax.tree.structure(plan.elements)
-        key = (scenario.simulation.solver, structure, np.asarray(plan.grid).tobytes())
+        key = (scenarios[i].simulation.solver, structure, np.asarray(plan.grid).tobytes())
         groups.setdefault(key, []).append(i)
     return list(groups.values())
 
@@ -188,33 +285,23 @@ def _groups(scenarios, plans) -> list[list[int]]:
 def _padded_tables(plans: list[Plan]) -> list[Plan]:
     """Every element's tables padded to the longest in the group (one compiled shape).
 
-    A table's last row is repeated, and the duration added as a boundary for
-    each row added, so every run keeps its own values and boundaries.
+    A table's last row is repeated (:func:`hoistsim.block_plans.padded`), and the duration added as a
+    boundary for each row added, so every run keeps its own values and boundaries.
     """
-    longest: dict = {}
-    for plan in plans:
-        for i, element in enumerate(plan.elements):
-            for name, (times, _) in element.tables().items():
-                longest[i, name] = max(longest.get((i, name), 0), int(getattr(element, times).shape[0]))
+    columns = [padded([plan.elements[k] for plan in plans]) for k in range(len(plans[0].elements))]
     out = []
-    for plan in plans:
-        elements, extra_boundaries = list(plan.elements), 0
-        for i, element in enumerate(plan.elements):
-            changes = {}
-            for name, fields in element.tables().items():
-                extra = longest[i, name] - int(getattr(element, fields[0]).shape[0])
-                if extra:
-                    for f in fields:
-                        column = getattr(element, f)
-                        changes[f] = np.concatenate([column, np.full(extra, column[-1])])
-                    extra_boundaries += extra
-            if changes:
-                elements[i] = dataclasses.replace(element, **changes)
-        if extra_boundaries:
-            boundaries = np.concatenate([plan.boundaries, np.full(extra_boundaries, plan.duration)])
-            plan = dataclasses.replace(plan, elements=tuple(elements), boundaries=boundaries)
+    for r, plan in enumerate(plans):
+        elements = tuple(column[r] for column in columns)
+        extra = _table_rows(elements) - _table_rows(plan.elements)
+        if extra:
+            boundaries = np.concatenate([plan.boundaries, np.full(extra, plan.duration)])
+            plan = dataclasses.replace(plan, elements=elements, boundaries=boundaries)
         out.append(plan)
     return out
+
+
+def _table_rows(elements) -> int:
+    return sum(int(np.shape(getattr(e, times))[0]) for e in elements for times, _ in e.tables().values())
 
 
 def chunk_for(scenario: Scenario, summary_only: bool, runs: int) -> int:

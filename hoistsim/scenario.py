@@ -257,7 +257,8 @@ def scenario_from_text(text: str, source: str = "<scenario>",
         # a sweep given on the command line has no line in the file
         where, lines = ("--sweep", None) if sweeps else (source, tree)
         values, labels = _expand_range(key, values, _Where(f"sweep.{key}", where, lines, ("sweep", key)))
-        scenario._sweep_numbers[key] = _check_sweep(scenario, raw, key, values, lines, where)
+        scenario._sweep_numbers[key], scenario._sweep_validated[key] = _check_sweep(scenario, raw, key, values,
+                                                                                  lines, where)
         scenario._sweep_values[key] = values
         scenario._sweep_labels[key] = labels
     scenario._raw = raw

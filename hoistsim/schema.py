@@ -366,6 +366,7 @@ class Scenario(Section):
     _sweep_values: dict = PrivateAttr(default_factory=dict)  # key -> values, ranges expanded
     _sweep_labels: dict = PrivateAttr(default_factory=dict)  # key -> each value as the user reads it
     _sweep_numbers: dict = PrivateAttr(default_factory=dict)  # key -> each value's SI number (NaN: a table)
+    _sweep_validated: dict = PrivateAttr(default_factory=dict)  # key -> each value as validated (the key's type)
     _warnings: list = PrivateAttr(default_factory=list)  # what was accepted but may not be meant
 
     @property

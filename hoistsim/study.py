@@ -3,7 +3,7 @@
 Three canonical start-ups, each solved by every method at a range of
 tolerances and measured against the closed-form solution:
 
-- hoistsim's hybrid loop on diffrax (explicit and implicit Runge-Kutta);
+- hoistsim's hybrid loop, stepping diffrax's solvers (explicit and implicit Runge-Kutta);
 - the same hybrid model on scipy's solve_ivp with event restarts;
 - the regularised (tanh) friction model, explicit and implicit, several widths;
 - the closed-form solution itself, the floor of cost.
@@ -68,7 +68,7 @@ STAGES = {"tsit5": 6, "dopri5": 6, "dopri8": 12, "bosh3": 3}
 @dataclass
 class Row:
     scene: str
-    family: str  # hybrid (diffrax), scipy, regularised, exact
+    family: str  # hybrid (hoistsim), scipy, regularised, exact
     method: str
     setting: str  # rtol, or the smoothing width
     rtol: float
@@ -122,7 +122,7 @@ def run_hybrid(name, solver, rtol, exact, repeats):
     errors = _errors(exact, run.time, run["motor_speed"], run["drum_speed"] * run.drivetrain.ratio,
                      run.slip_energy, list(zip(run.events["time"], run.events["kind"])))
     steps = run.stats["steps"]
-    return Row(name, "hybrid (diffrax)", solver, f"{rtol:.0e}", rtol, *errors, steps,
+    return Row(name, "hybrid (hoistsim)", solver, f"{rtol:.0e}", rtol, *errors, steps,
                steps * STAGES[solver] if solver in STAGES else math.nan, best, median, compile_time)
 
 
@@ -217,7 +217,7 @@ def write_figure(rows: list[Row], path: Path) -> None:
     scenes = list(dict.fromkeys(r.scene for r in rows))
     fig, axes = plt.subplots(1, len(scenes), figsize=(5.6 * len(scenes), 5.6), sharey=True, squeeze=False,
                              layout="constrained")
-    styles = {"hybrid (diffrax)": "-", "scipy": "--", "regularised": ":"}
+    styles = {"hybrid (hoistsim)": "-", "scipy": "--", "regularised": ":"}
     for ax, name in zip(axes[0], scenes):
         mine = [r for r in rows if r.scene == name]
         for (family, method) in dict.fromkeys((r.family, r.method) for r in mine if r.family != "exact"):

@@ -31,6 +31,7 @@ class SweepRuns:
         self._run_base = scenario.model_copy(update={"sweep": None})
         self._run_base._raw = {k: v for k, v in scenario._raw.items() if k != "sweep"}
         self._run_base._sweep_values, self._run_base._sweep_labels, self._run_base._sweep_numbers = {}, {}, {}
+        self._run_base._sweep_validated = {}
 
     def __len__(self) -> int:
         return math.prod(self.shape) if self.keys else 1
@@ -43,9 +44,25 @@ class SweepRuns:
             out.append(p)
         return tuple(reversed(out))
 
+    def positions_of(self, rows: np.ndarray) -> list[np.ndarray]:
+        """:meth:`positions` of many runs at once: each key's indices, an array over ``rows``."""
+        out, rows = [], np.asarray(rows)
+        for size in reversed(self.shape):
+            rows, p = np.divmod(rows, size)
+            out.append(p)
+        return list(reversed(out))
+
     def label(self, i: int) -> str:
         labels = self.base._sweep_labels
         return ", ".join(f"{key}={labels[key][p]}" for key, p in zip(self.keys, self.positions(i)))
+
+    def labels_of(self, rows: np.ndarray) -> np.ndarray:
+        """:meth:`label` of many runs at once (an object array of strings)."""
+        out = None
+        for key, p in zip(self.keys, self.positions_of(rows)):
+            own = np.asarray([f"{key}={label}" for label in self.base._sweep_labels[key]], dtype=object)[p]
+            out = own if out is None else out + ", " + own
+        return out
 
     @property
     def labels(self) -> "Labels":

@@ -25,9 +25,11 @@ from .scenario import (_ALTERNATIVES, _SWEEP_EXAMPLE, Scenario, _assign, _check_
 from .yamlsource import copy_plain as _copy_plain
 
 
-def _check_sweep(scenario: Scenario, raw: dict, key: str, values: list, tree: Any, source: str) -> np.ndarray:
+def _check_sweep(scenario: Scenario, raw: dict, key: str, values: list, tree: Any,
+                 source: str) -> tuple[np.ndarray, list]:
     """A sweep names a known key, and each of its values is one the key accepts (validated alone, on the
-    validated base): the SI number of each value (NaN where it is not one, a table that varies)."""
+    validated base): the SI number of each value (NaN where it is not one, a table that varies), and each
+    value as validated (what the key holds in that run: a sweep's runs are built from these)."""
     where = _Where(f"sweep.{key}", source, tree, ("sweep", key))
     try:
         _check_key(key, source)
@@ -37,14 +39,17 @@ def _check_sweep(scenario: Scenario, raw: dict, key: str, values: list, tree: An
         raise ScenarioError(message=f"needs a non-empty list of values, {_SWEEP_EXAMPLE}", **where)
     base = {k: v for k, v in raw.items() if k != "sweep"}
     numbers = np.empty(len(values))
+    validated = []
     for i, value in enumerate(values):
         try:
-            numbers[i] = swept_number(with_swept_value(scenario, key, value, base), key)
+            run = with_swept_value(scenario, key, value, base)
+            numbers[i] = swept_number(run, key)
+            validated.append(swept_field(run, key))
         except ScenarioError as exc:
             detail = exc.message if exc.key in (key, "") else f"{exc.key}: {exc.message}"
             raise ScenarioError(f"sweep.{key}", f"value {i + 1} ({_format_value(value)}): {detail}",
                                 source=source, line=_line_of(tree, ("sweep", key, i)) or where["line"]) from None
-    return numbers
+    return numbers, validated
 
 
 def with_swept_value(scenario: Scenario, key: str, value: Any, raw: dict | None = None) -> Scenario:
@@ -75,11 +80,27 @@ def with_swept_value(scenario: Scenario, key: str, value: Any, raw: dict | None 
     except ValidationError as exc:
         err = exc.errors()[0]
         raise _error_from({**err, "loc": (*key.split("."), *err["loc"])}, None, "", set()) from None
+    return _copied_with(models, key, new, check=True)
+
+
+def with_validated_value(scenario: Scenario, key: str, value: Any) -> Scenario:
+    """The scenario with one key set to a value validated already (as the file was read): copies, no checks."""
+    models = [scenario]
+    for part in key.split(".")[:-1]:
+        models.append(getattr(models[-1], part))
+    return _copied_with(models, key, value, check=False)
+
+
+def _copied_with(models: list, key: str, new: Any, check: bool) -> Scenario:
+    """``models`` (the scenario and each section on the key's path) copied with the key's leaf set to ``new``;
+    ``check``: each copied section's checks across its keys run again."""
+    *path, leaf = key.split(".")
     update = {leaf: new, **{other: None for other in _ALTERNATIVES.get(key, ())}}
     for model, part in zip(reversed(models), reversed([None, *path])):  # each model, and its name in its parent
         new = model.model_copy(update=update)
-        for check in type(new).__pydantic_decorators__.model_validators.values():
-            check.func(new)  # the section's checks across its keys (each returns the model)
+        if check:
+            for validate in type(new).__pydantic_decorators__.model_validators.values():
+                validate.func(new)  # the section's checks across its keys (each returns the model)
         update = {part: new}
     return new
 
@@ -90,11 +111,17 @@ def _field_adapter(model: type[BaseModel], name: str) -> TypeAdapter:
     return TypeAdapter(Annotated[(field.annotation, *field.metadata)] if field.metadata else field.annotation)
 
 
-def swept_number(scenario: Scenario, key: str) -> float:
-    """The SI value of a swept key in one run (a constant force table counts as its force; NaN if not a number)."""
+def swept_field(scenario: Scenario, key: str) -> Any:
+    """What a dotted key holds in a validated scenario (None where a section on its path is absent)."""
     value = scenario
     for part in key.split("."):
-        value = getattr(value, part)
+        value = getattr(value, part, None)
+    return value
+
+
+def swept_number(scenario: Scenario, key: str) -> float:
+    """The SI value of a swept key in one run (a constant force table counts as its force; NaN if not a number)."""
+    value = swept_field(scenario, key)
     if hasattr(value, "forces"):
         return value.forces[0] if len(set(value.forces)) == 1 else math.nan
     return float(value) if isinstance(value, (int, float)) else math.nan
@@ -120,8 +147,8 @@ def _expand_range(key: str, spec: Any, where: _Where) -> tuple[Any, list[str]]:
         return values, labels
     # The ends stay as written (validated with their units, so a wrong dimension is
     # caught); the values between are SI numbers, which skips parsing each one.
-    scale = u.si_factor(unit)
-    return [spec["from"], *(v * scale for v in values[1:-1]), spec["to"]][:count], labels
+    scale, offset = u.si_line(unit)
+    return [spec["from"], *(v * scale + offset for v in values[1:-1]), spec["to"]][:count], labels
 
 
 def parse_sweep(assignment: str) -> tuple[str, Any]:

@@ -19,14 +19,17 @@ from pathlib import Path
 import numpy as np
 
 from .assemble import build_plan, output_grid
-from .blocks import chunk_for, run_block
+from .blocks import chunk_for, run_blocks
 from .results import RunResult, Summaries
 from .scenario import Scenario
 from .simulation import SimulationError
 from .sweep_runs import SweepRuns
 
 # Chunks in a block: the unit of work handed out (to a cluster's workers) and written (to a file's chunks).
+# A summary-only block is one chunk: its host work (plans, summaries) overlaps the last block's compiled
+# calls (blocks.run_blocks), so the smaller the block, the less of either is left without the other.
 BLOCK_CHUNKS = 2
+SUMMARY_BLOCK_CHUNKS = 1
 
 
 @dataclass
@@ -178,7 +181,7 @@ def simulate_many(runs, labels: list[str] | None = None, *, summary_only: bool =
 
     ``runs`` is a :class:`SweepRuns` or a list of scenarios (then ``labels``
     names them).  Runs go in blocks of consecutive runs, each a few chunks of
-    the compiled loop's width (:func:`run_block`), on this process or spread
+    the compiled loop's width (:func:`hoistsim.blocks.run_blocks`), on this process or spread
     over a Dask cluster (``client``, :mod:`hoistsim.cluster`); ``sink`` (:class:`hoistsim.streaming.StreamedFile`)
     takes each block as it finishes, in order, and nothing is kept (None is returned);
     the first ``skip_blocks`` blocks (a resumed sweep's, in the file already)
@@ -188,7 +191,7 @@ def simulate_many(runs, labels: list[str] | None = None, *, summary_only: bool =
         runs = ListedRuns(runs, labels)
     total = len(runs)
     chunk = chunk_size or chunk_for(runs.scenario(0), summary_only, total)
-    size = chunk * BLOCK_CHUNKS
+    size = chunk * (SUMMARY_BLOCK_CHUNKS if summary_only else BLOCK_CHUNKS)
     blocks = [(start, min(start + size, total)) for start in range(0, total, size)]
     if sink is not None:
         sink.begin(_grids(runs) if not summary_only else None)
@@ -199,7 +202,7 @@ def simulate_many(runs, labels: list[str] | None = None, *, summary_only: bool =
 
         finished = cluster_blocks(client, runs, todo, summary_only=summary_only, chunk=chunk)
     else:
-        finished = (run_block(runs, start, stop, summary_only=summary_only, chunk=chunk) for start, stop in todo)
+        finished = run_blocks(runs, todo, summary_only=summary_only, chunk=chunk)
     kept: list = []
     for block in finished:
         if warnings is not None:

@@ -312,6 +312,9 @@ def range_ends(start: object, stop: object) -> tuple[float, float, str]:
     return float(first.magnitude), float(last.magnitude), f"{first.units:~}"
 
 
-def si_factor(unit: str) -> float:
-    """What one ``unit`` is in SI base units (rpm -> rad/s, daN -> N, deg -> rad)."""
-    return float(registry().Quantity(1.0, unit).to_base_units().magnitude)
+def si_line(unit: str) -> tuple[float, float]:
+    """(factor, offset): a magnitude in ``unit`` is factor * magnitude + offset in SI base units (the offset
+    is zero but for temperatures: 20 degC is 293.15 K, not 20 * 274.15 K)."""
+    ureg = registry()
+    zero = float(ureg.Quantity(0.0, unit).to_base_units().magnitude)
+    return float(ureg.Quantity(1.0, unit).to_base_units().magnitude) - zero, zero

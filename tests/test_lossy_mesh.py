@@ -109,10 +109,10 @@ def test_a_mesh_that_loses_more_than_the_load_can_overhaul_holds_it_at_rest():
     assert run.summary["energy_relative_residual"] < 1e-8
 
 
-def _coasting(*overrides: str):
-    """The drum thrown up at 30 rpm, the motor off and heavy: the clutch brakes the pinion until it locks."""
+def _coasting(*overrides: str, motor_torque: str = "0 N*m"):
+    """The drum thrown up at 30 rpm, the motor heavy (and off): the clutch brakes the pinion until it locks."""
     text = (SCENARIOS / "runback_slipping_clutch.yaml").read_text()
-    text = text.replace("  stall_torque: 500 N*m\n  no_load_speed: 300 rpm\n", "  torque: 0 N*m\n")
+    text = text.replace("  stall_torque: 500 N*m\n  no_load_speed: 300 rpm\n", f"  torque: {motor_torque}\n")
     text = text.replace("rotor_mass: 40 kg", "rotor_mass: 400 kg")
     return scenario_from_text(text, overrides=[*TIGHT, "gears.efficiency=0.9", "gears.backdrive_efficiency=0.8",
                                                "gears.pinion_inertia=0.5 kg*m^2", "initial.drum_speed=30 rpm",
@@ -150,15 +150,30 @@ def test_the_power_flow_reverses_at_the_instant_the_clutch_locks():
 
 @pytest.mark.slow
 def test_a_tooth_load_changing_sign_while_the_gear_rolls_is_found_exactly():
-    # The clutch force ramps up while the load runs back: the tooth load falls through zero with the gear
+    # The motor drives downwards while the drum, thrown up, stops and runs back, and the clutch force ramps
+    # up: the clutch drives the pinion down ever harder, the tooth load falls through zero with the gear
     # turning, and the law of the losses changes there: a row of its own at the zero, not a step across it.
-    run = simulate(_coasting("clutch.engagement_force=[[0 s, 0 N], [1 s, 3000 N]]"))
+    # (With the motor off there is no such zero: the clutch, dragged along, reverses as the pinion passes
+    # the motor's speed, 6 ms before the drum stops, and brakes the running back from then on.)
+    run = simulate(_coasting("clutch.engagement_force=[[0 s, 0 N], [1 s, 3000 N]]", motor_torque="-400 N*m"))
     found = run.instants["time"][run.instants["kind"] == "power_reversal"]
     assert len(found) == 1 and run.instants["element"][run.instants["kind"] == "power_reversal"][0] == "mesh"
     at = np.flatnonzero(run.time == found[0])[0]
     assert abs(run["mesh_torque"][at]) < 1e-9 * np.abs(run["mesh_torque"]).max()
     assert run["drum_speed"][at] < 0 and run["mesh_mode"][at - 1] == 2 and run["mesh_mode"][at] == 1
     assert run.summary["energy_relative_residual"] < 1e-8
+
+
+def test_two_switches_in_one_step_are_both_found_in_order():
+    # The motor off and dragged along by the slipping clutch: the clutch's slip passes zero (the pinion
+    # slowing past the motor) 6 ms before the drum stops and the mesh reverses, in the same step.  Both are
+    # switches; the earlier is found first, and the clutch never slips against its own mode.
+    run = simulate(_coasting("clutch.engagement_force=[[0 s, 0 N], [1 s, 3000 N]]"))
+    switches = [(e, k) for e, k in zip(run.events["element"], run.events["kind"])]
+    assert switches[:2] == [("clutch", "reversal"), ("mesh", "reversal")]
+    assert run.events["time"][0] < run.events["time"][1] < run.events["time"][0] + 0.01
+    slip, mode = run["slip_speed"], run["clutch_mode"]
+    assert (slip[mode == 1] >= -1e-9).all() and (slip[mode == 2] <= 1e-9).all()
 
 
 @pytest.mark.slow

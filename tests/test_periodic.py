@@ -248,7 +248,7 @@ def test_a_motor_whose_torque_falls_with_speed_damps_the_fluctuation(linear_moto
 @pytest.mark.slow
 def test_a_clutch_slipping_every_period_is_periodic_stick_slip_not_chattering():
     """Ripple peaks beyond the clutch's capacity: it slips and relocks every period, hundreds of times over
-    (far beyond simulation.max_switches for the whole run), the same each period to round-off."""
+    (far beyond simulation.max_switches for the whole run), the same each period to the tolerance."""
     scenario = _stick_slip(duration="180 s")
     run = simulate(scenario)
     table = run.periodic.regime.table
@@ -256,10 +256,13 @@ def test_a_clutch_slipping_every_period_is_periodic_stick_slip_not_chattering():
     assert table["period"].size > 300
     assert int(np.sum(table["switches_per_period"])) > 2 * scenario.simulation.max_switches
     assert np.all(table["switches_per_period"][settled] == 2)  # an unlock and a lock, every period
-    late = table["period"] > table["period"][-1] - 200  # the last 200 periods: no drift, to round-off
+    # The last 200 periods: no drift.  They agree to the tolerance (rtol 1e-8; measured 8e-9 on the mean
+    # speed), not to round-off: each pass's first step is estimated from its own state, and a state that
+    # differs in the last digits may step differently.
+    late = table["period"] > table["period"][-1] - 200
     heat = table["clutch_energy_per_period"][late]
     assert np.ptp(heat) / np.mean(heat) < 1e-7
-    assert np.ptp(table["mean_speed"][late]) / np.mean(table["mean_speed"][late]) < 1e-9
+    assert np.ptp(table["mean_speed"][late]) / np.mean(table["mean_speed"][late]) < 3 * scenario.simulation.rtol
     # the summary analyses the first periods found settled: within the settling tolerance (1000 rtol = 1e-5
     # on the speeds) of the limit the last periods reach
     assert run.values["clutch_energy_per_period"] == pytest.approx(np.mean(heat), rel=2e-5)

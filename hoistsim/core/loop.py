@@ -1,9 +1,9 @@
-"""The one restart loop: diffeqsolve between switches, inside a single compiled call.
+"""The one restart loop: a stepped pass between switches, inside a single compiled call.
 
 Each pass of the loop integrates the current modes from the current time to
 the next scheduled boundary (a table knot, an element's scheduled time, the
-end), stopping early where a guard reaches zero; the event time is found by
-root-finding on the solver's dense interpolant.  The switch is then applied
+end), stopping early where a guard reaches zero (:mod:`.stepping`); the event
+time is found by root-finding on the step's own interpolant.  The switch is then applied
 (reset + new modes) and the loop goes on.  The loop names no part of the
 machine: it asks the elements (through :class:`Layout`) for bodies, states,
 couplings, guards, boundaries, observations and summaries.  Every number is a
@@ -21,7 +21,6 @@ import jax
 import jax.numpy as jnp
 
 from .._pytree import pytree_dataclass
-from ..rootfind import CrossingBisection
 from ..schema import SOLVERS as SOLVER_NAMES
 from . import switching
 from .bodies import Response, keep_momentum, response, response_table
@@ -33,6 +32,7 @@ from .eventlog import LOG_FIELDS, record, unpack
 from .ledger import ledger_values
 from .readout import RawRun
 from .schedule import Segment, segment_from
+from .stepping import integrate_pass
 
 OK, CHATTERING, SOLVER_FAILED, TOO_MANY_SEGMENTS = range(4)
 STATUS_TEXT = {OK: "ok", CHATTERING: "chattering", SOLVER_FAILED: "solver failed",
@@ -179,7 +179,7 @@ def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit
     ``coinciding``: knots reached at (t, y) along with the guard that fired.
     """
     layout = plan.layout
-    # At most one guard fires at a time (diffrax reports the first): one row for any observation.
+    # At most one guard fires at a time (the earliest; the first listed at one instant): one row for any observation.
     observed, kind, element = jnp.zeros((), bool), NO_EVENT, -1
     for role, name, _ in switching.guards(layout):
         if role in ("observe", "limit"):
@@ -223,7 +223,7 @@ def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit
                                                                        jnp.where(met, STUCK, modes[k]))))
         candidates[k] = (candidates[k] & ~up & ~down) | met
     # Sides that meet where another coupling's sides meet (one zero of speed shared by both, a shaft
-    # stopping against two holds at once) are tried stuck too: diffrax reports one guard a step.
+    # stopping against two holds at once) are tried stuck too: a pass reports one guard.
     meeting = functools.reduce(jnp.logical_or, [masks[f"{e.section}.slip"] for e in layout.coupling_elements
                                                 if e.can_slip], jnp.zeros((), bool))
     x = Instant(layout, t, y)
@@ -246,7 +246,7 @@ def _in_cycle(c: _Carry):
     return spent[0], spent[1], spent[2]
 
 
-def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, reply):
+def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, reply, columns: bool):
     _, observations, kinks = _in_cycle(c)
     observing = observations < plan.max_switches
     kinking = kinks < KINK_BUDGET * plan.max_switches
@@ -259,31 +259,16 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
     # a guard that ended the last pass starts this one at or below zero (see switching)
     offsets = {name: jnp.where(c.fired[name], jnp.maximum(g(c.t, c.y, args), 0.0), 0.0)
                for _, name, g in guards if name in c.fired}
-    event = diffrax.Event(cond_fn=[g for _, _, g in guards], root_finder=CrossingBisection(), direction=False)
     # the pass ends at the segment's end, or where a pass solved again for a limit must stop (see _step)
     end = jnp.where(jnp.isneginf(c.switches_from), segment.end, jnp.minimum(segment.end, c.switches_from))
-    save_times = jnp.clip(plan.grid, c.t, end)
     pass_args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, offsets, kinking, anchors,
                      args.orients, c.switches_from)
     # The guards other than switches where the pass starts (those above zero are armed).
     armed = {name: g(c.t, c.y, pass_args) for role, name, g in guards if role != "switch"}
-    return pass_args, armed, diffrax.diffeqsolve(
-        diffrax.ODETerm(vector_field),
-        solver,
-        t0=c.t,
-        t1=end,
-        dt0=None,
-        y0=c.y,
-        args=pass_args,
-        # Two save lists: after an event diffrax writes the final value right after
-        # the last grid value it kept, so the end of the solve gets a list of its own.
-        saveat=diffrax.SaveAt(subs=[diffrax.SubSaveAt(ts=save_times), diffrax.SubSaveAt(t1=True)]),
-        stepsize_controller=diffrax.PIDController(rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap),
-        event=event,
-        max_steps=MAX_STEPS_PER_SEGMENT,
-        adjoint=diffrax.ForwardMode(),
-        throw=False,
-    )
+    return pass_args, armed, integrate_pass(
+        solver, pass_args, lambda t, y, a: jnp.stack([g(t, y, a) for _, _, g in guards]), c.t, c.y, end,
+        rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap, grid=plan.grid, grid_state=c.grid_state,
+        write_rows=columns, max_steps=MAX_STEPS_PER_SEGMENT)
 
 
 def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
@@ -297,12 +282,10 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     durations = {name: value for name, (kind, value) in
                  _reductions(plan, _instant(plan, segment, c.t, c.y, c.modes, reply)).items() if kind == "duration"}
     start_t, start_y = c.t, c.y
-    pass_args, armed, sol = _solve_segment(plan, segment, c, solver, guards, reply)
+    pass_args, armed, sol = _solve_segment(plan, segment, c, solver, guards, reply, columns)
 
-    (_, (t_end,)), (grid_values, (y_end,)) = sol.ts, sol.ys
-    hit = sol.result == diffrax.RESULTS.event_occurred
-    failed = ~(hit | (sol.result == diffrax.RESULTS.successful))
-    masks = {name: jnp.asarray(m) & hit for (_, name, _), m in zip(guards, sol.event_mask)}
+    t_end, y_end, hit, failed = sol.t, sol.y, sol.hit, sol.failed
+    masks = {name: sol.mask[i] for i, (_, name, _) in enumerate(guards)}
     # A slip valley of the wrong sign: the crossing fell inside one step and was
     # missed.  Throw this pass away and solve again from its start with steps
     # capped well below the dip's length, so that a step ends inside it.
@@ -314,9 +297,10 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
             missed = missed | (masks[f"{coupling.section}.slip_valley"] & wrong)
     overtaken, limit_overtaken, coinciding = switching.crossed_together(guards, pass_args, t_end, y_end, armed,
                                                                         masks)
-    # An observation or a limit crossed earlier in the step than the switch diffrax located (it lists the
-    # switches first): the pass is solved again once, only up to that switch's instant and with the
-    # switches held off, so that its own root is found; the next pass meets the switch again.  (Should it
+    # An observation or a limit below zero at the switch located, yet not the crossing found (it crossed and
+    # came back within the step, so that only part of the step showed it): the pass is solved again once, only
+    # up to that switch's instant and with the switches held off, so that its own root is found; the next
+    # pass meets the switch again.  (Should it
     # not cross on the way after all, the pass ends there as at a boundary, where the modes are decided anew.)
     located_switch = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in guards if r == "switch"],
                                       jnp.zeros((), bool))
@@ -328,7 +312,7 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     kept = ~missed
     masks = {name: m & kept for name, m in masks.items()}
     rows = (plan.grid >= c.t) & (plan.grid < t_end) & kept
-    grid_state = jnp.where(rows[:, None], grid_values, c.grid_state)
+    grid_state = jnp.where(kept, sol.grid_state, c.grid_state)
     grid_modes = jnp.where(rows[:, None], c.modes, c.grid_modes)
     y_end = jnp.where(missed, start_y, y_end)
     t_reached = jnp.where(missed, start_t, t_end)
@@ -343,8 +327,7 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     c = eqx.tree_at(
         lambda k: (k.extremes, k.grid_state, k.grid_modes, k.steps, k.rejected, k.segments, k.fired),
         c,
-        (extremes, grid_state, grid_modes, c.steps + sol.stats["num_steps"],
-         c.rejected + sol.stats["num_rejected_steps"], c.segments + 1, fired),
+        (extremes, grid_state, grid_modes, c.steps + sol.steps, c.rejected + sol.rejected, c.segments + 1, fired),
     )
     c = _apply_event(plan, segment, eqx.tree_at(lambda k: k.y, c, y_end), t_end, y_end, masks, hit & kept,
                      columns, coinciding)

@@ -2,7 +2,7 @@
 
 Every coupling that can slip brings the same guards, positive inside their mode
 and an event where they fall to zero (a constant 1 outside it, so they never
-fire there); diffrax needs a strictly positive value before a non-positive one,
+fire there); a crossing needs a strictly positive value before a non-positive one,
 so a guard that is exactly zero at a restart cannot fire.
 - ``slip``: the relative speed in the direction of slip, plus a negligible slip,
   reaches 0 when the two sides meet.  After an unlock or a reversal the slip
@@ -20,10 +20,11 @@ so a guard that is exactly zero at a restart cannot fire.
   crossing; the valley between is always seen, and if the slip there has the
   wrong sign the loop re-solves with shorter steps.
 
-Switching guards come first: when two guards cross in one step, diffrax locates
-the first in this order, and a switch must never be skipped for an observation
-(one that crossed before the switch in that step is found by a pass solved again
-with the switches held off: see ``held_off``).  Limits come next, before the
+Switching guards come first: a pass ends at the earliest crossing of a step, and
+where two guards reach zero at one instant the first in this order fired: a
+switch is never skipped for an observation (and one that crossed and came back
+within the step is found by a pass solved again with the switches held off: see
+``held_off``).  Limits come next, before the
 other observations: a threshold's instant is an answer of its own.
 
 Observations and valleys restart at their own zero, where round-off alone
@@ -58,7 +59,7 @@ def holding_capacity(coupling, x, sign):
 def _instant(t, y, args) -> Instant:
     """The machine at (t, y) for the guards, shared by all of them at one (t, y).
 
-    diffrax evaluates every guard with the same t, y and args; one Instant for
+    A pass evaluates every guard with the same t, y and args; one Instant for
     them all keeps the traced program (and its compile time) small.
     """
     shared = args.__dict__.get("_guard_instant")
@@ -70,7 +71,7 @@ def _instant(t, y, args) -> Instant:
 
 
 def guards(layout: Layout) -> list[tuple[str, str, object]]:
-    """(role, name, guard function) of every guard, in the order diffrax must see them.
+    """(role, name, guard function) of every guard, in order: at one instant the first listed fires.
 
     Roles: "switch" (a mode change), "observe" (a row is recorded), "limit" (a row, never lost to a
     coinciding event), "valley", "kink" (a restart).
@@ -139,7 +140,7 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
 
 def held_off(guard):
     """A switch guard that stays positive up to ``args.switches_from``: a pass solved again, up to that
-    instant, to find a limit that the switch's crossing, listed first, hid in the same step (loop._step)."""
+    instant, to find a limit or an observation that crossed and came back within the step (loop._step)."""
     def held(t, y, args, **kwargs):
         value = guard(t, y, args, **kwargs)
         return value if args.switches_from is None else jnp.where(t <= args.switches_from, 1.0, value)
@@ -167,12 +168,12 @@ def orients(layout: Layout, t, y, args) -> dict:
 
 
 def crossed_together(guards, args, t, y, armed: dict, masks: dict):
-    """Which guards crossed zero in the same step as the one diffrax located at (t, y).
+    """Which guards crossed zero in the same step as the one located at (t, y).
 
-    diffrax locates, of the guards that changed sign in a step, the first in
-    list order, not the earliest: another guard (not a switch) already past
-    its zero at the located root was *overtaken*, and the pass must be solved
-    again with shorter steps.  One only just past zero crossed with the located
+    A pass ends at the earliest crossing of the guards that changed sign over a
+    step; another guard (not a switch) already past its zero at the located root
+    crossed and came back within the step (the step's ends did not show it): it
+    was *overtaken*, and the pass must be solved again.  One only just past zero crossed with the located
     one, as far as a row can tell: a knot coordinate by less than the knot
     resolution; an observation by less than 1e-4 of its value where the pass
     started (``armed``), a root so close that the row already there misses its

@@ -51,15 +51,19 @@ REGISTRY: dict[str, object] = {
 }
 
 
-def elements_for(scenario) -> tuple[AbstractElement, ...]:
-    """The elements a scenario names, built from their sections, in registry order."""
-    built = []
+def element_sections(scenario) -> list[tuple[str, object, type]]:
+    """(section, its spec, the element class it builds) for each section the scenario has, in registry order."""
+    out = []
     for section, entry in REGISTRY.items():
         spec = scenario
         for part in section.split("."):  # a section within a section: motor.ripple
             spec = getattr(spec, part, None)
         if spec is None:
             continue
-        cls = entry[spec.characteristic] if isinstance(entry, dict) else entry
-        built.append(cls.from_spec(spec, scenario))
-    return tuple(built)
+        out.append((section, spec, entry[spec.characteristic] if isinstance(entry, dict) else entry))
+    return out
+
+
+def elements_for(scenario) -> tuple[AbstractElement, ...]:
+    """The elements a scenario names, built from their sections, in registry order."""
+    return tuple(cls.from_spec(spec, scenario) for _, spec, cls in element_sections(scenario))

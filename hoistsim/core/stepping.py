@@ -1,0 +1,248 @@
+"""One pass of the integration, stepped in one loop: the solver's stages, its step-size controller, the guards.
+
+A pass goes from where the last one stopped to the next scheduled boundary,
+or to where a guard first falls to zero.  Each step is the solver's own
+(its Butcher tableau, its dense interpolant) and diffrax's PID controller
+decides the next; the guards are read at every accepted step's end, and a
+crossing is located afterwards on that step's interpolant.  diffrax's
+``diffeqsolve`` does the same, at about ten times the cost per step under
+``vmap`` (its generic stage loop, saving and event machinery), which is what a
+sweep pays for every step of every run.
+
+The crossing found is the earliest of every guard that changed sign in the
+step, not the first in list order: a bisection on "some guard that crossed in
+this step is at or below zero", stopped on the bracket's width alone (guards
+are in rad/s or N*m, not seconds), returning its upper end, the first time the
+crossing has happened, so that a restart from there never meets it again.
+Where several reach zero at that instant, the first in list order fired (the
+switches, listed first).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import diffrax
+import equinox as eqx
+import equinox.internal as eqxi
+import jax
+import jax.numpy as jnp
+import numpy as np
+from diffrax._root_finder import use_stepsize_tol
+
+from .dynamics import vector_field
+
+# Bisection stops where the bracket is this narrow (absolute and relative to the time), or holds no float.
+CROSSING_RTOL = 1e-15
+CROSSING_ATOL = 1e-15
+# A step ending this many ulps short of the pass's end is taken to the end (as diffrax does).
+END_ULPS = 100
+
+
+class Pass(eqx.Module):
+    """Where a pass ended and why."""
+
+    t: jax.Array  # s
+    y: jax.Array
+    hit: jax.Array  # a guard crossed zero at (t, y)
+    mask: jax.Array  # (guards,): the guard that crossed there
+    failed: jax.Array  # step limit reached, or the solver could not go on
+    steps: jax.Array  # attempted, accepted and rejected
+    rejected: jax.Array
+    grid_state: jax.Array  # output rows with times in [start, t) written
+
+
+class _Stepper:
+    """One step of an explicit Runge-Kutta solver, its stages written out from the tableau; any other
+    diffrax solver (the implicit ones) through its own ``step``."""
+
+    def __init__(self, solver, args, field):
+        self.solver, self.args, self.vector_field = solver, args, field
+        self.term = diffrax.ODETerm(field)
+        tableau = getattr(solver, "tableau", None)
+        self.explicit = isinstance(solver, diffrax.AbstractERK) and tableau is not None
+        if self.explicit:
+            self.a = [[float(v) for v in row] for row in tableau.a_lower]
+            self.c = [float(v) for v in tableau.c]
+            self.b = [float(v) for v in tableau.b_sol]
+            self.e = [float(v) for v in tableau.b_error]
+            self.fsal, self.ssal = bool(tableau.fsal), bool(tableau.ssal)
+
+    def field(self, t, y):
+        return self.vector_field(t, y, self.args)
+
+    def init(self, t0, t1, y0):
+        """The state a step carries: the rate at its start (explicit), or the solver's own state."""
+        if self.explicit:
+            return self.field(t0, y0)
+        return self.solver.init(self.term, t0, t1, y0, self.args)
+
+    def step(self, t0, t1, y0, state):
+        """(y1, error estimate, dense info, state after it, whether it could be taken)."""
+        if not self.explicit:
+            y1, error, dense, state, result = self.solver.step(self.term, t0, t1, y0, self.args, state, False)
+            return y1, error, dense, state, result == diffrax.RESULTS.successful
+        h = t1 - t0
+        rates = [state if self.fsal else self.field(t0, y0)]
+
+        def combined(weights):
+            return sum((w * k for w, k in zip(weights, rates) if w != 0.0), jnp.zeros_like(y0))
+
+        y1 = None
+        for row, c in zip(self.a, self.c):
+            last = len(rates) == len(self.a)
+            if last and self.ssal:
+                y1 = y0 + h * combined(row)
+                stage = y1
+            else:
+                stage = y0 + h * combined(row)
+            rates.append(self.field(t0 + c * h, stage))
+        if y1 is None:
+            y1 = y0 + h * combined(self.b)
+        error = h * combined(self.e)
+        dense = dict(y0=y0, y1=y1, k=h * jnp.stack(rates))
+        return y1, error, dense, rates[-1] if self.fsal else state, jnp.ones((), bool)
+
+    def interpolant(self, t0, t1, dense):
+        return self.solver.interpolation_cls(t0=t0, t1=t1, **dense)
+
+
+class _Carry(eqx.Module):
+    t: jax.Array
+    y: jax.Array
+    t_next: jax.Array  # where the step being tried ends
+    state: object
+    control: object
+    values: jax.Array  # the guards at (t, y)
+    steps: jax.Array
+    rejected: jax.Array
+    done: jax.Array
+    hit: jax.Array
+    failed: jax.Array
+    crossed: jax.Array  # (guards,): which changed sign in the last step
+    last: tuple  # (start, end, dense info) of the last accepted step
+    row: jax.Array  # the first output row not written yet
+    grid_state: jax.Array
+
+
+def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, dtmax, grid, grid_state,
+                   write_rows: bool, max_steps: int, field: Callable = vector_field) -> Pass:
+    """Step dy/dt = ``field(t, y, args)`` from (t0, y0) towards ``end`` until a guard (``guards(t, y, args)``:
+    an array) falls to zero.
+
+    A guard crosses where it goes from positive at a step's start to zero or
+    below at its end.  ``grid_state`` rows whose time lies in [t0, where the
+    pass ends) are written from the steps' interpolants when ``write_rows``.
+    """
+    controller = diffrax.PIDController(rtol=rtol, atol=atol, dtmax=dtmax)
+    solver = _with_step_tolerances(solver, controller)
+    stepper = _Stepper(solver, args, field)
+    error_order = solver.error_order(stepper.term)
+    floor = end - END_ULPS * (end - eqxi.prevbefore(end))  # one ulp below the end, END_ULPS times over
+    first, control = controller.init(stepper.term, t0, end, y0, None, args, solver.func, error_order)
+    t_next = jnp.minimum(first, end)
+    values = guards(t0, y0, args)
+    nothing = jnp.zeros_like(values, dtype=bool)
+    state = stepper.init(t0, t_next, y0)
+    _, _, dense0, _, _ = jax.eval_shape(stepper.step, t0, t_next, y0, state)
+    carry = _Carry(
+        t=jnp.asarray(t0, y0.dtype), y=y0, t_next=t_next, state=state, control=control, values=values,
+        steps=jnp.array(0), rejected=jnp.array(0), done=t0 >= end, hit=jnp.array(False),
+        failed=jnp.array(False), crossed=nothing,
+        last=(t0, t0, jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), dense0)),
+        row=jnp.sum(grid < t0), grid_state=grid_state)
+
+    def going(c: _Carry):
+        return ~c.done & ~c.failed
+
+    def body(c: _Carry) -> _Carry:
+        y1, error, dense, state, taken = stepper.step(c.t, c.t_next, c.y, c.state)
+        error = jnp.where(jnp.isnan(error) | ~taken, jnp.inf, error)
+        keep, next_t0, next_t1, _, control, _ = controller.adapt_step_size(
+            c.t, c.t_next, c.y, y1, args, error, error_order, c.control)
+        next_t1 = jnp.where(next_t1 > floor, jnp.where(keep, end, next_t0 + 0.5 * (end - next_t0)), next_t1)
+        values = guards(c.t_next, y1, args)
+        crossed = keep & (c.values > 0.0) & (values <= 0.0)
+        hit = jnp.any(crossed)
+        grid_state, row = c.grid_state, c.row
+        if write_rows:  # the rows this step covers (an event's step: after its crossing is found)
+            grid_state, row = _write_rows(grid, grid_state, row, jnp.where(keep & ~hit, c.t_next, c.t),
+                                          stepper.interpolant(c.t, c.t_next, dense))
+        accept = lambda new, old: jax.tree.map(lambda a, b: jnp.where(keep & ~hit, a, b), new, old)
+        steps = c.steps + 1
+        return _Carry(
+            t=accept(c.t_next, c.t), y=accept(y1, c.y), t_next=jnp.where(keep & ~hit, next_t1, jnp.where(
+                keep, c.t_next, next_t1)), state=accept(state, c.state), control=control,
+            values=accept(values, c.values), steps=steps, rejected=c.rejected + ~keep,
+            done=hit | (keep & (c.t_next >= end)), hit=hit, failed=(steps >= max_steps) & ~hit & ~(keep & (c.t_next >= end)),
+            crossed=crossed, last=jax.tree.map(lambda a, b: jnp.where(keep, a, b), (c.t, c.t_next, dense), c.last),
+            row=row, grid_state=grid_state)
+
+    # The output rows are a buffer: each written in place, never copied whole.  (Under ``vmap`` a loop's
+    # carry is otherwise selected lane by lane at every step: the whole grid, once a step.)
+    c = eqxi.while_loop(going, body, carry, kind="lax", buffers=lambda k: k.grid_state)
+    start, stop, dense = c.last
+    interpolant = stepper.interpolant(start, stop, dense)
+
+    def locate():
+        return _crossing(guards, args, interpolant, start, stop, c.crossed & c.hit)
+
+    t_hit, y_hit, mask = jax.lax.cond(eqxi.unvmap_any(c.hit), locate, lambda: (stop, c.y, nothing))
+    t_end = jnp.where(c.hit, t_hit, c.t)
+    y_end = jnp.where(c.hit, y_hit, c.y)
+    grid_state = c.grid_state
+    if write_rows:
+        grid_state, _ = _write_rows(grid, grid_state, c.row, jnp.where(c.hit, t_end, start), interpolant)
+    return Pass(t=t_end, y=y_end, hit=c.hit, mask=mask & c.hit, failed=c.failed, steps=c.steps, rejected=c.rejected,
+                grid_state=grid_state)
+
+
+def _with_step_tolerances(solver, controller):
+    """An implicit solver whose nonlinear solve takes the step controller's tolerances where it leaves them
+    to it (diffrax's default; ``diffeqsolve`` does the same)."""
+    if not isinstance(solver, diffrax.AbstractImplicitSolver):
+        return solver
+    names = [name for name in ("rtol", "atol", "norm") if getattr(solver.root_finder, name) is use_stepsize_tol]
+    return eqx.tree_at(lambda s: tuple(getattr(s.root_finder, name) for name in names), solver,
+                       tuple(getattr(controller, name) for name in names))
+
+
+def _crossing(guards, args, interpolant, lower, upper, crossed):
+    """The earliest instant in (lower, upper] where a guard of ``crossed`` is at or below zero, the state
+    there, and which guard fired (the first in list order of those at or below zero there)."""
+
+    def below(t):
+        return crossed & (guards(t, interpolant.evaluate(t), args) <= 0.0)
+
+    def going(bracket):
+        lo, hi = bracket
+        middle = lo + 0.5 * (hi - lo)
+        return (hi - lo > CROSSING_ATOL + CROSSING_RTOL * jnp.abs(hi)) & (middle > lo) & (middle < hi)
+
+    def halve(bracket):
+        lo, hi = bracket
+        middle = lo + 0.5 * (hi - lo)
+        reached = jnp.any(below(middle))
+        return jnp.where(reached, lo, middle), jnp.where(reached, middle, hi)
+
+    _, t = jax.lax.while_loop(going, halve, (lower, upper))
+    y = interpolant.evaluate(t)
+    fired = below(t)
+    fired = jnp.where(jnp.any(fired), fired, crossed)  # round-off: the guard that crossed at the step's end
+    first = jnp.argmax(fired)
+    return t, y, jnp.arange(fired.shape[0]) == first
+
+
+def _write_rows(grid, grid_state, row, t_stop, interpolant):
+    """Rows from ``row`` on whose time is before ``t_stop``, from the interpolant; the next row to write."""
+
+    def going(c):
+        row, _ = c
+        return (row < grid.shape[0]) & (grid[jnp.minimum(row, grid.shape[0] - 1)] < t_stop)
+
+    def write(c):
+        row, state = c
+        return row + 1, state.at[row].set(interpolant.evaluate(grid[row]))
+
+    row, grid_state = eqxi.while_loop(going, write, (row, grid_state), kind="lax", buffers=lambda k: k[1])
+    return grid_state, row

@@ -1,0 +1,77 @@
+"""One pass stepped in one loop: the solver's own steps, the earliest crossing located exactly, the rows
+written up to it, the implicit solvers too."""
+
+from __future__ import annotations
+
+import diffrax
+import jax
+import jax.numpy as jnp
+import numpy as np
+import pytest
+
+from hoistsim.core.stepping import integrate_pass
+
+
+def oscillator(t, y, args):
+    """x'' = -x: from (1, 0), x = cos t, crossing zero at pi/2."""
+    return jnp.stack([y[1], -y[0]])
+
+
+def moving(t, y, args):
+    """x' = 1: x = t."""
+    return jnp.ones_like(y)
+
+
+def solve(field, guards, y0, end, *, solver=diffrax.Tsit5(), rtol=1e-12, grid=None, max_steps=100_000):
+    grid = np.array([end]) if grid is None else grid
+    rows = np.full((grid.size, len(y0)), np.nan)
+
+    def go(y0):
+        return integrate_pass(solver, None, guards, 0.0, y0, end, rtol=rtol, atol=rtol * 1e-2, dtmax=jnp.inf,
+                              grid=jnp.asarray(grid), grid_state=jnp.asarray(rows), write_rows=grid.size > 1,
+                              max_steps=max_steps, field=field)
+
+    return jax.jit(go)(jnp.asarray(y0, dtype=float))
+
+
+def test_a_crossing_is_found_on_the_interpolant_to_the_last_digits():
+    out = solve(oscillator, lambda t, y, a: jnp.stack([y[0]]), [1.0, 0.0], 3.0)
+    assert bool(out.hit) and list(np.asarray(out.mask)) == [True]
+    assert float(out.t) == pytest.approx(np.pi / 2, abs=1e-11)
+    np.testing.assert_allclose(np.asarray(out.y), [0.0, -1.0], atol=1e-11)
+    assert float(oscillator(0, out.y, None)[0]) < 0  # past the root: a restart there does not meet it again
+    assert float(out.y[0]) <= 0.0
+
+
+def test_the_earliest_of_two_guards_crossing_in_one_step_ends_the_pass_whatever_their_order():
+    # x' = 1 is solved exactly: each step is ten times the last, so both guards cross in one step
+    out = solve(moving, lambda t, y, a: jnp.stack([0.6 - y[0], 0.5 - y[0]]), [0.0], 1.0)
+    assert int(out.steps) < 6
+    assert float(out.t) == pytest.approx(0.5, abs=1e-14)
+    assert list(np.asarray(out.mask)) == [False, True]
+
+
+def test_without_a_crossing_the_pass_ends_at_its_end_and_agrees_with_the_closed_form():
+    out = solve(oscillator, lambda t, y, a: jnp.stack([1.0 + 0.0 * t]), [1.0, 0.0], 10.0, rtol=1e-10)
+    assert not bool(out.hit) and not bool(out.failed) and float(out.t) == 10.0
+    np.testing.assert_allclose(np.asarray(out.y), [np.cos(10.0), -np.sin(10.0)], atol=1e-8)
+    assert int(out.rejected) <= int(out.steps) // 10
+
+
+def test_rows_before_the_crossing_are_written_and_none_after_it():
+    grid = np.linspace(0.0, 1.0, 11)
+    out = solve(moving, lambda t, y, a: jnp.stack([0.55 - y[0]]), [0.0], 1.0, grid=grid)
+    rows = np.asarray(out.grid_state)[:, 0]
+    np.testing.assert_allclose(rows[:6], grid[:6], atol=1e-14)
+    assert np.isnan(rows[6:]).all()
+
+
+def test_an_implicit_solver_steps_in_the_same_loop():
+    out = solve(oscillator, lambda t, y, a: jnp.stack([y[0]]), [1.0, 0.0], 3.0, solver=diffrax.Kvaerno5(),
+                rtol=1e-10)
+    assert bool(out.hit) and float(out.t) == pytest.approx(np.pi / 2, abs=1e-8)
+
+
+def test_a_pass_that_runs_out_of_steps_says_it_failed():
+    out = solve(oscillator, lambda t, y, a: jnp.stack([1.0 + 0.0 * t]), [1.0, 0.0], 100.0, max_steps=20)
+    assert bool(out.failed) and not bool(out.hit) and float(out.t) < 100.0
