@@ -23,7 +23,8 @@ For each scene, in this one process:
 - agreement: lock-up times run by run (largest |difference| where both lock; runs where one locks
   and the other doesn't), lock counts, final speeds and slip energy (largest relative difference).
 
-Results are printed and written to benchmarks/results/engine_cost.csv.
+Results are printed and written to benchmarks/results/engine_cost.csv (with ``--one-core``, the whole
+process pinned to one core, XLA's threads too: engine_cost_one_core.csv).
 
     python benchmarks/engine_cost.py              # N = 4000 runs a scene
     python benchmarks/engine_cost.py --runs 1000
@@ -35,19 +36,24 @@ from __future__ import annotations
 import argparse
 import csv
 import math
+import os
 import statistics
+import sys
 import tempfile
 import time
 from pathlib import Path
 
-import jax
-import numpy as np
+if "--one-core" in sys.argv:  # before XLA starts its threads: every thread of this process on one core
+    os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})
 
-import hoistsim
-import hoistsim._jax
-import numba_peer
-from hoistsim import load_scenario
-from hoistsim.report import table
+import jax  # noqa: E402
+import numpy as np  # noqa: E402
+
+import hoistsim  # noqa: E402
+import hoistsim._jax  # noqa: E402
+import numba_peer  # noqa: E402
+from hoistsim import load_scenario  # noqa: E402
+from hoistsim.report import table  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 STEPPED = ROOT / "scenarios" / "engage_at_speed_with_brake.yaml"
@@ -120,6 +126,13 @@ def clock(func) -> tuple[float, object]:
     return time.perf_counter() - started, out
 
 
+def cpu_clock(func) -> tuple[float, float, object]:
+    """(wall seconds, CPU seconds of every thread of the process, result)."""
+    started, cpu = time.perf_counter(), time.process_time()
+    out = func()
+    return time.perf_counter() - started, time.process_time() - cpu, out
+
+
 def measure(full, small, runs: int, forces, scene) -> tuple[dict, dict]:
     """hoistsim and the peer on one scene, their timed calls interleaved (this machine's speed drifts by
     tens of percent over minutes: each ratio is of calls made side by side)."""
@@ -133,10 +146,11 @@ def measure(full, small, runs: int, forces, scene) -> tuple[dict, dict]:
     peer_first, _ = clock(lambda: numba_peer.sweep(forces[:2], machine, scene))
     peer_warm, _ = clock(lambda: numba_peer.sweep(forces[:2], machine, scene))
     numba_peer.sweep(forces, machine, scene)
-    walls, peer_walls, engines, serial = [], [], [], []
+    walls, cpus, peer_walls, engines, serial = [], [], [], [], []
     for _ in range(REPEATS):  # as a user runs it: a block's host work overlaps the last block's compiled calls
-        wall, result = clock(lambda: hoistsim.sweep(full, summary_only=True))
+        wall, cpu, result = cpu_clock(lambda: hoistsim.sweep(full, summary_only=True))
         walls.append(wall)
+        cpus.append(cpu)
         wall, peer_result = clock(lambda: numba_peer.sweep(forces, machine, scene))
         peer_walls.append(wall)
         with EngineClock() as engine:  # every compiled call waited for: the engine alone, and the host's work
@@ -148,7 +162,8 @@ def measure(full, small, runs: int, forces, scene) -> tuple[dict, dict]:
     if not engine.seconds:  # the engine no longer runs through _jax.executable: no engine-only time
         print("  note: no call went through hoistsim._jax.executable; engine time not measured")
         engines = [math.nan]
-    ours = {"us": statistics.median(walls) / runs * 1e6, "engine_us": statistics.median(engines) / runs * 1e6,
+    ours = {"us": statistics.median(walls) / runs * 1e6, "cpu_us": statistics.median(cpus) / runs * 1e6,
+            "engine_us": statistics.median(engines) / runs * 1e6,
             "host_us": statistics.median(serial) / runs * 1e6, "compile_s": first - warm, "result": result}
     peer = {"us": statistics.median(peer_walls) / len(forces) * 1e6, "compile_s": peer_first - peer_warm,
             "result": peer_result}
@@ -196,15 +211,20 @@ def main() -> None:
     parser.add_argument("--runs", type=int, default=4000)
     parser.add_argument("--quick", action="store_true", help="200 runs a scene")
     parser.add_argument("--full-runs", type=int, default=256, help="runs of the full-output measurement")
+    parser.add_argument("--one-core", action="store_true",
+                        help="the whole process on one core (hoistsim's XLA threads too); results to engine_cost_one_core.csv")
     options = parser.parse_args()
     runs = 200 if options.quick else options.runs
+    cores = len(os.sched_getaffinity(0))
+    results = RESULTS.with_name("engine_cost_one_core.csv") if options.one_core else RESULTS
     cost_rows, check_rows, records = [], [], []
     with tempfile.TemporaryDirectory() as folder:
         for name, full, small, forces, scene in scenes(Path(folder), runs):
             print(f"{name}: {runs} runs ...", flush=True)
             ours, peer = measure(full, small, runs, forces, scene)
             agree = agreement(ours["result"].summary, peer["result"])
-            record = {"scene": name, "runs": runs, "hoistsim_us_per_run": ours["us"],
+            record = {"scene": name, "runs": runs, "cores": cores, "hoistsim_us_per_run": ours["us"],
+                      "hoistsim_cpu_us_per_run": ours["cpu_us"],
                       "hoistsim_engine_us_per_run": ours["engine_us"],
                       "hoistsim_host_us_per_run": ours["host_us"], "numba_us_per_run": peer["us"],
                       "hoistsim_compile_s": ours["compile_s"], "numba_compile_s": peer["compile_s"],
@@ -213,7 +233,7 @@ def main() -> None:
                       "lock_count_mismatched_runs": agree["count_mismatch"],
                       "final_speed_max_rel_diff": agree["speed_rel"], "slip_energy_max_rel_diff": agree["energy_rel"]}
             records.append(record)
-            cost_rows.append([name, f"{runs}", f"{ours['us']:.1f}", f"{ours['engine_us']:.1f}",
+            cost_rows.append([name, f"{runs}", f"{ours['us']:.1f}", f"{ours['cpu_us']:.1f}", f"{ours['engine_us']:.1f}",
                               f"{ours['host_us']:.1f}", f"{peer['us']:.1f}",
                               f"{ours['us'] / peer['us']:.2f}x", f"{ours['engine_us'] / peer['us']:.2f}x"])
             numba_compile = f"{peer['compile_s']:.2f}" if peer["compile_s"] > 0.05 else "0 (compiled above)"
@@ -225,9 +245,9 @@ def main() -> None:
         full_output = measure_full_output(Path(folder), 64 if options.quick else options.full_runs)
         records.append({"scene": "stepped, full output (1 ms grid)", "runs": full_output["runs"],
                         "hoistsim_us_per_run": full_output["us"]})
-    print(f"\nper run, summary-only, in process, medians of {REPEATS} after compiling "
+    print(f"\nper run, summary-only, in process on {cores} core(s), medians of {REPEATS} after compiling "
           f"(hoistsim vmapped; Numba one core, a plain loop)")
-    print(table(["scene", "runs", "hoistsim [us]", "engine alone [us]", "host alone [us]", "numba [us]",
+    print(table(["scene", "runs", "hoistsim [us]", "hoistsim CPU [us]", "engine alone [us]", "host alone [us]", "numba [us]",
                  "hoistsim/numba", "engine/numba"], cost_rows))
     print()
     print(table(["scene", "hoistsim compile [s]", "numba compile [s]", "numba steps", "lock-up diff [s]",
@@ -235,12 +255,12 @@ def main() -> None:
                 check_rows))
     print(f"\nfull output (every series on the 1 ms grid, 2 001 rows, kept in memory), stepped scene, "
           f"{full_output['runs']} runs: {full_output['us']:.0f} us per run")
-    RESULTS.parent.mkdir(exist_ok=True)
-    with open(RESULTS, "w", newline="") as handle:
+    results.parent.mkdir(exist_ok=True)
+    with open(results, "w", newline="") as handle:
         writer = csv.DictWriter(handle, fieldnames=list(records[0]), restval="")
         writer.writeheader()
         writer.writerows(records)
-    print(f"\nwritten {RESULTS.relative_to(ROOT)}")
+    print(f"\nwritten {results.relative_to(ROOT)}")
 
 
 if __name__ == "__main__":
