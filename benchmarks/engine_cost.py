@@ -15,7 +15,8 @@ For each scene, in this one process:
   (benchmarks/numba_peer.py: DP5, event location on the dense output, restarts; one core, the same
   forces; compile: its first call of two runs less a warm one).
 - then 5 rounds, each: hoistsim warm, ``hoistsim.sweep(scenario, summary_only=True)`` as a user runs
-  it (each block's host work overlapping the last block's compiled calls); the peer; hoistsim again
+  it (each block's host work overlapping the last block's compiled calls; each chunk split over the
+  process's CPU devices, one per core); the peer on one core, then on every core (prange); hoistsim again
   with every compiled call waited for (hoistsim._jax.executable wrapped, each call
   jax.block_until_ready): the compiled calls alone ("engine alone") and the rest ("host alone":
   building the runs, their plans, reading summaries back).  Medians of the 5.  The calls are
@@ -146,13 +147,16 @@ def measure(full, small, runs: int, forces, scene) -> tuple[dict, dict]:
     peer_first, _ = clock(lambda: numba_peer.sweep(forces[:2], machine, scene))
     peer_warm, _ = clock(lambda: numba_peer.sweep(forces[:2], machine, scene))
     numba_peer.sweep(forces, machine, scene)
-    walls, cpus, peer_walls, engines, serial = [], [], [], [], []
+    numba_peer.sweep(forces[:2], machine, scene, parallel=True)  # compiled
+    walls, cpus, peer_walls, parallel_walls, engines, serial = [], [], [], [], [], []
     for _ in range(REPEATS):  # as a user runs it: a block's host work overlaps the last block's compiled calls
         wall, cpu, result = cpu_clock(lambda: hoistsim.sweep(full, summary_only=True))
         walls.append(wall)
         cpus.append(cpu)
         wall, peer_result = clock(lambda: numba_peer.sweep(forces, machine, scene))
         peer_walls.append(wall)
+        wall, _ = clock(lambda: numba_peer.sweep(forces, machine, scene, parallel=True))
+        parallel_walls.append(wall)
         with EngineClock() as engine:  # every compiled call waited for: the engine alone, and the host's work
             wall, _ = clock(lambda: hoistsim.sweep(full, summary_only=True))
         engines.append(engine.seconds)
@@ -166,6 +170,7 @@ def measure(full, small, runs: int, forces, scene) -> tuple[dict, dict]:
             "engine_us": statistics.median(engines) / runs * 1e6,
             "host_us": statistics.median(serial) / runs * 1e6, "compile_s": first - warm, "result": result}
     peer = {"us": statistics.median(peer_walls) / len(forces) * 1e6, "compile_s": peer_first - peer_warm,
+            "all_cores_us": statistics.median(parallel_walls) / len(forces) * 1e6,
             "result": peer_result}
     return ours, peer
 
@@ -223,10 +228,12 @@ def main() -> None:
             print(f"{name}: {runs} runs ...", flush=True)
             ours, peer = measure(full, small, runs, forces, scene)
             agree = agreement(ours["result"].summary, peer["result"])
-            record = {"scene": name, "runs": runs, "cores": cores, "hoistsim_us_per_run": ours["us"],
+            record = {"scene": name, "runs": runs, "cores": cores, "hoistsim_devices": len(jax.devices()),
+                      "hoistsim_us_per_run": ours["us"],
                       "hoistsim_cpu_us_per_run": ours["cpu_us"],
                       "hoistsim_engine_us_per_run": ours["engine_us"],
                       "hoistsim_host_us_per_run": ours["host_us"], "numba_us_per_run": peer["us"],
+                      "numba_all_cores_us_per_run": peer["all_cores_us"],
                       "hoistsim_compile_s": ours["compile_s"], "numba_compile_s": peer["compile_s"],
                       "numba_steps_per_run": agree["steps"], "lockup_max_abs_diff_s": agree["lockup_diff_s"],
                       "lockup_mismatched_runs": agree["lock_mismatch"], "runs_never_locking": agree["never_lock"],
@@ -234,8 +241,8 @@ def main() -> None:
                       "final_speed_max_rel_diff": agree["speed_rel"], "slip_energy_max_rel_diff": agree["energy_rel"]}
             records.append(record)
             cost_rows.append([name, f"{runs}", f"{ours['us']:.1f}", f"{ours['cpu_us']:.1f}", f"{ours['engine_us']:.1f}",
-                              f"{ours['host_us']:.1f}", f"{peer['us']:.1f}",
-                              f"{ours['us'] / peer['us']:.2f}x", f"{ours['engine_us'] / peer['us']:.2f}x"])
+                              f"{ours['host_us']:.1f}", f"{peer['us']:.1f}", f"{peer['all_cores_us']:.1f}",
+                              f"{ours['us'] / peer['us']:.2f}x", f"{ours['us'] / peer['all_cores_us']:.2f}x"])
             numba_compile = f"{peer['compile_s']:.2f}" if peer["compile_s"] > 0.05 else "0 (compiled above)"
             check_rows.append([name, f"{ours['compile_s']:.2f}", numba_compile, f"{agree['steps']:.0f}",
                                f"{agree['lockup_diff_s']:.1e}", f"{agree['lock_mismatch']}",
@@ -246,9 +253,11 @@ def main() -> None:
         records.append({"scene": "stepped, full output (1 ms grid)", "runs": full_output["runs"],
                         "hoistsim_us_per_run": full_output["us"]})
     print(f"\nper run, summary-only, in process on {cores} core(s), medians of {REPEATS} after compiling "
-          f"(hoistsim vmapped; Numba one core, a plain loop)")
-    print(table(["scene", "runs", "hoistsim [us]", "hoistsim CPU [us]", "engine alone [us]", "host alone [us]", "numba [us]",
-                 "hoistsim/numba", "engine/numba"], cost_rows))
+          f"(hoistsim vmapped, each chunk split over {len(jax.devices())} CPU device(s); Numba one core, a plain "
+          f"loop, and all cores, prange)")
+    print(table(["scene", "runs", "hoistsim [us]", "hoistsim CPU [us]", "engine alone [us]", "host alone [us]",
+                 "numba 1 core [us]", f"numba {cores} cores [us]", "hoistsim/numba 1 core",
+                 f"hoistsim/numba {cores} cores"], cost_rows))
     print()
     print(table(["scene", "hoistsim compile [s]", "numba compile [s]", "numba steps", "lock-up diff [s]",
                  "lock mismatch", "never lock", "lock count mismatch", "final speed rel", "slip energy rel"],

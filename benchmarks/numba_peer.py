@@ -15,7 +15,8 @@ there in the new mode.  Scheduled changes (force steps, the brake's release) are
 boundaries: integrated up to exactly, then the modes are decided by the static check.
 
 The engagement force is constant in each segment (a step table); while the holding brake holds,
-side b is still and the clutch must be open.  No prange, no parallel: one core.
+side b is still and the clutch must be open.  One core, runs one after another; ``parallel=True``
+spreads the runs over every core (Numba's ``prange``, each run as it is on one core).
 
     python benchmarks/numba_peer.py      # a few runs of both scenes, printed
 """
@@ -26,7 +27,7 @@ import math
 from collections import namedtuple
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 LOCKED, SLIP_FORWARD, SLIP_BACKWARD, OPEN = 0, 1, 2, 3  # hoistsim's clutch_mode numbers
 
@@ -257,18 +258,21 @@ def solve_run(m, boundaries, forces, held, rtol, atol):
     return lockup_time, locks, y[0], y[1] / m.gear_ratio, y[2], steps, rejected
 
 
-@njit
-def solve_sweep(engagement_forces, m, boundaries, pressed, held, rtol, atol):
-    """Every engagement force a run, in a plain loop: the force is F where ``pressed``, 0 elsewhere."""
+def _solve_sweep(engagement_forces, m, boundaries, pressed, held, rtol, atol):
+    """Every engagement force a run: the force is F where ``pressed``, 0 elsewhere."""
     n = engagement_forces.shape[0]
     lockup_time, final_motor_speed, final_drum_speed = np.empty(n), np.empty(n), np.empty(n)
     slip_energy = np.empty(n)
     locks, steps, rejected = np.empty(n, np.int64), np.empty(n, np.int64), np.empty(n, np.int64)
-    for r in range(n):
+    for r in prange(n):  # a plain loop where not compiled parallel
         forces = np.where(pressed, engagement_forces[r], 0.0)
         (lockup_time[r], locks[r], final_motor_speed[r], final_drum_speed[r], slip_energy[r], steps[r],
          rejected[r]) = solve_run(m, boundaries, forces, held, rtol, atol)
     return lockup_time, locks, final_motor_speed, final_drum_speed, slip_energy, steps, rejected
+
+
+solve_sweep = njit(_solve_sweep)
+solve_sweep_parallel = njit(parallel=True)(_solve_sweep)
 
 
 def stepped(engage_time=0.35, duration=2.0):
@@ -281,12 +285,14 @@ def direct_start(duration=3.0):
     return np.array([0.0, duration]), np.array([True]), np.array([False])
 
 
-def sweep(engagement_forces, machine, scene, rtol=1e-8, atol=1e-10) -> dict:
-    """The runs of ``scene`` (stepped() or direct_start()) at each force: arrays by name."""
+def sweep(engagement_forces, machine, scene, rtol=1e-8, atol=1e-10, parallel=False) -> dict:
+    """The runs of ``scene`` (stepped() or direct_start()) at each force: arrays by name (``parallel``:
+    spread over every core)."""
     boundaries, pressed, held = scene
     names = ("lockup_time", "lock_events", "final_motor_speed", "final_drum_speed", "slip_energy",
              "steps", "rejected_steps")
-    values = solve_sweep(np.asarray(engagement_forces, float), machine, boundaries, pressed, held, rtol, atol)
+    solve = solve_sweep_parallel if parallel else solve_sweep
+    values = solve(np.asarray(engagement_forces, float), machine, boundaries, pressed, held, rtol, atol)
     return dict(zip(names, values))
 
 

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import jax
 import numpy as np
+from jax.sharding import Mesh, NamedSharding, PartitionSpec
 
 from . import _jax
 from .assemble import build_plan, loop_sizes
@@ -30,10 +31,10 @@ from .results import Summaries, summary_columns
 from .scenario import Scenario
 from .simulation import SimulationError, failure_message, run_result, simulate
 
-# Bytes of time series a chunk may hold.  Measured: with full output, small
-# chunks are fastest per run (every segment rewrites the chunk's output arrays);
-# summary-only runs hold one row each and go 2048 at a time (per run, on 2 cores, the
-# stepped force sweep of benchmarks/engine_cost.py: 27 us at 512, 23 at 1024, 20 at 2048, 23 at 4000).
+# Bytes of time series a chunk may hold on each device it is split over.  Measured: with full output,
+# small chunks are fastest per run; summary-only runs hold one row each and go 2048 a device at a time
+# (per run, on 2 cores and 2 devices, 8 192 runs of the stepped force sweep of benchmarks/engine_cost.py:
+# 26.9 us at 1 024 a chunk, 20.9 at 2 048, 18.8 at 4 096, 20.3 at 8 192; the direct start 15.0, 11.5, 9.9, 10.1).
 CHUNK_BYTES = 4 * 2**20
 MAX_CHUNK = 2048
 # A vmapped chunk steps until its slowest run is done: runs of a block go into chunks in the order of their
@@ -174,11 +175,13 @@ def _launch(runs, scenarios, group, plans, fast, summary_only: bool, chunk: int,
             stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *batch + [batch[-1]] * (chunk - len(batch)))
         chunks.append((part, stacked))
     solver = first.simulation.solver
-    run = _jax.executable(compiled_batch(solver, *sizes, not lean), chunks[0][1],
-                          name=f"sweep-{solver}-{sizes}-{lean}")
+    devices = devices_for(chunk)
+    run = _jax.executable(compiled_batch(solver, *sizes, not lean, devices), chunks[0][1],
+                          name=f"sweep-{solver}-{sizes}-{lean}-{devices}")
     # launched, not waited for: the host goes on while they run
     calls = [(time.perf_counter(), run(stacked)) if lean else None for _, stacked in chunks]
     return dict(chunks=chunks, calls=calls, run=run, sizes=sizes, lean=lean, periodic=periodic, solver=solver,
+                devices=devices,
                 layout=group_plans[0].layout, first_plan=group_plans[0], max_switches=max_switches)
 
 
@@ -188,8 +191,8 @@ def _results(group: dict):
     for (part, stacked), call in zip(group["chunks"], group["calls"]):
         while True:
             if built != sizes:
-                run = _jax.executable(compiled_batch(group["solver"], *sizes, True), stacked,
-                                      name=f"sweep-{group['solver']}-{sizes}-False")
+                run = _jax.executable(compiled_batch(group["solver"], *sizes, True, group["devices"]), stacked,
+                                      name=f"sweep-{group['solver']}-{sizes}-False-{group['devices']}")
                 built = sizes
             started, pending = call if call is not None else (time.perf_counter(), run(stacked))
             raw = jax.device_get(pending)
@@ -305,19 +308,37 @@ def _table_rows(elements) -> int:
 
 
 def chunk_for(scenario: Scenario, summary_only: bool, runs: int) -> int:
-    """Runs per vmapped call: as many as CHUNK_BYTES of time series allow (at most MAX_CHUNK), a power of
-    two (few compiled shapes), no more than the sweep needs."""
+    """Runs per vmapped call: on each device, as many as CHUNK_BYTES of time series allow (at most
+    MAX_CHUNK), a power of two (few compiled shapes), no more than the sweep needs; times the devices."""
     plan, _ = build_plan(scenario, summary_only=summary_only)
     rows, states = int(plan.grid.shape[0]), plan.layout.size
     per_run = rows * 8 * (2 * states + 24)  # states, outputs and masks of one run
-    chunk = max(1, min(MAX_CHUNK, CHUNK_BYTES // per_run))
-    chunk = 1 << int(math.log2(chunk))
-    return min(chunk, 1 << math.ceil(math.log2(runs)))
+    per_device = 1 << int(math.log2(max(1, min(MAX_CHUNK, CHUNK_BYTES // per_run))))
+    devices = len(jax.devices())
+    if runs < devices:  # fewer runs than devices: split over as many as divide the chunk
+        return min(per_device, 1 << math.ceil(math.log2(runs)))
+    return devices * min(per_device, 1 << math.ceil(math.log2(math.ceil(runs / devices))))
+
+
+def devices_for(chunk: int) -> int:
+    """Devices a chunk's runs are split over: the most there are that divide it evenly."""
+    return max(d for d in range(1, min(len(jax.devices()), chunk) + 1) if chunk % d == 0)
 
 
 @functools.lru_cache(maxsize=None)
-def compiled_batch(solver_name: str, max_segments: int, log_size: int, columns: bool = True):
-    """The restart loop, vectorised over a leading batch axis of the plan (without columns: summaries only)."""
+def compiled_batch(solver_name: str, max_segments: int, log_size: int, columns: bool = True, devices: int = 1):
+    """The restart loop, vectorised over a leading batch axis of the plan (without columns: summaries only).
+
+    With several ``devices``, each runs its share of the batch's runs through its
+    own loop (``shard_map``): a device's loop steps until its slowest run is
+    done, never waiting for the others'.
+    """
     solver = SOLVERS[solver_name]()
-    return jax.jit(jax.vmap(functools.partial(_run, solver=solver, max_segments=max_segments, log_size=log_size,
-                                              columns=columns)))
+    batch = jax.vmap(functools.partial(_run, solver=solver, max_segments=max_segments, log_size=log_size,
+                                       columns=columns))
+    if devices == 1:
+        return jax.jit(batch)
+    mesh = Mesh(np.array(jax.devices()[:devices]), ("runs",))
+    split = NamedSharding(mesh, PartitionSpec("runs"))
+    return jax.jit(jax.shard_map(batch, mesh=mesh, in_specs=PartitionSpec("runs"), out_specs=PartitionSpec("runs"),
+                                 check_vma=False), in_shardings=split, out_shardings=split)

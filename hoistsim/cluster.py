@@ -95,7 +95,8 @@ def connect(workers: int | None = None, scheduler: str | None = None):
         return
     if workers < 1:
         raise ClusterError(f"--workers: needs at least 1, got {workers}")
-    # processes with one thread each: a worker's vectorised loop already keeps its core busy
+    # processes with one thread each: a worker splits its chunks over a CPU device per core, as one process
+    # does (hoistsim._jax), so that the numbers are the same bits; the cluster spreads blocks, not cores
     with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
                       host="127.0.0.1") as cluster, Client(cluster, set_as_default=False) as client:
         yield client

@@ -41,11 +41,15 @@ def partial_path(target) -> Path:
     return target.with_name(f".{target.name}.partial")
 
 
-def resume_key(scenario, summary_only: bool) -> str:
-    """What the file is a computation of: a partial sweep is resumed only by the same computation."""
+def resume_key(scenario, summary_only: bool, split: tuple = ()) -> str:
+    """What the file is a computation of: a partial sweep is resumed only by the same computation.
+
+    ``split``: how the runs are cut (the chunk width, and the devices a chunk is split over): blocks are
+    counted in chunks, and the numbers are the same bits only for the same split.
+    """
     from ._jax import source_digest
 
-    text = json.dumps([scenario.text, bool(summary_only), source_digest()])
+    text = json.dumps([scenario.text, bool(summary_only), source_digest(), list(split)])
     return hashlib.sha256(text.encode()).hexdigest()
 
 
@@ -53,11 +57,11 @@ class StreamedFile:
     """The results of a sweep, kept chunk by chunk and assembled at the end (see the module docstring)."""
 
     def __init__(self, target, scenario, labels, parameters: dict, *, summary_only: bool, command: str = "",
-                 resume: bool = False):
+                 resume: bool = False, split: tuple = ()):
         self.target, self.folder = Path(target), partial_path(target)
         self.scenario, self.labels, self.parameters = scenario, labels, parameters
         self.summary_only, self.command = summary_only, command
-        self.key = resume_key(scenario, summary_only)
+        self.key = resume_key(scenario, summary_only, split)
         self.time, self.padded = None, False
         self.discarded = 0
         if resume:
@@ -66,7 +70,7 @@ class StreamedFile:
                                   "run without --resume")
             if (self.folder / "key").read_text() != self.key:
                 raise ResumeError(f"{self.folder.name} holds another scenario or other options (or another "
-                                  "hoistsim); run without --resume to start again")
+                                  "hoistsim, chunk size or CPU device count); run without --resume to start again")
         else:  # a fresh start: an interrupted sweep's chunks there go (said: ``discarded``)
             self.discarded = len(list(self.folder.glob("chunk-*.h5"))) if self.folder.is_dir() else 0
             shutil.rmtree(self.folder, ignore_errors=True)

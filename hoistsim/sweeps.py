@@ -16,6 +16,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import jax
 import numpy as np
 
 from .assemble import build_plan, output_grid
@@ -125,16 +126,18 @@ def _sweep(runs, client, *, summary_only, chunk_size, progress, output, command,
     scenario = runs.base
     warnings: list[str] = []
     stream = None
+    chunk = chunk_size or chunk_for(runs.scenario(0), summary_only, len(runs))
     if output is not None:
         from .streaming import StreamedFile
 
+        split = (chunk, jax.device_count()) if client is None else (chunk,)  # a cluster's workers: their own
         stream = StreamedFile(output, scenario, runs.labels, runs.parameters, summary_only=summary_only,
-                              command=command, resume=resume)
+                              command=command, resume=resume, split=split)
         if stream.discarded:
             warnings.append(f"{Path(output).name}: an interrupted sweep's {stream.discarded} chunk file(s) were "
                             "discarded (--resume keeps them)")
     try:
-        outcome = simulate_many(runs, summary_only=summary_only, chunk_size=chunk_size, progress=progress,
+        outcome = simulate_many(runs, summary_only=summary_only, chunk_size=chunk, progress=progress,
                                 warnings=warnings, sink=stream, skip_blocks=stream.blocks_done if stream else 0,
                                 client=client)
         if stream is not None:

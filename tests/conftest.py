@@ -14,6 +14,9 @@ import pytest
 # run in-process and share jit's in-memory cache instead, and nothing is written to
 # the user's home.  Tests of the caches give their subprocesses a folder of their own.
 os.environ["HOISTSIM_CACHE_DIR"] = ""
+# Two CPU devices in every test process whatever the machine's cores: a sweep's chunks are split over
+# them (hoistsim.blocks) everywhere the suite runs, and its numbers are the same bits on every machine.
+os.environ["HOISTSIM_CPU_DEVICES"] = "2"
 
 import hoistsim  # noqa: E402,F401  (enables float64 before any test creates an array)
 

@@ -226,6 +226,27 @@ def test_an_observation_never_fires_again_at_its_own_restart():
     assert sweep(s, summary_only=True).summaries[0]["slip_duration"] == pytest.approx(2.0)
 
 
+def test_a_chunk_split_over_devices_gives_each_run_its_answer(monkeypatch):
+    """Each CPU device runs its share of a chunk through its own loop: the runs' answers are those of the
+    chunk on one device (to round-off: XLA compiles the split program on its own), in sweep order."""
+    import jax
+
+    from hoistsim import blocks
+
+    assert jax.device_count() == 2  # conftest asks for two
+    assert [blocks.devices_for(chunk) for chunk in (1, 2, 8)] == [1, 2, 2]
+    s = load_scenario(SWEEP_FILE, overrides=["simulation.duration=0.4 s"],
+                      sweeps=["clutch.engagement_force=3 kN:12 kN:12"])
+    split = sweep(s, summary_only=True, chunk_size=16).summary
+    monkeypatch.setattr(blocks, "devices_for", lambda chunk: 1)
+    alone = sweep(s, summary_only=True, chunk_size=16).summary
+    assert np.count_nonzero(~np.isnan(alone["lockup_time"])) >= 6  # most runs lock, some slip to the end
+    np.testing.assert_allclose(split["lockup_time"], alone["lockup_time"], rtol=0, atol=1e-12)
+    for name in ("slip_energy", "final_motor_speed", "final_drum_speed", "peak_clutch_torque"):
+        np.testing.assert_allclose(split[name], alone[name], rtol=1e-12, err_msg=name)
+    assert list(split["label"]) == list(alone["label"])
+
+
 def test_loading_a_sweep_costs_in_proportion_to_its_values(monkeypatch):
     """Each swept value is validated alone, once, on the validated base: the scenario's plain data is not
     copied per value (it was, with the whole sweep in it: 1 000 force tables took 18 s to load)."""
