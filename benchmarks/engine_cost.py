@@ -52,6 +52,7 @@ import numpy as np  # noqa: E402
 
 import hoistsim  # noqa: E402
 import hoistsim._jax  # noqa: E402
+from hoistsim.blocks import chunk_for  # noqa: E402
 import numba_peer  # noqa: E402
 from hoistsim import load_scenario  # noqa: E402
 from hoistsim.report import table  # noqa: E402
@@ -62,7 +63,6 @@ DIRECT = ROOT / "scenarios" / "exercise6_direct_start.yaml"
 RESULTS = ROOT / "benchmarks" / "results" / "engine_cost.csv"
 REPEATS = 5
 SMALL = 64  # runs of the compiling sweep
-MAX_CHUNK = 2048  # hoistsim's widest summary-only chunk (blocks.chunk_for): the small sweep is given the same
 
 
 def stepped_file(folder: Path, forces: np.ndarray, name: str) -> Path:
@@ -137,7 +137,7 @@ def cpu_clock(func) -> tuple[float, float, object]:
 def measure(full, small, runs: int, forces, scene) -> tuple[dict, dict]:
     """hoistsim and the peer on one scene, their timed calls interleaved (this machine's speed drifts by
     tens of percent over minutes: each ratio is of calls made side by side)."""
-    chunk = min(MAX_CHUNK, 1 << math.ceil(math.log2(runs)))
+    chunk = chunk_for(full, True, runs)  # the full sweep's width: the small sweep compiles its program
     first, _ = clock(lambda: hoistsim.sweep(small, summary_only=True, chunk_size=chunk))
     warm, _ = clock(lambda: hoistsim.sweep(small, summary_only=True, chunk_size=chunk))
     result = hoistsim.sweep(full, summary_only=True)  # untimed: anything the small sweep did not compile

@@ -120,7 +120,6 @@ class _Carry(eqx.Module):
     hit: jax.Array
     failed: jax.Array
     crossed: jax.Array  # (guards,): which changed sign in the last step
-    last: tuple  # (start, end, dense info) of the last accepted step
     row: jax.Array  # the first output row not written yet
     grid_state: jax.Array
 
@@ -144,13 +143,10 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
     values = guards(t0, y0, args)
     nothing = jnp.zeros_like(values, dtype=bool)
     state = stepper.init(t0, t_next, y0)
-    _, _, dense0, _, _ = jax.eval_shape(stepper.step, t0, t_next, y0, state)
     carry = _Carry(
         t=jnp.asarray(t0, y0.dtype), y=y0, t_next=t_next, state=state, control=control, values=values,
         steps=jnp.array(0), rejected=jnp.array(0), done=t0 >= end, hit=jnp.array(False),
-        failed=jnp.array(False), crossed=nothing,
-        last=(t0, t0, jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), dense0)),
-        row=jnp.sum(grid < t0), grid_state=grid_state)
+        failed=jnp.array(False), crossed=nothing, row=jnp.sum(grid < t0), grid_state=grid_state)
 
     def going(c: _Carry):
         return ~c.done & ~c.failed
@@ -175,24 +171,29 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
                 keep, c.t_next, next_t1)), state=accept(state, c.state), control=control,
             values=accept(values, c.values), steps=steps, rejected=c.rejected + ~keep,
             done=hit | (keep & (c.t_next >= end)), hit=hit, failed=(steps >= max_steps) & ~hit & ~(keep & (c.t_next >= end)),
-            crossed=crossed, last=jax.tree.map(lambda a, b: jnp.where(keep, a, b), (c.t, c.t_next, dense), c.last),
-            row=row, grid_state=grid_state)
+            crossed=crossed, row=row, grid_state=grid_state)
 
     # The output rows are a buffer: each written in place, never copied whole.  (Under ``vmap`` a loop's
     # carry is otherwise selected lane by lane at every step: the whole grid, once a step.)
     c = eqxi.while_loop(going, body, carry, kind="lax", buffers=lambda k: k.grid_state)
-    start, stop, dense = c.last
-    interpolant = stepper.interpolant(start, stop, dense)
+    # A crossing's step was not accepted: the carry still holds its start, end and first rate, and the step
+    # is taken again here for its interpolant (once a pass, not kept through every step of the loop).
+    _, _, dense_shape, _, _ = jax.eval_shape(stepper.step, c.t, c.t_next, c.y, c.state)
 
     def locate():
-        return _crossing(guards, args, interpolant, start, stop, c.crossed & c.hit)
+        _, _, dense, _, _ = stepper.step(c.t, c.t_next, c.y, c.state)
+        interpolant = stepper.interpolant(c.t, c.t_next, dense)
+        return dense, *_crossing(guards, args, interpolant, c.t, c.t_next, c.crossed & c.hit)
 
-    t_hit, y_hit, mask = jax.lax.cond(eqxi.unvmap_any(c.hit), locate, lambda: (stop, c.y, nothing))
+    def no_crossing():
+        return jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), dense_shape), c.t, c.y, nothing
+
+    dense, t_hit, y_hit, mask = jax.lax.cond(eqxi.unvmap_any(c.hit), locate, no_crossing)
     t_end = jnp.where(c.hit, t_hit, c.t)
     y_end = jnp.where(c.hit, y_hit, c.y)
     grid_state = c.grid_state
-    if write_rows:
-        grid_state, _ = _write_rows(grid, grid_state, c.row, jnp.where(c.hit, t_end, start), interpolant)
+    if write_rows:  # a crossing's rows up to it (elsewhere every row before the pass's end is written)
+        grid_state, _ = _write_rows(grid, grid_state, c.row, t_end, stepper.interpolant(c.t, c.t_next, dense))
     return Pass(t=t_end, y=y_end, hit=c.hit, mask=mask & c.hit, failed=c.failed, steps=c.steps, rejected=c.rejected,
                 grid_state=grid_state)
 
