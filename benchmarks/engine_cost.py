@@ -103,8 +103,8 @@ class EngineClock:
     def __enter__(self):
         self.original = hoistsim._jax.executable
 
-        def timed_executable(jitted, *args, name):
-            run = self.original(jitted, *args, name=name)
+        def timed_executable(jitted, *args, **how):
+            run = self.original(jitted, *args, **how)
 
             def timed(*call_args):
                 started = time.perf_counter()

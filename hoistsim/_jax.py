@@ -104,8 +104,12 @@ def _program_origin() -> tuple:
     return (source_digest(), *(version(p) for p in ("jax", "jaxlib", "diffrax", "equinox", "optimistix")))
 
 
-def executable(jitted, *args, name: str):
+def executable(jitted, *args, name: str, devices: int = 1):
     """``jitted`` compiled for ``args``, loaded from disk when a run of the same shape compiled it before.
+
+    ``devices``: how many of the process's devices the program runs on (the
+    first ones); a loaded program is bound to them, not to every device the
+    backend has, which a program built for fewer could not run on.
 
     JAX's persistent cache saves the compilation but not the tracing of the
     Python loop (~0.5 s), which has to happen to find the cache key; a
@@ -122,14 +126,15 @@ def executable(jitted, *args, name: str):
     from jax.experimental.serialize_executable import deserialize_and_load, serialize
 
     leaves, treedef = jax.tree.flatten(args)
-    signature = repr((name, _program_origin(), jax.default_backend(), str(treedef),
+    signature = repr((name, _program_origin(), jax.default_backend(), devices, str(treedef),
                       [(getattr(x, "shape", ()), str(getattr(x, "dtype", type(x)))) for x in leaves]))
     path = os.path.join(_executables, hashlib.sha256(signature.encode()).hexdigest() + ".bin")
     if path in _loaded:
         return _loaded[path]
     try:
         with open(path, "rb") as handle:
-            _loaded[path] = _falling_back(deserialize_and_load(*pickle.load(handle)), jitted, path)
+            loaded = deserialize_and_load(*pickle.load(handle), execution_devices=jax.devices()[:devices])
+            _loaded[path] = _falling_back(loaded, jitted, path)
             return _loaded[path]
     except Exception:  # absent, stale or unreadable: compile afresh
         pass

@@ -177,7 +177,7 @@ def _launch(runs, scenarios, group, plans, fast, summary_only: bool, chunk: int,
     solver = first.simulation.solver
     devices = devices_for(chunk)
     run = _jax.executable(compiled_batch(solver, *sizes, not lean, devices), chunks[0][1],
-                          name=f"sweep-{solver}-{sizes}-{lean}-{devices}")
+                          name=f"sweep-{solver}-{sizes}-{lean}", devices=devices)
     # launched, not waited for: the host goes on while they run
     calls = [(time.perf_counter(), run(stacked)) if lean else None for _, stacked in chunks]
     return dict(chunks=chunks, calls=calls, run=run, sizes=sizes, lean=lean, periodic=periodic, solver=solver,
@@ -192,7 +192,7 @@ def _results(group: dict):
         while True:
             if built != sizes:
                 run = _jax.executable(compiled_batch(group["solver"], *sizes, True, group["devices"]), stacked,
-                                      name=f"sweep-{group['solver']}-{sizes}-False-{group['devices']}")
+                                      name=f"sweep-{group['solver']}-{sizes}-False", devices=group["devices"])
                 built = sizes
             started, pending = call if call is not None else (time.perf_counter(), run(stacked))
             raw = jax.device_get(pending)
