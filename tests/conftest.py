@@ -18,6 +18,20 @@ os.environ["HOISTSIM_CACHE_DIR"] = ""
 # them (hoistsim.blocks) everywhere the suite runs, and its numbers are the same bits on every machine.
 os.environ["HOISTSIM_CPU_DEVICES"] = "2"
 
+# One JAX compilation cache for the whole session, in a fresh folder: a program one process compiled
+# (either xdist worker, a Dask worker, a command run in a subprocess) is loaded by the others, and again
+# after _compiled_programs_within_the_map_limit lets a process's programs go.  The first process to
+# import this file makes the folder; those it starts inherit it and leave it be.
+if "JAX_COMPILATION_CACHE_DIR" not in os.environ:
+    import atexit
+    import shutil
+    import tempfile
+
+    _session_cache = tempfile.mkdtemp(prefix="hoistsim-tests-jax-")
+    os.environ["JAX_COMPILATION_CACHE_DIR"] = _session_cache
+    os.environ["JAX_PERSISTENT_CACHE_MIN_COMPILE_TIME_SECS"] = "0.5"
+    atexit.register(shutil.rmtree, _session_cache, ignore_errors=True)
+
 import hoistsim  # noqa: E402,F401  (enables float64 before any test creates an array)
 
 sys.path.insert(0, str(Path(__file__).parent))
