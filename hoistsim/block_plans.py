@@ -30,6 +30,7 @@ from ._pytree import static_values
 from .core.loop import Plan
 from .elements import element_sections
 from .sweep_spec import swept_field, with_validated_value
+from .swept_values import SweptValues
 
 
 class _Recorder:
@@ -272,8 +273,10 @@ def _stacked_columns(runs, indices, template, scenario, sections, reach, positio
     return rebuilt
 
 
-def _stacked(values: list):
+def _stacked(values):
     """A key's validated values as one value with a leading axis (a model: each of its fields so), or None."""
+    if isinstance(values, SweptValues):  # kept so as they were validated: numbers as floats, as below
+        return _as_floats(values.stacked)
     first = values[0]
     if isinstance(first, BaseModel):
         if any(type(v) is not type(first) for v in values):
@@ -286,6 +289,13 @@ def _stacked(values: list):
         return np.asarray(values, dtype=float)
     except (TypeError, ValueError):  # ragged, or not numbers
         return None
+
+
+def _as_floats(stacked):
+    if isinstance(stacked, BaseModel):
+        return type(stacked).model_construct(**{name: _as_floats(getattr(stacked, name))
+                                               for name in type(stacked).model_fields})
+    return np.asarray(stacked, dtype=float)
 
 
 def _taken(stacked, rows):

@@ -18,6 +18,7 @@ from typing import Annotated, Any
 import numpy as np
 from pydantic import BaseModel, TypeAdapter, ValidationError
 
+from . import swept_values
 from . import units as u
 from .errors import ScenarioError
 from .scenario import (_ALTERNATIVES, _SWEEP_EXAMPLE, Scenario, _assign, _check_key, _error_from, _line_of,
@@ -39,17 +40,19 @@ def _check_sweep(scenario: Scenario, raw: dict, key: str, values: list, tree: An
         raise ScenarioError(message=f"needs a non-empty list of values, {_SWEEP_EXAMPLE}", **where)
     base = {k: v for k, v in raw.items() if k != "sweep"}
     numbers = np.empty(len(values))
-    validated = []
-    for i, value in enumerate(values):
-        try:
-            run = with_swept_value(scenario, key, value, base)
+
+    def each_validated():
+        for i, value in enumerate(values):
+            try:
+                run = with_swept_value(scenario, key, value, base)
+            except ScenarioError as exc:
+                detail = exc.message if exc.key in (key, "") else f"{exc.key}: {exc.message}"
+                raise ScenarioError(f"sweep.{key}", f"value {i + 1} ({_format_value(value)}): {detail}",
+                                    source=source, line=_line_of(tree, ("sweep", key, i)) or where["line"]) from None
             numbers[i] = swept_number(run, key)
-            validated.append(swept_field(run, key))
-        except ScenarioError as exc:
-            detail = exc.message if exc.key in (key, "") else f"{exc.key}: {exc.message}"
-            raise ScenarioError(f"sweep.{key}", f"value {i + 1} ({_format_value(value)}): {detail}",
-                                source=source, line=_line_of(tree, ("sweep", key, i)) or where["line"]) from None
-    return numbers, validated
+            yield swept_field(run, key)
+
+    return numbers, swept_values.collect(each_validated())  # as columns: a million runs' values in a few MB
 
 
 def with_swept_value(scenario: Scenario, key: str, value: Any, raw: dict | None = None) -> Scenario:
