@@ -253,8 +253,9 @@ def _stacked_columns(runs, indices, template, scenario, sections, reach, positio
         return None
     stacks = runs.__dict__.setdefault("_stacked_values", {})
     for key in runs.keys:
-        if key not in stacks:
-            stacks[key] = _stacked(runs.base._sweep_validated[key])
+        if key not in stacks:  # kept as columns as the sweep was read (a list: values that do not stack)
+            kept = runs.base._sweep_validated[key]
+            stacks[key] = kept.stacked if isinstance(kept, SweptValues) else None
     if any(stacks[key] is None for key in runs.keys):
         return None
     where = runs.positions_of(np.asarray(indices))
@@ -271,31 +272,6 @@ def _stacked_columns(runs, indices, template, scenario, sections, reach, positio
         except Exception:  # noqa: BLE001  (arithmetic that is not elementwise: built run by run instead)
             return None
     return rebuilt
-
-
-def _stacked(values):
-    """A key's validated values as one value with a leading axis (a model: each of its fields so), or None."""
-    if isinstance(values, SweptValues):  # kept so as they were validated: numbers as floats, as below
-        return _as_floats(values.stacked)
-    first = values[0]
-    if isinstance(first, BaseModel):
-        if any(type(v) is not type(first) for v in values):
-            return None
-        fields = {name: _stacked([getattr(v, name) for v in values]) for name in type(first).model_fields}
-        return None if any(f is None for f in fields.values()) else type(first).model_construct(**fields)
-    if any(v is None or isinstance(v, (bool, str)) for v in values):
-        return None
-    try:
-        return np.asarray(values, dtype=float)
-    except (TypeError, ValueError):  # ragged, or not numbers
-        return None
-
-
-def _as_floats(stacked):
-    if isinstance(stacked, BaseModel):
-        return type(stacked).model_construct(**{name: _as_floats(getattr(stacked, name))
-                                               for name in type(stacked).model_fields})
-    return np.asarray(stacked, dtype=float)
 
 
 def _taken(stacked, rows):

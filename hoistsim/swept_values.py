@@ -22,7 +22,8 @@ BATCH = 4096
 
 class SweptValues(Sequence):
     """The values of one swept key: ``values[i]`` is the i-th as validated, ``stacked`` all of them at once
-    (a model: each of its fields with a leading axis over the values; a number: an array)."""
+    (a model: each of its fields with a leading axis over the values; a number: an array), every number
+    a float, as the elements built for a block's runs at once take them."""
 
     def __init__(self, kind, stacked):
         self.kind, self.stacked = kind, stacked
@@ -36,9 +37,6 @@ class SweptValues(Sequence):
         if not -len(self) <= i < len(self):
             raise IndexError(i)
         return _value(self.kind, self.stacked, i)
-
-    def __reduce__(self):  # sent to a cluster's workers as its arrays
-        return SweptValues, (self.kind, self.stacked)
 
 
 def collect(values) -> Sequence:
@@ -101,10 +99,10 @@ def _shape(value: tuple):
 
 def _stack(kind, values: list):
     """``values``, all of ``kind``, as one value with a leading axis; None where one is not of it."""
-    if kind in (float, int):
-        if any(type(v) is not kind for v in values):
+    if kind in (float, int):  # whole numbers too as floats (elements take them so), while exact
+        if any(type(v) is not kind or (kind is int and abs(v) > 2**53) for v in values):
             return None
-        return np.asarray(values, dtype=np.int64 if kind is int else float)
+        return np.asarray(values, dtype=float)
     if kind[0] == "tuple":  # numbers of the first value's shape (a value of another shape or type fails here)
         try:
             array = np.asarray(values, dtype=float)

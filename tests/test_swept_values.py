@@ -29,6 +29,8 @@ def test_values_of_one_shape_stack_and_others_stay_as_they_came():
     tables = [((0.0, 1.0), (2.0, float(k))) for k in range(BATCH + 5)]
     stacked = collect(tables)
     assert isinstance(stacked, SweptValues) and stacked[-1] == tables[-1] and stacked[3:5] == tables[3:5]
+    teeth = collect([17, 90])  # whole numbers: stacked as floats, given back as they came
+    assert teeth.stacked.dtype == float and list(teeth) == [17, 90] and type(teeth[0]) is int
     for values in ([1.0, 2.0, "slow"], [(1.0, 2.0), (3.0,)], [True, False], [None, 1.0],
                    [1.0] * BATCH + [2],  # a later batch of another type
                    tables + [((0.0, 1.0),)]):  # a later value of another shape
