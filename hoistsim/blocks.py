@@ -52,11 +52,12 @@ class Block:
     warnings: list
 
 
-def run_block(runs, start: int, stop: int, *, summary_only: bool, chunk: int) -> Block:
+def run_block(runs, start: int, stop: int, *, summary_only: bool, chunk: int, devices: int | None = None) -> Block:
     """Runs ``start`` to ``stop``: their scenarios and plans built here, grouped by the compiled loop they
-    share, each group in chunks of ``chunk`` runs through one vmapped call (padded to a full chunk)."""
+    share, each group in chunks of ``chunk`` runs through one vmapped call (padded to a full chunk), split
+    over ``devices`` (None: :func:`devices_for` the chunk; a cluster's worker is told the client's)."""
     with _no_cyclic_collection():
-        return _run_block(runs, start, stop, summary_only=summary_only, chunk=chunk)
+        return _run_block(runs, start, stop, summary_only=summary_only, chunk=chunk, devices=devices)
 
 
 @contextlib.contextmanager
@@ -73,8 +74,8 @@ def _no_cyclic_collection():
             gc.enable()
 
 
-def _run_block(runs, start: int, stop: int, *, summary_only: bool, chunk: int) -> Block:
-    steps = _block_steps(runs, start, stop, summary_only=summary_only, chunk=chunk)
+def _run_block(runs, start: int, stop: int, *, summary_only: bool, chunk: int, devices: int | None) -> Block:
+    steps = _block_steps(runs, start, stop, summary_only=summary_only, chunk=chunk, devices=devices)
     next(steps)
     return _finished(steps)
 
@@ -95,7 +96,7 @@ def run_blocks(runs, blocks, *, summary_only: bool, chunk: int):
     waiting = None
     with _no_cyclic_collection():
         for start, stop in blocks:
-            steps = _block_steps(runs, start, stop, summary_only=summary_only, chunk=chunk)
+            steps = _block_steps(runs, start, stop, summary_only=summary_only, chunk=chunk, devices=None)
             next(steps)
             if waiting is not None:
                 yield _finished(waiting)
@@ -104,7 +105,7 @@ def run_blocks(runs, blocks, *, summary_only: bool, chunk: int):
             yield _finished(waiting)
 
 
-def _block_steps(runs, start: int, stop: int, *, summary_only: bool, chunk: int):
+def _block_steps(runs, start: int, stop: int, *, summary_only: bool, chunk: int, devices: int | None):
     """A block's runs: built, their compiled calls launched (summary-only: all of them, not waited for),
     one ``yield``, then read back; returns the :class:`Block`."""
     indices = range(start, stop)
@@ -116,7 +117,9 @@ def _block_steps(runs, start: int, stop: int, *, summary_only: bool, chunk: int)
     else:
         plans = [build_plan(scenarios[k], summary_only=summary_only) for k in range(len(indices))]
         groups = _groups(scenarios, plans)
-    launched = [_launch(runs, scenarios, group, plans, fast, summary_only, chunk, start) for group in groups]
+    devices = devices or devices_for(chunk)
+    launched = [_launch(runs, scenarios, group, plans, fast, summary_only, chunk, devices, start)
+                for group in groups]
     yield
     warnings: list[str] = []
     rows: list = [None] * len(indices)  # each run's RunResult, or its chunk's summary columns and lane
@@ -145,7 +148,7 @@ def _block_steps(runs, start: int, stop: int, *, summary_only: bool, chunk: int)
     return Block(start, stop, rows, warnings)
 
 
-def _launch(runs, scenarios, group, plans, fast, summary_only: bool, chunk: int, start: int) -> dict:
+def _launch(runs, scenarios, group, plans, fast, summary_only: bool, chunk: int, devices: int, start: int) -> dict:
     """A group's chunks stacked and their compiled loop found; summary-only, every chunk's call launched
     (full output calls are made as they are read: a chunk may need a longer event log)."""
     group = _by_swept_value(runs, start, group)
@@ -175,7 +178,6 @@ def _launch(runs, scenarios, group, plans, fast, summary_only: bool, chunk: int,
             stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *batch + [batch[-1]] * (chunk - len(batch)))
         chunks.append((part, stacked))
     solver = first.simulation.solver
-    devices = devices_for(chunk)
     run = _jax.executable(compiled_batch(solver, *sizes, not lean, devices), chunks[0][1],
                           name=f"sweep-{solver}-{sizes}-{lean}", devices=devices)
     # launched, not waited for: the host goes on while they run
@@ -323,6 +325,7 @@ def chunk_for(scenario: Scenario, summary_only: bool, runs: int) -> int:
 def devices_for(chunk: int) -> int:
     """Devices a chunk's runs are split over: the most there are that divide it evenly."""
     return max(d for d in range(1, min(len(jax.devices()), chunk) + 1) if chunk % d == 0)
+
 
 
 @functools.lru_cache(maxsize=None)

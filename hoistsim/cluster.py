@@ -20,7 +20,7 @@ import contextlib
 import uuid
 from concurrent.futures import CancelledError
 
-from .blocks import run_block
+from .blocks import devices_for, run_block
 
 CONNECT_SECONDS = 5  # an address with no scheduler behind it fails this fast
 RETRIES = 3  # submissions of a block the cluster cancels before the sweep gives up
@@ -39,12 +39,13 @@ def cluster_blocks(client, runs, blocks, *, summary_only: bool, chunk: int):
     """The blocks ``(start, stop)`` of ``runs`` computed on the cluster, yielded in order as they finish."""
     sweep_id = uuid.uuid4().hex[:12]  # a running cluster may serve other sweeps: keys of our own
     shared = [client.scatter(runs, broadcast=True)]  # sent once to each worker, not with every block
+    devices = devices_for(chunk)  # the client's split, kept by every worker: the same bits as one process
     window = 2 * max(1, len(client.scheduler_info()["workers"])) + 2
     tries = collections.Counter()
 
     def submit(start: int, stop: int):
         tries[start] += 1
-        return (start, stop), client.submit(_remote_block, shared[0], start, stop, summary_only, chunk,
+        return (start, stop), client.submit(_remote_block, shared[0], start, stop, summary_only, chunk, devices,
                                             pure=False, key=f"hoistsim-block-{sweep_id}-{start}-{tries[start]}")
 
     def taken(block, future):
@@ -102,9 +103,15 @@ def connect(workers: int | None = None, scheduler: str | None = None):
         yield client
 
 
-def _remote_block(runs, start: int, stop: int, summary_only: bool, chunk: int):
-    """On a worker: one block (the programs compiled once per worker process, kept in the persistent cache)."""
+def _remote_block(runs, start: int, stop: int, summary_only: bool, chunk: int, devices: int):
+    """On a worker: one block, its chunks split over the client's ``devices`` (the programs compiled once
+    per worker process, kept in the persistent cache)."""
     from . import _jax
 
     _jax.enable_compilation_cache()
-    return run_block(runs, start, stop, summary_only=summary_only, chunk=chunk)
+    import jax
+
+    if len(jax.devices()) < devices:  # another split would give other bits (to round-off)
+        raise ClusterError(f"a worker has {len(jax.devices())} CPU device(s), the sweep splits its chunks over "
+                           f"{devices}: start the workers with HOISTSIM_CPU_DEVICES={devices}")
+    return run_block(runs, start, stop, summary_only=summary_only, chunk=chunk, devices=devices)

@@ -141,7 +141,7 @@ class _Cancelling:
 def test_a_block_the_cluster_cancels_is_submitted_again_and_taken_once(monkeypatch):
     from hoistsim import cluster
 
-    monkeypatch.setattr(cluster, "_remote_block", lambda runs, start, stop, summary_only, chunk: (start, stop))
+    monkeypatch.setattr(cluster, "_remote_block", lambda runs, start, stop, summary_only, chunk, devices: (start, stop))
     client = _Cancelling(cancel_start=4)
     blocks = [(0, 4), (4, 8), (8, 10)]
     taken = list(cluster.cluster_blocks(client, object(), blocks, summary_only=True, chunk=4))
@@ -164,3 +164,12 @@ def test_a_block_cancelled_again_and_again_stops_the_sweep_in_one_line(monkeypat
 
     with pytest.raises(cluster.ClusterLost, match="cancelled runs 0-3 3 times"):
         list(cluster.cluster_blocks(Always(0), object(), [(0, 4)], summary_only=True, chunk=4))
+
+
+def test_a_worker_with_fewer_devices_than_the_split_says_so_in_one_line():
+    """A worker keeps the client's split of a chunk over devices (another split: other bits); one that lacks
+    the devices stops the sweep, saying how to start it."""
+    from hoistsim import cluster
+
+    with pytest.raises(cluster.ClusterError, match="start the workers with HOISTSIM_CPU_DEVICES=3$"):
+        cluster._remote_block(_short(4), 0, 4, True, 3, 3)
