@@ -293,8 +293,11 @@ def _title(runs, classes, swept) -> str:
     name = str(attrs.get("name", ""))
     if len(runs) > 1:
         return f"{name}: {len(runs)} runs, coloured by {swept_label(swept)}"
-    said = []
+    said, asked = [], set()
     for cls in classes:
+        if cls.headline.__func__ in asked:  # variants of one part (a load on a rigid or an elastic rope) say it once
+            continue
+        asked.add(cls.headline.__func__)
         try:
             text = cls.headline(attrs)
         except KeyError:  # a part the run has not

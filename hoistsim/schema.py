@@ -314,6 +314,42 @@ class ClutchHeatingSpec(Section):
         return self
 
 
+class RopeSpec(Section):
+    """An elastic rope from the drum to the load: a stiffness, or a wire rope's modulus, area and length."""
+
+    stiffness: u.quantity(u.STIFFNESS, gt=0.0) | None = None  # k, N/m
+    modulus: u.quantity(u.PRESSURE, gt=0.0) | None = None  # E of the rope (steel wire rope: 80-110 GPa)
+    metallic_area: u.quantity(u.AREA, gt=0.0) | None = None  # A: the wires' cross-section
+    free_length: u.quantity(u.LENGTH, gt=0.0) | None = None  # drum to load at t = 0
+    damping_ratio: u.quantity(u.DIMENSIONLESS, ge=0.0) = 0.0  # c = 2 zeta sqrt(k M), k at t = 0
+    initial_slack: u.quantity(u.LENGTH, ge=0.0) = 0.0  # rope paid out beyond taut at t = 0
+
+    @model_validator(mode="after")
+    def _one_stiffness(self):
+        wire = {name: getattr(self, name) for name in ("modulus", "metallic_area", "free_length")}
+        given = [name for name, value in wire.items() if value is not None]
+        if self.stiffness is not None and given:
+            raise ScenarioError(f"rope.{given[0]}", "give either stiffness or a wire rope's modulus, "
+                                "metallic_area and free_length, not both")
+        if self.stiffness is None:
+            missing = [name for name, value in wire.items() if value is None]
+            if missing:
+                raise ScenarioError(f"rope.{missing[0] if given else 'stiffness'}",
+                                    "required: the rope's stiffness, or its modulus, metallic_area and free_length")
+        return self
+
+    @property
+    def characteristic(self) -> str:
+        """Which variant: ``stiffness`` (constant) or ``modulus`` (E A / L, L the free length)."""
+        return "stiffness" if self.stiffness is not None else "modulus"
+
+
+class GroundSpec(Section):
+    """The load starts resting on the ground, which holds it up and never down."""
+
+    hoisting_class: Literal["HC1", "HC2", "HC3", "HC4"] | None = None  # EN 13001-2, for phi2 beside the run
+
+
 class BearingsSpec(Section):
     gear_offset: u.quantity(u.LENGTH, gt=0.0)  # a: bearing A to the gear, away from B
     rope_offset: u.quantity(u.LENGTH, gt=0.0)  # bearing A to the rope, towards B
@@ -356,6 +392,8 @@ class Scenario(Section):
     ratchet: RatchetSpec | None = None
     clutch_heating: ClutchHeatingSpec | None = None
     bearings: BearingsSpec | None = None
+    rope: RopeSpec | None = None
+    ground: GroundSpec | None = None
     simulation: SimulationSpec
     sweep: dict[str, Any] | None = None  # checked by _check_sweep
 
@@ -389,6 +427,18 @@ class Scenario(Section):
         if self.ratchet is not None and self.initial.drum_speed < 0.0:
             raise ScenarioError("initial.drum_speed", "must not be negative with a ratchet: the pawl would stop "
                                 "a lowering drum dead")
+        return self
+
+    @model_validator(mode="after")
+    def _load_on_the_rope(self):
+        if self.rope is not None and self.load.mass <= 0.0:
+            raise ScenarioError("load.mass", "must be positive with an elastic rope (rope:): the load is a body "
+                                "of its own on it")
+        if self.ground is not None and self.rope is None and (self.initial.drum_speed != 0.0
+                                                               or self.initial.steady_lift):
+            key = "initial.steady_lift" if self.initial.steady_lift else "initial.drum_speed"
+            raise ScenarioError(key, "the load rests on the ground (ground:) on a rigid rope, so the drum must "
+                                "start at rest (an elastic rope, rope:, may start slack or unloaded on a turning drum)")
         return self
 
     @model_validator(mode="after")

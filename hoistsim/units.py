@@ -62,6 +62,9 @@ DENSITY = Dimension("density", "kg/m^3", "'7200 kg/m^3'")
 TEMPERATURE = Dimension("temperature", "K", "'25 degC'", shown_in="degC")  # absolute: degC and degF are offsets
 HEAT_CAPACITY = Dimension("heat capacity", "J/K", "'2.4 kJ/K'")
 CONDUCTANCE = Dimension("thermal conductance", "W/K", "'20 W/K'")
+STIFFNESS = Dimension("stiffness", "N/m", "'2.5e5 N/m'")
+PRESSURE = Dimension("modulus (a pressure)", "Pa", "'100 GPa'")
+AREA = Dimension("area", "m^2", "'95 mm^2'")
 
 # dimensionality (as pint prints it, radian power) -> what an engineer calls it
 _KNOWN = {
@@ -78,6 +81,7 @@ _KNOWN = {
     ("[length] / [time]", 0): "speed",
     ("[length] / [time] ** 2", 0): "acceleration",
     ("[mass] / [length] / [time] ** 2", 0): "pressure",
+    ("[mass] / [time] ** 2", 0): "stiffness",
     ("[mass] * [length] ** 2 / [time] ** 3", 0): "power",
     ("[temperature]", 0): "temperature",
     ("[mass] * [length] ** 2 / [temperature] / [time] ** 2", 0): "heat capacity",

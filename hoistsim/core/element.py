@@ -41,7 +41,9 @@ Contributions, all read at trace time (``x`` is the machine at one instant,
   ``limits`` are thresholds crossed (a temperature limit): recorded even where
   another guard is located at the same instant, and located as tightly as a
   switch; ``observes(kind)`` False leaves a kind unwatched in this element as
-  built (an optional limit not given: no guard at all);
+  built (an optional limit not given: no guard at all); a crossing named in
+  ``crossing_events`` (kind -> (event rising through zero, event falling)) is
+  no row but an event named by the way it crossed (a rope going taut or slack);
 - ``kinks(x)``: knot coordinates (named by ``kink_names()``), continuous in the
   state and whole numbers exactly where the element's torque has a kink (a
   table's knot in angle): the integration stops at the next whole number either
@@ -55,6 +57,7 @@ Contributions, all read at trace time (``x`` is the machine at one instant,
   ``cycle_angle()`` says how far (rad) its shafts turn in a cycle, for sizing the loop;
 - ``extremes(x)``: running reductions for the summary, name -> (reduction, value)
   with reduction one of "max", "min", "first" (the first time the value is true),
+  "first_value" (value a pair (condition, v): v where the condition first holds),
   "duration" (time spent while it is true; constant between switches);
 - ``summary(x)``: values of the final state for the summary; every name of
   ``extremes`` and ``summary`` is declared in ``summaries`` with its units
@@ -104,6 +107,8 @@ class AbstractElement:
     event_kinds: ClassVar[tuple[str, ...]] = ()  # scheduled events
     observation_kinds: ClassVar[tuple[str, ...]] = ()  # guards recorded as rows
     crossings: ClassVar[tuple[str, ...]] = ()  # of those, the ones recorded where they change sign either way
+    # of those, the ones that are events named by the way they cross: kind -> (rising event, falling event)
+    crossing_events: ClassVar[dict[str, tuple[str, str]]] = {}
     limits: ClassVar[tuple[str, ...]] = ()  # of those, thresholds: never lost to a coinciding event
     summaries: ClassVar[dict[str, str]] = {}  # summary name -> units
     ledger_kinds: ClassVar[dict[str, str]] = {}  # energy term -> "work", "loss", "potential" or "heat of <loss>"
@@ -209,7 +214,15 @@ class AbstractCoupling(AbstractElement):
     +1 where it pushes the way the coupling slips, -1 the other way (the core
     solves for the two together).
     ``reports_switches`` False: its mode changes are not events of their own
-    (its scheduled events say what happened).
+    (its scheduled events say what happened); ``switch_names`` renames the
+    core's kinds for it (a body on a support: unlock -> ``lift_off``).
+    ``gap(x)``: for a contact (a body resting on a support), how far apart its
+    sides are (m or rad, at or below zero where they touch); None for a
+    coupling whose sides always touch.  A contact's sides meet where the gap
+    closes, not where their speeds do (a body at the top of its flight is not
+    caught in mid-air), with the momentum-keeping reset of a lock: a plastic
+    impact, whose kinetic energy the core adds to the state ``impact_state``
+    (a loss of the ledger).
     """
 
     can_slip: ClassVar[bool] = True
@@ -221,6 +234,8 @@ class AbstractCoupling(AbstractElement):
     # shaft turning freely (a pawl clicking over, a mesh rolling): its peaks say nothing its speed does not
     observes_slip_peak: ClassVar[bool] = True
     pressed_by: ClassVar[str | None] = None
+    switch_names: ClassVar[dict[str, str]] = {}  # the core's switch kind -> this coupling's event kind
+    impact_state: ClassVar[str | None] = None  # a contact's state that takes the kinetic energy its impacts lose
 
     def joins(self) -> tuple:
         raise NotImplementedError
@@ -241,3 +256,6 @@ class AbstractCoupling(AbstractElement):
 
     def is_open(self, segment):
         return False
+
+    def gap(self, x):
+        return None

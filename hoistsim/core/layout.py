@@ -66,6 +66,13 @@ class Layout:
         self.initial_states += [0.0] * len(self.angle_shafts)
         self._state_index = {name: i for i, name in enumerate(self.state_names)}
         self.event_kinds = list(SWITCH_KINDS)
+        # kinds of mode changes: the core's, those couplings rename them to, the crossings named by their way
+        self.switch_kinds = list(SWITCH_KINDS)
+        for element in elements:
+            named = [*getattr(element, "switch_names", {}).values(),
+                     *(k for pair in element.crossing_events.values() for k in pair)]
+            self.switch_kinds += [k for k in named if k not in self.switch_kinds]
+        self.event_kinds = list(self.switch_kinds)
         for element in elements:
             self.event_kinds += [k for k in element.event_kinds if k not in self.event_kinds]
         # kinks that close a cycle: (element index, kink, event kind)
@@ -76,7 +83,7 @@ class Layout:
                                                       for e in self.coupling_elements) else []
         for element in elements:
             self.observation_kinds += [k for k in element.observation_kinds
-                                       if k not in self.observation_kinds]
+                                       if k not in self.observation_kinds and k not in element.crossing_events]
         self.event_kinds += [k for k in self.observation_kinds if k not in self.event_kinds]
         self.sections = [e.section for e in elements]
         self._columns = {name: column for e in elements for name, column in e.columns.items()}
@@ -116,6 +123,11 @@ class Layout:
 
     def kind_code(self, kind: str) -> int:
         return self.event_kinds.index(kind)
+
+    def switch_code(self, coupling, core_kind: int) -> int:
+        """The event kind a coupling records for one of the core's switch kinds (renamed by ``switch_names``)."""
+        name = SWITCH_KINDS[core_kind]
+        return self.kind_code(coupling.switch_names.get(name, name))
 
     @property
     def size(self) -> int:

@@ -26,7 +26,7 @@ from . import switching
 from .bodies import Response, keep_momentum, response, response_table
 from .dynamics import Instant, slip_sign, vector_field
 from .element import SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STUCK
-from .layout import NO_EVENT, Layout
+from .layout import NO_EVENT, SWITCH_KINDS, Layout
 from .columns import row_outputs, summary_values
 from .eventlog import LOG_FIELDS, record, unpack
 from .ledger import ledger_values
@@ -47,7 +47,7 @@ MAX_STEPS_PER_SEGMENT = 200_000
 SHARED_ZERO = 16
 # Passes that may end at a kink, per allowed switch (beyond, kinks are stepped across).
 KINK_BUDGET = 100
-_REDUCTIONS = {"max": -jnp.inf, "min": jnp.inf, "first": jnp.nan, "duration": 0.0}
+_REDUCTIONS = {"max": -jnp.inf, "min": jnp.inf, "first": jnp.nan, "first_value": jnp.nan, "duration": 0.0}
 
 # Incremented each time the loop is traced (i.e. compiled): tests use it to show
 # that new parameter values do not recompile.
@@ -136,6 +136,7 @@ def _note(plan: Plan, segment: Segment, c: _Carry, t, y, modes, reply=None) -> _
         old = c.extremes[name]
         folded[name] = {"max": lambda: jnp.maximum(old, value), "min": lambda: jnp.minimum(old, value),
                         "first": lambda: jnp.where(jnp.isnan(old) & value, t, old),
+                        "first_value": lambda: jnp.where(jnp.isnan(old) & value[0], value[1], old),
                         "duration": lambda: old}[kind]()
     return eqx.tree_at(lambda k: k.extremes, c, folded)
 
@@ -149,6 +150,9 @@ def _record_transitions(plan: Plan, segment: Segment, c: _Carry, when, t, y, bef
             continue
         kind = switching.transition_kind(before[k], after[k])
         happened = when & (kind != NO_EVENT)
+        if coupling.switch_names:  # the coupling's own names for them (lifting off a support)
+            codes = jnp.asarray([layout.switch_code(coupling, core) for core in range(len(SWITCH_KINDS))])
+            kind = jnp.where(happened, codes[jnp.maximum(kind, 0)], kind)
         margin = switching.margin(layout, segment, t, y, after, k) if columns else jnp.nan
         c = record(c, happened, t, kind, index, y, after, margin)
         c = eqx.tree_at(lambda q: q.switches, c, c.switches + happened)
@@ -160,7 +164,8 @@ def _scheduled_switches(plan: Plan, segment: Segment, c: _Carry, columns: bool) 
     layout = plan.layout
     modes, candidates = switching.candidates_at_boundary(layout, segment, c.y, plan.speed_scale)
     decided, _ = switching.settle(layout, segment, c.t, c.y, modes, candidates)
-    decided_y = keep_momentum(layout, c.y, [m == STUCK for m in decided])
+    decided_y = switching.with_impacts(layout, c.y, keep_momentum(layout, c.y, [m == STUCK for m in decided]),
+                                       c.modes, decided)
     before = c.modes
     new_modes = jnp.where(c.at_boundary, decided, c.modes)
     c = eqx.tree_at(lambda k: (k.y, k.modes), c, (jnp.where(c.at_boundary, decided_y, c.y), new_modes))
@@ -173,10 +178,11 @@ def _scheduled_switches(plan: Plan, segment: Segment, c: _Carry, columns: bool) 
 
 
 def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit, columns: bool,
-                 coinciding: dict) -> _Carry:
+                 coinciding: dict, orients: dict) -> _Carry:
     """A guard fired at (t, y): lock, reverse or unlock with the matching reset, or an observation.
 
-    ``coinciding``: knots reached at (t, y) along with the guard that fired.
+    ``coinciding``: knots reached at (t, y) along with the guard that fired; ``orients``: the way each
+    two-way observation left the pass's start (+1: it fell to zero; see switching.orients).
     """
     layout = plan.layout
     # At most one guard fires at a time (the earliest; the first listed at one instant): one row for any observation.
@@ -184,7 +190,10 @@ def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit
     for role, name, _ in switching.guards(layout):
         if role in ("observe", "limit"):
             section, what = name.rsplit(".", 1)
-            kind = jnp.where(masks[name], layout.kind_code(what), kind)
+            named = layout.elements[layout.sections.index(section)].crossing_events.get(what)
+            code = layout.kind_code(what) if named is None else jnp.where(
+                orients[name] > 0, layout.kind_code(named[1]), layout.kind_code(named[0]))
+            kind = jnp.where(masks[name], code, kind)
             element = jnp.where(masks[name], layout.sections.index(section), element)
             observed = observed | masks[name]
     c = record(c, observed, t, kind, element, y, c.modes, jnp.nan)
@@ -230,11 +239,12 @@ def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit
     for k, coupling in enumerate(layout.coupling_elements):
         if not coupling.can_slip:
             continue
-        together = meeting & (slip_sign(modes[k]) != 0.0) & (
+        together = meeting & (slip_sign(modes[k]) != 0.0) & switching.touching(coupling, x) & (
             jnp.abs(x.relative_speed(coupling.section)) <= SHARED_ZERO * SLIP_RESOLUTION * plan.speed_scale)
         modes = modes.at[k].set(jnp.where(together, STUCK, modes[k]))
         candidates[k] = candidates[k] | together
     new_modes, new_y = switching.settle(layout, segment, t, y, modes, candidates)
+    new_y = switching.with_impacts(layout, y, new_y, c.modes, new_modes)
     c = _record_transitions(plan, segment, c, hit, t, new_y, c.modes, new_modes, columns)
     return eqx.tree_at(lambda k: (k.y, k.modes), c,
                        (jnp.where(hit, new_y, c.y), jnp.where(hit, new_modes, c.modes)))
@@ -293,7 +303,8 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     missed = jnp.zeros((), bool)
     for k, coupling in enumerate(layout.coupling_elements):
         if coupling.can_slip:
-            wrong = slip_sign(c.modes[k]) * end.relative_speed(coupling.section) < 0
+            gap = coupling.gap(end)  # a contact's sides passed through each other
+            wrong = slip_sign(c.modes[k]) * end.relative_speed(coupling.section) < 0 if gap is None else gap < 0
             missed = missed | (masks[f"{coupling.section}.slip_valley"] & wrong)
     overtaken, limit_overtaken, coinciding = switching.crossed_together(guards, pass_args, t_end, y_end, armed,
                                                                         masks)
@@ -330,7 +341,7 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
         (extremes, grid_state, grid_modes, c.steps + sol.steps, c.rejected + sol.rejected, c.segments + 1, fired),
     )
     c = _apply_event(plan, segment, eqx.tree_at(lambda k: k.y, c, y_end), t_end, y_end, masks, hit & kept,
-                     columns, coinciding)
+                     columns, coinciding, pass_args.orients)
     c = _note(plan, segment, c, t_reached, c.y, c.modes)
     switches, _, _ = _in_cycle(c)
     status = jnp.where(failed, SOLVER_FAILED, jnp.where(switches > plan.max_switches, CHATTERING, c.status))

@@ -14,6 +14,9 @@ so a guard that is exactly zero at a restart cannot fire.
   coupling carries: 0 when side a breaks away forwards / backwards.
 - ``slip_peak`` (an observation): the rate of |slip| while not stuck, through 0
   where the slip speed peaks, so the peak is a row, not a sample.
+- For a contact (a coupling with a ``gap``: a body resting on a support) the
+  sides meet where the gap closes instead, and its valley is where they stop
+  closing (the relative speed rising through 0).
 - ``slip_valley`` (a safeguard): minus the rate of the slip in its direction,
   through 0 where the slip stops shrinking.  With a loose tolerance one step can
   carry the slip below zero and back so that neither end of the step shows the
@@ -70,6 +73,12 @@ def _instant(t, y, args) -> Instant:
     return x
 
 
+def touching(coupling, x):
+    """Whether a coupling's sides touch: always, but for a contact whose gap is open."""
+    gap = coupling.gap(x)
+    return jnp.ones((), bool) if gap is None else gap <= 0.0
+
+
 def guards(layout: Layout) -> list[tuple[str, str, object]]:
     """(role, name, guard function) of every guard, in order: at one instant the first listed fires.
 
@@ -83,9 +92,12 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
             continue
         name = coupling.section
 
-        def slip(t, y, args, k=k, name=name, **_):
+        def slip(t, y, args, k=k, name=name, coupling=coupling, **_):
             x = _instant(t, y, args)
             s = slip_sign(args.modes[k])
+            gap = coupling.gap(x)
+            if gap is not None:  # a contact: its sides meet where the gap closes
+                return jnp.where(s != 0.0, gap, 1.0)
             return jnp.where(s != 0.0, s * x.relative_speed(name) + SLIP_RESOLUTION * args.speed_scale, 1.0)
 
         def breakaway(sign, k=k, coupling=coupling, name=name):
@@ -100,11 +112,13 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
             growth = jnp.sign(x.relative_speed(name)) * x.relative_acceleration(name)
             return jnp.where((args.modes[k] != STUCK) & args.observing, growth - args.offsets[f"{name}.slip_peak"], 1.0)
 
-        def dip(t, y, args, k=k, name=name, **_):
+        def dip(t, y, args, k=k, name=name, coupling=coupling, **_):
             x = _instant(t, y, args)
             s = slip_sign(args.modes[k])
-            return jnp.where((s != 0.0) & args.observing,
-                             -s * x.relative_acceleration(name) - args.offsets[f"{name}.slip_valley"], 1.0)
+            # where the slip stops shrinking; for a contact, where its sides stop closing (the gap's low point)
+            closing = (-x.relative_speed(name) if coupling.gap(x) is not None
+                       else -s * x.relative_acceleration(name))
+            return jnp.where((s != 0.0) & args.observing, closing - args.offsets[f"{name}.slip_valley"], 1.0)
 
         switch += [("switch", f"{name}.slip", held_off(slip)),
                    ("switch", f"{name}.breakaway+", held_off(breakaway(1.0))),
@@ -222,6 +236,8 @@ def candidates_at_boundary(layout: Layout, segment, y, speed_scale):
         if coupling.can_slip:
             slip = x.relative_speed(coupling.section)
             mode = jnp.where(slip > tiny, SLIP_FORWARD, jnp.where(slip < -tiny, SLIP_BACKWARD, STUCK))
+            if coupling.gap(x) is not None:  # a contact's sides apart move freely (slip forwards) however fast
+                mode = jnp.where(touching(coupling, x), jnp.where(slip > tiny, SLIP_FORWARD, STUCK), SLIP_FORWARD)
         else:
             mode = jnp.asarray(STUCK)
         mode = jnp.where(is_open, OPEN, mode)
@@ -279,6 +295,18 @@ def settle(layout: Layout, segment, t, y, modes, candidates):
         flipped = jnp.where(modes[k] == SLIP_FORWARD, SLIP_BACKWARD, SLIP_FORWARD)
         modes = modes.at[k].set(jnp.where(candidates[k] & (parting < 0.0), flipped, modes[k]))
     return modes, met
+
+
+def with_impacts(layout: Layout, y_before, y_after, modes_before, modes_after):
+    """``y_after`` with the kinetic energy that a contact's impact took (its sides met and moved on
+    together, momentum kept) added to the contact's ``impact_state``: a plastic impact's loss."""
+    for k, coupling in enumerate(layout.coupling_elements):
+        if coupling.impact_state is None:
+            continue
+        lost = Instant(layout, 0.0, y_before).kinetic_energy() - Instant(layout, 0.0, y_after).kinetic_energy()
+        landed = (modes_after[k] == STUCK) & (modes_before[k] != STUCK)
+        y_after = y_after.at[layout.state_index(coupling.impact_state)].add(jnp.where(landed, lost, 0.0))
+    return y_after
 
 
 def transition_kind(previous, new):

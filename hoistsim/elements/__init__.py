@@ -15,9 +15,11 @@ from .clutch_heating import ClutchHeating as ClutchHeating
 from .cone_clutch import ConeClutch as ConeClutch
 from .constant_torque_motor import ConstantTorqueMotor as ConstantTorqueMotor
 from .drum import Drum as Drum
+from .elastic_load import ElasticLoad as ElasticLoad
 from .flywheel import Flywheel as Flywheel
 from .friction_brake import FrictionBrake as FrictionBrake
 from .gear_pair import GearPair as GearPair
+from .ground import Ground as Ground
 from .holding_brake import HoldingBrake as HoldingBrake
 from .linear_motor import LinearMotor as LinearMotor
 from .mesh_friction import MeshFriction as MeshFriction
@@ -27,7 +29,9 @@ from .ratchet import Ratchet as Ratchet
 from .periodic_regime import PeriodicRegime as PeriodicRegime
 from .resisting_ripple import ResistingRipple as ResistingRipple
 from .rigid_load import RigidLoad as RigidLoad
+from .rope import Rope as Rope
 from .slider_crank import SliderCrank as SliderCrank
+from .wire_rope import WireRope as WireRope
 
 # Scenario section (dotted within another) -> its element, or the variant's name -> element for a
 # section with variants.
@@ -41,7 +45,9 @@ REGISTRY: dict[str, object] = {
     "clutch_heating": ClutchHeating,
     "drum": Drum,
     "drum.resisting_ripple": ResistingRipple,
-    "load": RigidLoad,
+    "load": {"rigid": RigidLoad, "elastic": ElasticLoad},  # on a rigid rope, or a body of its own on rope:
+    "rope": {"stiffness": Rope, "modulus": WireRope},
+    "ground": Ground,
     "flywheel": Flywheel,
     "reciprocating": SliderCrank,
     "brake": {"holding": HoldingBrake, "friction": FrictionBrake},
@@ -49,6 +55,14 @@ REGISTRY: dict[str, object] = {
     "bearings": DrumShaftLoads,
     "periodic_regime": PeriodicRegime,  # scenario.periodic_regime: given, or implied by a ripple
 }
+
+
+def _variant(section: str, spec, scenario) -> str:
+    """The variant of a section with variants: its spec's ``characteristic``, or for the load, whether
+    the scene gives it a rope of its own."""
+    if section == "load":
+        return "rigid" if scenario.rope is None else "elastic"
+    return spec.characteristic
 
 
 def element_sections(scenario) -> list[tuple[str, object, type]]:
@@ -60,7 +74,7 @@ def element_sections(scenario) -> list[tuple[str, object, type]]:
             spec = getattr(spec, part, None)
         if spec is None:
             continue
-        out.append((section, spec, entry[spec.characteristic] if isinstance(entry, dict) else entry))
+        out.append((section, spec, entry[_variant(section, spec, scenario)] if isinstance(entry, dict) else entry))
     return out
 
 

@@ -7,6 +7,7 @@ from typing import ClassVar
 
 import jax.numpy as jnp
 
+from .._pytree import static
 from ..components import DrumShaft
 from ..core.element import AbstractElement
 from ..core.panel import Panel, Trace
@@ -15,7 +16,7 @@ _DESCRIPTIONS = {
     "tooth_tangential_force": "tooth force along the pitch-circle tangent, from the torque the wheel receives",
     "tooth_radial_force": "separating tooth force, T tan(pressure angle)",
     "tooth_force": "total tooth force",
-    "rope_tension": "rope tension M (g + a)",
+    "rope_tension": "rope tension: M (g + a) on a rigid rope, the rope's force on an elastic one",
     "bearing_A_x": "bearing A reaction in the plane of the tangential tooth force",
     "bearing_A_y": "bearing A reaction in the plane of the radial tooth force and the rope",
     "bearing_A": "bearing A reaction, magnitude",
@@ -31,8 +32,10 @@ class DrumShaftLoads(AbstractElement):
     The tooth force comes from the torque the wheel actually receives, the tooth
     load: what the drum shaft's inertia, load, brake and pawl take from it (with
     a lossy mesh, less than the pinion gives by the flanks' friction).
-    The rope tension is M (g + a) with a the load's acceleration.  Adds no state
-    and no term to the equations of motion: only output columns.
+    The rope tension is M (g + a) with a the load's acceleration on a rigid
+    rope; on an elastic rope (``rope:``) it is the rope's own force, what pulls
+    the drum's rope point down.  Adds no state and no term to the equations of
+    motion: only output columns.
     """
 
     wheel_pitch_radius: object  # r2, m
@@ -43,6 +46,7 @@ class DrumShaftLoads(AbstractElement):
     gear_offset: object  # m
     rope_offset: object  # m
     span: object  # m
+    elastic_rope: bool = static(False)
 
     section: ClassVar[str] = "bearings"
     columns: ClassVar[dict] = {name: ("N", text) for name, text in _DESCRIPTIONS.items()}
@@ -63,12 +67,16 @@ class DrumShaftLoads(AbstractElement):
             gear_offset=spec.gear_offset,
             rope_offset=spec.rope_offset,
             span=spec.span,
+            elastic_rope=scenario.rope is not None,
         )
 
     def outputs(self, x) -> dict:
         tangential = x.torque_into("drum") / self.wheel_pitch_radius
         radial = jnp.abs(tangential) * self.tan_pressure_angle
-        rope_tension = self.load_mass * (self.gravity + self.rope_radius * x.acceleration("drum"))
+        if self.elastic_rope:  # what the rope pulls the drum's rope point down with
+            rope_tension = -x.shaft_torques["rope_point"]
+        else:
+            rope_tension = self.load_mass * (self.gravity + self.rope_radius * x.acceleration("drum"))
         shaft = DrumShaft(self.gear_offset, self.rope_offset, self.span)
         return {
             "tooth_tangential_force": tangential,
