@@ -252,7 +252,7 @@ def _first_root(a, z0, t0, end, guards):
             best = None
             for name in crossed:
                 g = guards[name]
-                root = brentq(lambda s: g(expm(a * (s - t0)) @ z0), t, t_next, xtol=1e-15, rtol=4.5e-16,
+                root = brentq(lambda s: g(expm(a * (s - t0)) @ z0), t, t_next, xtol=1e-15, rtol=8.9e-16,
                               maxiter=200)
                 if best is None or root < best[0]:
                     best = (root, name)
@@ -276,7 +276,7 @@ def _peaks(out: ExactRope, a, z0, t0, t1) -> list:
     points = list(times) + [t1]
     for (ta, va), (tb, vb) in zip(zip(points, values), zip(points[1:], values[1:])):
         if va > 0.0 >= vb:
-            root = brentq(lambda s: float(rate @ at(s)), ta, tb, xtol=1e-15, rtol=4.5e-16)
+            root = brentq(lambda s: float(rate @ at(s)), ta, tb, xtol=1e-15, rtol=8.9e-16)
             found.append((root, float(force @ at(root))))
     return found
 

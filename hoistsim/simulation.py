@@ -15,6 +15,7 @@ from .core.loop import CHATTERING, OK, SOLVER_FAILED, STATUS_TEXT, compiled_run
 from .core.readout import Readout
 from .periodic.analysis import periodic_regime
 from .results import RunResult
+from .errors import ScenarioError
 from .scenario import Scenario
 
 
@@ -35,9 +36,21 @@ def simulate(scenario: Scenario, label: str = "") -> RunResult:
         if not raw.log_overflowed:
             break
         sizes = loop_sizes(plan, sim.max_switches, log_size=raw.event_count + 1)  # room for every row
+    scenario_errors(scenario, raw)
     if raw.status != OK:
         raise SimulationError(failure_message(scenario, raw))
     return run_result(scenario, label, grid, raw, elapsed)
+
+
+def scenario_errors(scenario: Scenario, raw: Readout) -> None:
+    """A one-line ScenarioError where a run crossed a limit that says its scenario is wrong (an element's
+    ``errors``: a rope wound onto the drum entirely), at the first such crossing."""
+    times, kinds, _, _ = raw.events()
+    for element in raw.layout.elements:
+        for kind, (key, message) in element.errors.items():
+            crossed = times[kinds == kind]
+            if crossed.size:
+                raise ScenarioError(key, message.format(time=float(crossed.min())), source=scenario.source)
 
 
 def failure_message(scenario: Scenario, raw: Readout) -> str:

@@ -307,6 +307,25 @@ CASES = [
     Case("sweep without a list", None, "sweep:\n  load.mass: 100 kg\n", "sweep.load.mass", "load.mass: 100",
          "non-empty list"),
     Case("sweep that is not a mapping", None, "sweep: [1, 2]\n", "sweep", "sweep:", "must map keys"),
+    # the rope and the ground
+    Case("rope stiffness not positive", None, "rope:\n  stiffness: 0 N/m\n", "rope.stiffness", "stiffness: 0",
+         "must be positive"),
+    Case("rope stiffness of another kind", None, "rope:\n  stiffness: 2.5e5 N\n", "rope.stiffness",
+         "stiffness: 2.5e5", "stiffness"),
+    Case("rope stiffness and modulus", None, "rope:\n  stiffness: 2.5e5 N/m\n  modulus: 100 GPa\n",
+         "rope.modulus", "modulus: 100", "either stiffness or a wire rope's modulus"),
+    Case("wire rope without its length", None, "rope:\n  modulus: 100 GPa\n  metallic_area: 95 mm^2\n",
+         "rope.free_length", "rope:", "required"),
+    Case("rope damping ratio negative", None, "rope:\n  stiffness: 2.5e5 N/m\n  damping_ratio: -0.1\n",
+         "rope.damping_ratio", "damping_ratio: -0.1", "must not be negative"),
+    Case("rope slack negative", None, "rope:\n  stiffness: 2.5e5 N/m\n  initial_slack: -1 cm\n",
+         "rope.initial_slack", "initial_slack: -1", "must not be negative"),
+    Case("rope with a massless load", "mass: 500 kg", "mass: 0 kg\nrope:\n  stiffness: 2.5e5 N/m", "load.mass",
+         "mass: 0 kg", "must be positive with an elastic rope"),
+    Case("ground on a rigid rope with the drum turning", None,
+         "ground: {}\ninitial:\n  drum_speed: 10 rpm\n", "initial.drum_speed", "drum_speed: 10", "rests on the ground"),
+    Case("hoisting class unknown", None, "ground:\n  hoisting_class: HC5\n", "ground.hoisting_class",
+         "hoisting_class: HC5", "HC1"),
 ]
 
 

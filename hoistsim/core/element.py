@@ -110,6 +110,8 @@ class AbstractElement:
     # of those, the ones that are events named by the way they cross: kind -> (rising event, falling event)
     crossing_events: ClassVar[dict[str, tuple[str, str]]] = {}
     limits: ClassVar[tuple[str, ...]] = ()  # of those, thresholds: never lost to a coinciding event
+    # of those, thresholds that make the scenario wrong: kind -> (the key to blame, the message, with {time})
+    errors: ClassVar[dict[str, tuple[str, str]]] = {}
     summaries: ClassVar[dict[str, str]] = {}  # summary name -> units
     ledger_kinds: ClassVar[dict[str, str]] = {}  # energy term -> "work", "loss", "potential" or "heat of <loss>"
     cycles: ClassVar[dict[str, str]] = {}  # kink -> event kind recorded where it is crossed

@@ -30,6 +30,9 @@ class WireRope(AbstractRope):
 
     observation_kinds: ClassVar[tuple] = AbstractRope.observation_kinds + ("rope_wound_up",)
     limits: ClassVar[tuple] = ("rope_wound_up",)
+    errors: ClassVar[dict] = {"rope_wound_up": (
+        "rope.free_length", "is too short: the drum has wound all of it on at t = {time:.4g} s (the load would "
+        "reach the drum); give the rope's length from the drum to the load at the start")}
     ledger_kinds: ClassVar[dict] = {**AbstractRope.ledger_kinds, "rope_stiffening": "work"}
     columns: ClassVar[dict] = {**AbstractRope.columns,
                                "rope_stiffness": ("N/m", "rope stiffness E A / L at the free length L")}
