@@ -20,8 +20,10 @@ POINTS = 60  # up to this many runs, each is a marked point
 def summary_figure(summaries, swept, plt, name: str = "", parameters: dict | None = None):
     classes = element_classes()
     names = set(summaries[0])
-    panels = sorted((p for cls in classes for p in cls.summary_panels if p.name in names), key=lambda p: p.order)
-    outcomes = [(o, _applies(o, summaries)) for cls in classes for o in cls.outcomes]
+    # variants of one part (a load on a rigid or an elastic rope) share their panels: each is drawn once
+    panels = sorted(dict.fromkeys(p for cls in classes for p in cls.summary_panels if p.name in names),
+                    key=lambda p: p.order)
+    outcomes = [(o, _applies(o, summaries)) for o in dict.fromkeys(o for cls in classes for o in cls.outcomes)]
     outcomes = [(o, mask) for o, mask in outcomes if mask is not None and mask.any()]
     x = np.asarray(swept[1], dtype=float)
     order = np.argsort(x, kind="stable")
@@ -49,6 +51,10 @@ def summary_figure(summaries, swept, plt, name: str = "", parameters: dict | Non
                         transform=ax.get_xaxis_transform(), zorder=4)
             elif few and panel.order == 0:
                 ax.plot(x[mask], y[mask], outcome.marker, color=outcome.colour, ms=6, zorder=4)
+        if panel.beside is not None and panel.beside[1] in names:  # another answer to the same question
+            other = np.asarray([row[panel.beside[1]] for row in summaries], dtype=float) * panel.scale + panel.offset
+            ax.plot(x[order], other[order], color="#b35806", lw=1.2, ls="--", marker="s" if few else None, ms=3.5,
+                    zorder=2, label=panel.beside[0])
         if panel.zero_line:
             ax.axhline(0.0, color="k", lw=0.6)
         swept_limit = panel.limit is not None and panel.limit[1] in summaries[0]  # a swept key is a column

@@ -47,7 +47,11 @@ SUMMARY_COLUMNS = [  # (summary key, header, scale)
 ]
 # shown where the runs have them (a part the scene names): after the clutch's heat
 OPTIONAL_COLUMNS = {"slip_energy": [("peak_clutch_temperature", "peak clutch [degC]", lambda kelvin: kelvin - 273.15),
-                                    ("overheat_time", "overheats [s]", 1.0)]}
+                                    ("overheat_time", "overheats [s]", 1.0)],
+                    "final_load_position": [("lift_off_time", "lift-off [s]", 1.0),
+                                            ("peak_rope_force", "peak rope [kN]", 1e-3),
+                                            ("dynamic_factor", "phi", 1.0),
+                                            ("dynamic_factor_standard", "phi2 EN 13001", 1.0)]}
 
 
 def summary_table(summaries: list[dict], head: int = 12, tail: int = 6) -> str:

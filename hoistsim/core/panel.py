@@ -94,6 +94,8 @@ class SummaryPanel:
     # a line across the panel: (its label, the dotted scenario key that gives it in SI; none where the
     # scenario does not give it, nor where that key is swept: the line would be one run's)
     limit: tuple[str, str] | None = None
+    # another summary answering the same question, drawn beside it: (its label, its name)
+    beside: tuple[str, str] | None = None
 
 
 @dataclass(frozen=True)

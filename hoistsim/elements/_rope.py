@@ -53,7 +53,8 @@ class AbstractRope(AbstractElement):
     shading: ClassVar[tuple] = (Phase("rope slack", "rope_taut", 0, "#fdb863", hatch="//"),)
     summary_panels: ClassVar[tuple] = (
         SummaryPanel("peak_rope_force", "peak rope force [kN]", 32, scale=1e-3),
-        SummaryPanel("dynamic_factor", "dynamic factor\n(peak rope force / M g)", 33),
+        SummaryPanel("dynamic_factor", "dynamic factor\n(peak rope force / M g)", 33,
+                     beside=("EN 13001-2's phi2 at the lift-off rope speed", "dynamic_factor_standard")),
     )
 
     @classmethod
