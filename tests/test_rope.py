@@ -208,3 +208,64 @@ def test_a_rope_too_short_for_what_the_drum_winds_on_is_a_scenario_error():
     stretch0 = MASS * G * 0.4 / (100e9 * 95e-6)
     wound = short["rope_stretch"][-1] - stretch0 + short["load_position"][-1]
     assert 0.4 * 0.99 < wound < 0.4
+
+
+def _rigid_on_the_ground(open_at="1.0 s"):
+    """The engage-at-speed scene with the load resting on the ground instead of a brake holding it: the
+    clutch's force ramps to 5 kN over 0.5-0.6 s, and the clutch opens again at ``open_at``."""
+    data = copy.deepcopy(EXERCISE6)
+    data["ground"] = {}
+    data["initial"] = {"motor_speed": "300 rpm"}
+    data["clutch"]["engagement_force"] = [["0 s", "0 N"], ["0.5 s", "0 N"], ["0.6 s", "5000 N"],
+                                          [open_at, "5000 N"], [open_at, "0 N"]]
+    data["simulation"].update(duration="3 s", output_interval="10 ms")
+    return scenario_from_dict(data, name="rigid-ground")
+
+
+def test_a_load_on_a_rigid_rope_rests_until_the_clutch_lifts_it_and_lands_in_a_plastic_impact():
+    """Slipping, the clutch passes f c F(t); the load lifts off where that reaches M g R / tau (the ramp's
+    closed form).  Opened at 1 s, the drum side coasts up, decelerating at T_L / J_b, and comes down:
+    it lands where the height returns to zero, and the landing takes the drum side's kinetic energy."""
+    from hoistsim.model import Machine
+
+    scenario = _rigid_on_the_ground()
+    run = simulate(scenario)
+    d = Machine.from_scenario(scenario).reduced()
+    sliding_per_newton = d.kinetic_friction * d.clutch_constant
+    lift_off = 0.5 + 0.1 * (d.load_torque / sliding_per_newton) / 5000.0
+    assert run.summary["lift_off_time"] == pytest.approx(lift_off, abs=1e-9)
+    ground = run.events["element"] == "ground"
+    assert list(run.events["kind"][ground]) == ["lift_off", "touch_down"]
+    # after the clutch opens (t_o), the height is a parabola: x_o + v_o u - a u^2 / 2, a = R T_L / (tau J_b)
+    opened = np.searchsorted(run.time, 1.0)
+    x0, v0 = run["load_position"][opened], run["load_velocity"][opened]
+    decel = d.rope_radius * d.load_torque / (d.ratio * d.output_inertia)
+    landing = 1.0 + (v0 + math.sqrt(v0**2 + 2 * decel * x0)) / decel
+    touch_down = run.events["time"][run.events["kind"] == "touch_down"][0]
+    assert touch_down == pytest.approx(landing, abs=1e-8)
+    speed_then = v0 - decel * (touch_down - 1.0)  # m/s at the rope
+    pinion = speed_then / d.rope_radius * d.ratio
+    assert run.summary["landing_loss"] == pytest.approx(0.5 * d.output_inertia * pinion**2, rel=1e-8)
+    after = run.time > touch_down
+    assert np.all(run["load_position"][after] == run["load_position"][after][0])
+    assert abs(run["load_position"][after][0]) < 1e-9 and np.all(run["drum_speed"][after] == 0.0)
+    assert np.all(run["load_on_ground"][after] == 1)
+    assert run.summary["energy_relative_residual"] < 1e-9  # the landing's loss closes the ledger
+
+
+def test_the_shipped_lift_off_scene_says_what_its_header_says():
+    from conftest import SCENARIOS
+
+    from hoistsim import load_scenario
+
+    run = simulate(load_scenario(SCENARIOS / "lift_off_the_ground.yaml"))
+    s = run.summary
+    assert s["lift_off_time"] == pytest.approx(0.058, abs=5e-4)
+    assert s["lockup_time"] == pytest.approx(0.350, abs=5e-4)
+    assert s["peak_rope_force"] == pytest.approx(9210, abs=5)
+    assert s["dynamic_factor"] == pytest.approx(1.88, abs=5e-3)
+    assert s["dynamic_factor_standard"] == pytest.approx(1.10 + 0.34 * 0.2 * np.interp(
+        s["lift_off_time"], run.time, run["drum_speed"]), rel=1e-6)
+    # the bearings feel the rope: the rope tension column is the rope's force
+    np.testing.assert_allclose(run["rope_tension"], run["rope_force"], rtol=1e-12, atol=1e-9)
+    assert s["energy_relative_residual"] < 1e-8
