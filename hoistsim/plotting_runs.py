@@ -27,7 +27,9 @@ _LIMIT_COLOUR = "0.35"
 _EVENT_STYLE = {"lock": ("#1b7837", "-"), "unlock": ("#b2182b", "--"), "reversal": ("#762a83", ":"),
                 "brake_release": ("#8c510a", "-."), "engage": ("#2166ac", (0, (1, 1))),
                 "disengage": ("#2166ac", (0, (3, 1, 1, 1)))}
-_MARK_NAMES = {"lock": "clutch locks", "load_lowest": "lowest point"}
+_MARK_NAMES = {"lock": "clutch locks", "load_lowest": "lowest point", "lift_off": "lift-off", "touch_down": "touch-down",
+               "rope_force_peak": "peak"}
+_MARK_SHAPES = {"lift_off": "^", "touch_down": "v", "rope_force_peak": "D"}  # else a circle
 _LIMIT_MARK = "#b2182b"
 _CURVE = "curve"  # the gid of a run's curve (not a zero line, an event line or a legend's sample)
 _LEGEND = dict(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False, borderaxespad=0.0)
@@ -180,9 +182,10 @@ def _marks(ax, trace, scale, runs, run_colours, mode):
             ax.scatter(xs, ys, s=40 if mode != "family" else 14, c=_LIMIT_MARK, marker="v", lw=0, zorder=4,
                        label=name)
         elif mode == "family":
-            ax.scatter(xs, ys, s=6, c="k", marker="o", lw=0, zorder=3, label=name)
+            ax.scatter(xs, ys, s=6, c="k", marker=_MARK_SHAPES.get(kind, "o"), lw=0, zorder=3, label=name)
         else:
-            ax.scatter(xs, ys, s=28, facecolors="white", edgecolors=cs, marker="o", lw=1.3, zorder=3, label=name)
+            ax.scatter(xs, ys, s=28, facecolors="white", edgecolors=cs, marker=_MARK_SHAPES.get(kind, "o"), lw=1.3,
+                       zorder=3, label=name)
 
 
 def _shade(axes, run, shading):
