@@ -9,13 +9,15 @@ import jax.numpy as jnp
 from .._pytree import static
 from ..core.element import STUCK, AbstractCoupling
 from ..core.panel import Phase
+from ._one_way import OneWayHold
 
 # EN 13001-2's dynamic factor phi2 = phi2_min + beta2 * v_h by hoisting class: (phi2_min, beta2 [s/m])
 HOISTING_CLASSES = {"HC1": (1.05, 0.17), "HC2": (1.10, 0.34), "HC3": (1.15, 0.51), "HC4": (1.20, 0.68)}
 
 
-class Ground(AbstractCoupling):
-    """A one-way support under the load: a contact between the load and the ground.
+class Ground(OneWayHold, AbstractCoupling):
+    """A one-way support under the load: a contact between the load and the ground (the load pressing
+    down pushes it backwards: held without limit; a pull up meets no support).
 
     Resting (stuck) it holds any push down and none up: the load lifts off
     (``lift_off``) at the instant the rope pulls more than its weight.  In the
@@ -62,17 +64,6 @@ class Ground(AbstractCoupling):
 
     def joins(self) -> tuple:
         return ("load", None)
-
-    def capacity(self, x):
-        return jnp.inf
-
-    def capacity_toward(self, x, sign):
-        # the load pushes the ground backwards (down) under its weight: held, without limit; a pull up
-        # meets no support
-        return jnp.where(sign > 0, 0.0, jnp.inf)
-
-    def sliding_torque(self, x):
-        return 0.0
 
     def gap(self, x):
         return x.state("load_position")

@@ -4,14 +4,14 @@ from __future__ import annotations
 
 from typing import ClassVar
 
-import jax.numpy as jnp
 import numpy as np
 
 from ..core.panel import Panel, Phase, Trace
 from ._drum_hold import AbstractDrumHold
+from ._one_way import OneWayHold
 
 
-class Ratchet(AbstractDrumHold):
+class Ratchet(OneWayHold, AbstractDrumHold):
     """A one-way coupling of the drum shaft to the ground, until ``release_time`` lifts the pawl.
 
     Stuck, it holds any torque that would lower the load and none that would
@@ -37,14 +37,3 @@ class Ratchet(AbstractDrumHold):
     @classmethod
     def from_spec(cls, spec, scenario) -> "Ratchet":
         return cls(release_time=np.inf if spec.release_time is None else spec.release_time)
-
-    def capacity(self, x):
-        return jnp.inf
-
-    def capacity_toward(self, x, sign):
-        # the drum pushes the ground backwards (negative) when the load would lower it: held, without limit;
-        # a torque that would lift it meets no pawl
-        return jnp.where(sign > 0, 0.0, jnp.inf)
-
-    def sliding_torque(self, x):
-        return 0.0
