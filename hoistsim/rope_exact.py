@@ -193,7 +193,7 @@ def _matrix(h: RopeHoist, force_line, clutch: str, taut: bool, aloft: bool) -> n
     return a
 
 
-def _clutch_torque_row(out: ExactRope, a_locked: np.ndarray, taut: bool) -> np.ndarray:
+def _clutch_torque_row(out: ExactRope, a_locked: np.ndarray) -> np.ndarray:
     """The torque a locked clutch carries, as a row on z: C(w) - J_a w'."""
     h = out.hoist
     motor = np.zeros(7)
@@ -213,7 +213,7 @@ def _guards(out: ExactRope, a, line, clutch, taut, aloft) -> dict:
     force = out._force_row(True)
     guards = {}
     if clutch == LOCKED:
-        torque = _clutch_torque_row(out, a, taut)
+        torque = _clutch_torque_row(out, a)
         capacity = _capacity_row(h, line)
         guards["breakaway+"] = lambda z: capacity @ z - torque @ z
         guards["breakaway-"] = lambda z: capacity @ z + torque @ z
@@ -238,8 +238,9 @@ def _first_root(a, z0, t0, end, guards):
     armed = {name: g(z0) > 0.0 for name, g in guards.items()}
     t, z = t0, z0
     while t < end:
-        t_next = min(t + SAMPLE, end)
-        z_next = step @ z if t_next - t == SAMPLE else expm(a * (t_next - t0)) @ z0
+        whole = t + SAMPLE < end  # a whole sample: one product with its exponential; the last, its own
+        t_next = t + SAMPLE if whole else end
+        z_next = step @ z if whole else expm(a * (t_next - t0)) @ z0
         crossed = []
         for name, g in guards.items():
             value = g(z_next)
@@ -312,7 +313,7 @@ def _clutch_decision(out: ExactRope, z, line, taut, aloft, met: bool = False) ->
     if not met and abs(z[WM] - z[WP]) > 1e-12 * max(1.0, abs(z[WM])):
         return SLIP_FORWARD if z[WM] > z[WP] else SLIP_BACKWARD
     a = _matrix(h, line, LOCKED, taut, aloft)
-    torque = float(_clutch_torque_row(out, a, taut) @ z)
+    torque = float(_clutch_torque_row(out, a) @ z)
     if abs(torque) <= h.capacity_per_newton * force:
         return LOCKED
     return SLIP_FORWARD if torque > 0 else SLIP_BACKWARD

@@ -30,6 +30,18 @@ SOLVERS = ("tsit5", "dopri5", "dopri8", "bosh3", "heun", "kvaerno3", "kvaerno5")
 class Section(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
+    def _one_value_or_group(self, section: str, single: str, group: tuple, both: str, required: str) -> bool:
+        """Check that the section gives ``single`` or every key of ``group``, not both (one-line errors
+        naming the key; ``both`` and ``required`` say what to give); True where the group is given."""
+        given = [name for name in group if getattr(self, name) is not None]
+        if getattr(self, single) is not None and given:
+            raise ScenarioError(f"{section}.{given[0]}", f"give either {both}, not both")
+        if getattr(self, single) is None:
+            missing = [name for name in group if getattr(self, name) is None]
+            if missing:
+                raise ScenarioError(f"{section}.{missing[0] if given else single}", f"required: {required}")
+        return bool(given)
+
 
 class HarmonicSpec(Section):
     order: u.whole("periods per ripple period")  # k: amplitude * sin(k * 2 pi * angle / period + phase)
@@ -208,20 +220,13 @@ class FlywheelSpec(Section):
 
     @model_validator(mode="after")
     def _inertia_or_rim(self):
-        rim = {name: getattr(self, name) for name in ("density", "outer_diameter", "inner_diameter", "width")}
-        given = [name for name, value in rim.items() if value is not None]
-        if self.inertia is not None and given:
-            raise ScenarioError(f"flywheel.{given[0]}", "give either inertia or a rim (density, outer_diameter, "
-                                "inner_diameter, width), not both")
-        if self.inertia is None:
-            missing = [name for name, value in rim.items() if value is None]
-            if missing:
-                raise ScenarioError(f"flywheel.{missing[0] if given else 'inertia'}",
-                                    "required: the flywheel's inertia, or a rim's density, outer_diameter, "
-                                    "inner_diameter and width")
-            if self.inner_diameter >= self.outer_diameter:
-                raise ScenarioError("flywheel.inner_diameter", f"must be less than outer_diameter "
-                                    f"({self.outer_diameter:g} m), got {self.inner_diameter:g} m")
+        rim = self._one_value_or_group(
+            "flywheel", "inertia", ("density", "outer_diameter", "inner_diameter", "width"),
+            both="inertia or a rim (density, outer_diameter, inner_diameter, width)",
+            required="the flywheel's inertia, or a rim's density, outer_diameter, inner_diameter and width")
+        if rim and self.inner_diameter >= self.outer_diameter:
+            raise ScenarioError("flywheel.inner_diameter", f"must be less than outer_diameter "
+                                f"({self.outer_diameter:g} m), got {self.inner_diameter:g} m")
         return self
 
     @property
@@ -326,16 +331,10 @@ class RopeSpec(Section):
 
     @model_validator(mode="after")
     def _one_stiffness(self):
-        wire = {name: getattr(self, name) for name in ("modulus", "metallic_area", "free_length")}
-        given = [name for name, value in wire.items() if value is not None]
-        if self.stiffness is not None and given:
-            raise ScenarioError(f"rope.{given[0]}", "give either stiffness or a wire rope's modulus, "
-                                "metallic_area and free_length, not both")
-        if self.stiffness is None:
-            missing = [name for name, value in wire.items() if value is None]
-            if missing:
-                raise ScenarioError(f"rope.{missing[0] if given else 'stiffness'}",
-                                    "required: the rope's stiffness, or its modulus, metallic_area and free_length")
+        self._one_value_or_group(
+            "rope", "stiffness", ("modulus", "metallic_area", "free_length"),
+            both="stiffness or a wire rope's modulus, metallic_area and free_length",
+            required="the rope's stiffness, or its modulus, metallic_area and free_length")
         return self
 
     @property
