@@ -26,10 +26,11 @@ from .assemble import build_plan, loop_sizes
 from .block_plans import block_plans, padded
 from .core.loop import OK, SOLVERS, Plan, _run
 from .core.readout import STATUS, BatchReadout, Readout
+from .errors import ScenarioError
 from .periodic.analysis import periodic_regime
 from .results import Summaries, summary_columns
 from .scenario import Scenario
-from .simulation import SimulationError, failure_message, run_result, simulate
+from .simulation import SimulationError, failure_message, run_result, scenario_errors, simulate
 
 # Bytes of time series a chunk may hold on each device it is split over.  Measured: with full output,
 # small chunks are fastest per run; summary-only runs hold one row each and go 2048 a device at a time
@@ -262,7 +263,9 @@ def _periodic_values(scenarios, part, layout, raw, labels, warnings) -> dict[str
 
 
 def _check_status(runs, scenarios, part, start, layout, raw, lean) -> None:
-    """A run of the chunk that failed (chattering, the solver) fails the sweep, saying which and why."""
+    """A run of the chunk that crossed a limit saying its scenario is wrong (an element's ``errors``), or
+    that failed (chattering, the solver), fails the sweep, saying which run and why."""
+    _check_errors(runs, scenarios, part, start, layout, raw, lean)
     failed = np.flatnonzero(raw.counters[: len(part), STATUS] != OK)
     if failed.size == 0:
         return
@@ -275,6 +278,27 @@ def _check_status(runs, scenarios, part, start, layout, raw, lean) -> None:
         except SimulationError as exc:
             raise SimulationError(f"{name}: {exc}") from None
     raise SimulationError(f"{name}: " + failure_message(scenario, Readout(layout, raw, lane=k)))
+
+
+def _check_errors(runs, scenarios, part, start, layout, raw, lean) -> None:
+    """The first run of the chunk that crossed an element's error limit raises its one-line ScenarioError."""
+    kinds = [kind for element in layout.elements for kind in element.errors if kind in layout.event_kinds]
+    if not kinds:
+        return
+    counts = np.asarray(raw.kind_counts[: len(part)])[:, [layout.kind_code(kind) for kind in kinds]]
+    crossed = np.flatnonzero(counts.sum(axis=1) > 0)
+    if crossed.size == 0:
+        return
+    k = int(crossed[0])
+    lane = part[k]
+    scenario, name = scenarios[lane], runs.label(start + lane) or scenarios[lane].name
+    try:
+        if lean:  # the lean run kept no event rows, so no time: run it alone
+            simulate(scenario)
+        else:
+            scenario_errors(scenario, Readout(layout, raw, lane=k))
+    except ScenarioError as exc:
+        raise ScenarioError(exc.key, f"{exc.message} (run {name})", source=exc.source, line=exc.line) from None
 
 
 def _groups(scenarios, plans) -> list[list[int]]:

@@ -21,6 +21,7 @@ import numpy as np
 
 from .assemble import build_plan, output_grid
 from .blocks import chunk_for, run_blocks
+from .errors import ScenarioError
 from .results import RunResult, Summaries
 from .scenario import Scenario
 from .simulation import SimulationError
@@ -142,7 +143,7 @@ def _sweep(runs, client, *, summary_only, chunk_size, progress, output, command,
                                 client=client)
         if stream is not None:
             stream.finish()
-    except SimulationError:
+    except (SimulationError, ScenarioError):
         if stream is not None:
             stream.discard()  # a run that fails would fail again: nothing to resume
         raise

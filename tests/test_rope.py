@@ -210,6 +210,65 @@ def test_a_rope_too_short_for_what_the_drum_winds_on_is_a_scenario_error():
     assert 0.4 * 0.99 < wound < 0.4
 
 
+@pytest.mark.slow
+def test_a_sweep_over_the_rope_is_one_compiled_program_and_each_run_is_its_single_run():
+    """Stiffness, damping and slack are traced numbers: a sweep over all three compiles one program, a
+    sweep over other values of them none, and each run's peak and lift-off are those of the run alone."""
+    from hoistsim import sweep
+    from hoistsim.core import loop
+    from hoistsim.sweep_runs import sweep_values
+
+    def swept(stiffness, damping, slack):
+        scenario = _scene(duration="0.8 s")
+        data = {**scenario.raw, "sweep": {"rope.stiffness": stiffness, "rope.damping_ratio": damping,
+                                          "rope.initial_slack": slack}}
+        return scenario_from_dict(data, name="rope-sweep")
+
+    first = swept(["2e5 N/m", "4e5 N/m"], [0.0, 0.05], ["0 m", "2 cm"])
+    result = sweep(first, summary_only=True)
+    before = loop.trace_count
+    sweep(swept(["3e5 N/m", "6e5 N/m"], [0.1, 0.02], ["1 cm", "0 m"]), summary_only=True)
+    assert loop.trace_count == before
+    assert len(result) == 8
+    for (label, one), peak, lift_off in zip(sweep_values(first), result.summary["peak_rope_force"],
+                                            result.summary["lift_off_time"]):
+        alone = simulate(one).summary
+        assert peak == pytest.approx(alone["peak_rope_force"], rel=1e-9), label
+        assert lift_off == pytest.approx(alone["lift_off_time"], abs=1e-9), label
+    # every key changes the answer (a slipping clutch pulls with a constant force: without slack, the
+    # peak force of a linear rope under a constant pull does not depend on its stiffness; lift-off does)
+    told = zip(np.round(result.summary["peak_rope_force"], 3), np.round(result.summary["lift_off_time"], 6))
+    assert len(set(told)) == 8
+
+
+@pytest.mark.parametrize("summary_only", [True, pytest.param(False, marks=pytest.mark.slow)])
+def test_a_sweep_run_that_winds_its_rope_on_entirely_fails_the_sweep_naming_the_run(summary_only):
+    from hoistsim import ScenarioError, sweep
+
+    scenario = _wire_rope_scene(free_length="20 m", duration="1.2 s")
+    data = {**scenario.raw, "sweep": {"rope.free_length": ["20 m", "0.4 m"]}}
+    with pytest.raises(ScenarioError, match=r"rope\.free_length: is too short: the drum has wound all of it on "
+                                            r"at t = [\d.]+ s .*\(run rope\.free_length=0\.4 m\)$"):
+        sweep(scenario_from_dict(data, name="short-rope-sweep"), summary_only=summary_only)
+
+
+def test_the_command_line_refuses_that_sweep_in_one_line_and_writes_nothing(tmp_path):
+    import yaml
+    from click.testing import CliRunner
+
+    from hoistsim.cli import main
+
+    scenario = _wire_rope_scene(free_length="20 m", duration="1.2 s")
+    path = tmp_path / "short.yaml"
+    path.write_text(yaml.safe_dump({**scenario.raw, "sweep": {"rope.free_length": ["20 m", "0.4 m"]}}))
+    out = tmp_path / "short.h5"
+    result = CliRunner().invoke(main, ["run", str(path), "-o", str(out)])
+    assert result.exit_code == 2, result.output
+    errors = [line for line in result.stderr.splitlines() if line.startswith("hoistsim: error: ")]
+    assert len(errors) == 1 and "rope.free_length: is too short" in errors[0] and "Traceback" not in result.output
+    assert list(tmp_path.iterdir()) == [path]
+
+
 def _rigid_on_the_ground(open_at="1.0 s"):
     """The engage-at-speed scene with the load resting on the ground instead of a brake holding it: the
     clutch's force ramps to 5 kN over 0.5-0.6 s, and the clutch opens again at ``open_at``."""
