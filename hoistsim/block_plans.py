@@ -66,6 +66,8 @@ def applies(runs) -> bool:
     base = getattr(runs, "base", None)
     if base is None or not runs.keys or any(key not in base._sweep_validated for key in runs.keys):
         return False
+    if base.drivetrain is not None:  # several elements to a section: each run's built in full
+        return False
     if any(key.startswith(("simulation.", "initial.")) for key in runs.keys) or base.initial.steady_lift:
         return False
     return True

@@ -212,8 +212,22 @@ def check(scenario, overrides):
     scenario_path = scenario
     scenario = _scenario(scenario_path, overrides)
     count = len(SweepRuns(scenario))  # every value was validated as the file was read
-    click.echo(reduced_model_table(scenario))
+    if scenario.drivetrain is not None:
+        from .report import drivetrain_table
+
+        click.echo(drivetrain_table(scenario.drivetrain))
+    else:
+        click.echo(reduced_model_table(scenario))
     click.echo(f"{scenario_path}: valid ({count} run{'s' if count != 1 else ''})")
+
+
+def _hoist_only(scenario, command: str) -> None:
+    """A command that answers the hoist's questions refuses a drawn drivetrain in one line."""
+    if scenario.drivetrain is not None:
+        from .errors import ScenarioError
+
+        raise ScenarioError("drivetrain", f"{command} answers the hoist's questions (motor, cone clutch, gears, "
+                            "drum, load); this scenario draws a drivetrain", source=scenario.source)
 
 
 @main.command()
@@ -230,6 +244,7 @@ def statics(scenario, as_json, overrides):
     from .statics import answers, warnings
 
     scenario = _scenario(scenario, overrides)
+    _hoist_only(scenario, "statics")
     rows = answers(scenario)
     for warning in warnings(scenario):
         click.echo(f"hoistsim: warning: {warning}", err=True)
@@ -273,6 +288,7 @@ def flywheel(scenario, irregularity, as_json, overrides, density, width, outer_d
     if figure is not None and Path(figure).suffix.lower() not in (".png", ".svg", ".pdf"):
         _fail(f"{figure}: the figure must be .png, .svg or .pdf")
     scenario = _scenario(scenario, overrides)
+    _hoist_only(scenario, "flywheel")
 
     def quantity(option, value, dimension):
         try:

@@ -62,21 +62,31 @@ def element_classes() -> list:
 
     classes = []
     for entry in REGISTRY.values():
-        for cls in (entry.values() if isinstance(entry, dict) else (entry,)):
+        for cls in (entry.values() if isinstance(entry, dict) else getattr(entry, "parts", (entry,))):
             if cls not in classes:
                 classes.append(cls)
     return classes
 
 
-def runs_columns() -> set[str]:
-    """The columns any element's panels, marks or shading read (the rest of a file is not loaded)."""
-    names = {"time", "motor_angle"}
-    for cls in element_classes():
-        for panel in cls.panels:
-            for trace in panel.traces:
-                names.update(trace.columns())
-        names.update(phase.column for phase in cls.shading)
-    return names
+class _Read:
+    """The columns the run figure reads: those the elements' panels, marks and shading name, and those a
+    part named by the user claims (``reads``); the rest of a file is not loaded."""
+
+    def __init__(self):
+        self.classes = element_classes()
+        self.names = {"time", "motor_angle"}
+        for cls in self.classes:
+            for panel in cls.panels:
+                for trace in panel.traces:
+                    self.names.update(trace.columns())
+            self.names.update(phase.column for phase in cls.shading)
+
+    def __contains__(self, name: str) -> bool:
+        return name in self.names or any(cls.reads(name) for cls in self.classes)
+
+
+def runs_columns() -> _Read:
+    return _Read()
 
 
 def scenario_parameters(path) -> dict:

@@ -40,7 +40,7 @@ def runs_figure(runs, plt, swept):
     for run in runs:  # what traces read beside the columns (a limit the scenario gives)
         _parameters(run)
     present = set(runs[0])
-    panels = _panels(classes, present)
+    panels = _panels(classes, present, runs[0])
     shading = list({id(phase): phase for cls in classes for phase in cls.shading if phase.column in present}.values())
     # events that are not switches or scheduled instants (observations, period marks) get no line
     quiet = {"slip_peak"} | {k for cls in classes for k in cls.observation_kinds if k not in cls.limits} | {
@@ -82,11 +82,11 @@ def runs_figure(runs, plt, swept):
     return fig
 
 
-def _panels(classes, present):
+def _panels(classes, present, run):
     """The elements' panels merged by name, each with the curves the file has columns for, top first."""
     merged, seen = {}, set()
     for cls in classes:
-        for panel in cls.panels:
+        for panel in cls.panels_for(run):
             if id(panel) in seen:  # inherited by the variants of a part (the motor's characteristics)
                 continue
             seen.add(id(panel))

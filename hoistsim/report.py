@@ -56,9 +56,13 @@ OPTIONAL_COLUMNS = {"slip_energy": [("peak_clutch_temperature", "peak clutch [de
 
 def summary_table(summaries: list[dict], head: int = 12, tail: int = 6) -> str:
     """Runs as rows, the summary as columns; long sweeps show their first and last runs."""
-    columns = []
+    first = summaries[0]
+    columns = [(key, f"{key[:-len('_lockup_time')]} lock-up [s]", 1.0) for key in first
+               if key.endswith("_lockup_time")]  # a drawn drivetrain's clutches, by name
+    columns += [(key, f"{key[:-len('_slip_energy')]} heat [J]", 1.0) for key in first if key.endswith("_slip_energy")]
     for column in SUMMARY_COLUMNS:
-        columns += [column] + [extra for extra in OPTIONAL_COLUMNS.get(column[0], ()) if extra[0] in summaries[0]]
+        if column[0] in first:
+            columns += [column] + [extra for extra in OPTIONAL_COLUMNS.get(column[0], ()) if extra[0] in first]
 
     def cell(value, scale):
         if scale is None:
@@ -192,3 +196,20 @@ def reduced_model_table(scenario) -> str:
         ["T_k", f"kinetic torque at {fmt(peak)} N", fmt(d.kinetic_torque(peak)), "N*m"],
     ]
     return table(["symbol", "quantity", "value", "unit"], rows, align="llrl")
+
+
+def drivetrain_table(drivetrain) -> str:
+    """A drawn drivetrain as ``check`` prints it: its shafts, then its clutches with their capacities at
+    the largest force they are given (for a force in harmonics, the offset plus every amplitude)."""
+    shafts = table(["shaft", "inertia [kg*m^2]", "speed at t = 0 [rad/s]"],
+                   [[name, fmt(s.inertia), fmt(s.speed)] for name, s in drivetrain.shafts.items()], align="lrr")
+    rows = []
+    for name, clutch in drivetrain.clutches.items():
+        force = clutch.force
+        largest = max(force.values) + sum(abs(a) for a in force.amplitudes)
+        per = clutch.torque_per_newton * max(largest, 0.0)
+        rows.append([name, " - ".join(clutch.between), fmt(largest), fmt(clutch.static_friction * per),
+                     fmt(clutch.kinetic_friction * per)])
+    clutches = table(["clutch", "between", "largest force [N]", "capacity [N*m]", "sliding [N*m]"], rows,
+                     align="llrrr")
+    return shafts + ("\n\n" + clutches if rows else "")

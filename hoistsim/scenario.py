@@ -11,6 +11,7 @@ from __future__ import annotations
 import difflib
 import io
 import json
+import typing
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -34,13 +35,31 @@ from .yamlsource import yaml_reader as _yaml
 # keys: known paths, near matches, overrides
 
 
+def _is_section(candidate) -> bool:
+    return isinstance(candidate, type) and issubclass(candidate, Section)
+
+
 def _model_of(section: type[BaseModel], name: str) -> type[Section] | None:
+    """The section a key holds (None: a value, or sections by name or in a list: see ``_members_of``)."""
     field = section.model_fields.get(name)
-    if field is None:
+    if field is None or _members_of(section, name) is not None:
         return None
     for candidate in (field.annotation, *getattr(field.annotation, "__args__", ())):
-        if isinstance(candidate, type) and issubclass(candidate, Section):
+        if _is_section(candidate):
             return candidate
+    return None
+
+
+def _members_of(section: type[BaseModel], name: str) -> tuple[type, type[Section]] | None:
+    """(dict or list, the section of each member) for a key that holds sections by name or in a list
+    (a drivetrain's shafts, its torques), else None."""
+    field = section.model_fields.get(name)
+    annotation = getattr(field, "annotation", None)
+    container = typing.get_origin(annotation)
+    if container in (dict, list):
+        member = typing.get_args(annotation)[-1]
+        if _is_section(member):
+            return container, member
     return None
 
 
@@ -95,12 +114,16 @@ class _Where(Mapping):
 def _check_tree(data: dict, model: type[BaseModel], path: tuple, tree: Any, source: str) -> None:
     """Unknown keys and sections that are not mappings, before any value is looked at."""
     for key, value in data.items():
-        where = _Where(".".join((*path, key)), source, tree, (*path, key))
+        where = _Where(".".join(map(str, (*path, key))), source, tree, (*path, key))
         if key not in model.model_fields:
             known = list(model.model_fields)
-            raise ScenarioError(message="unknown key" + _suggest(key, known, ".".join(path)), **where)
+            raise ScenarioError(message="unknown key" + _suggest(key, known, ".".join(map(str, path))), **where)
         if key == "sweep" and model is Scenario and not isinstance(value, dict):
             raise ScenarioError(message=f"must map keys to lists of values, {_SWEEP_EXAMPLE}", **where)
+        members = _members_of(model, key)
+        if members is not None:
+            _check_members(value, *members, (*path, key), tree, source, where)
+            continue
         sub = _model_of(model, key)
         if sub is None:
             continue
@@ -112,6 +135,23 @@ def _check_tree(data: dict, model: type[BaseModel], path: tuple, tree: Any, sour
             raise ScenarioError(message=f"must be a section with its keys indented below it, got {value!r}",
                                 **where)
         _check_tree(value, sub, (*path, key), tree, source)
+
+
+def _check_members(value, container: type, member: type[BaseModel], path: tuple, tree: Any, source: str,
+                   where) -> None:
+    """Sections by name (a mapping) or in a list: each member's keys checked as a section's."""
+    if container is dict and not isinstance(value, dict):
+        raise ScenarioError(message=f"must map names to sections ({', '.join(member.model_fields)}), got {value!r}",
+                            **where)
+    if container is list and not isinstance(value, list):
+        raise ScenarioError(message=f"must be a list of sections ({', '.join(member.model_fields)}), got {value!r}",
+                            **where)
+    named = value.items() if container is dict else enumerate(value)
+    for name, entry in named:
+        if not isinstance(entry, dict):
+            raise ScenarioError(message=f"must be a section ({', '.join(member.model_fields)}), got {entry!r}",
+                                **_Where(".".join(map(str, (*path, name))), source, tree, (*path, name)))
+        _check_tree(entry, member, (*path, name), tree, source)
 
 
 def bare_angles(data: dict, model: type[BaseModel], path: tuple, tree: Any, source: str) -> list[str]:

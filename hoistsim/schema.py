@@ -11,11 +11,13 @@ import math
 from typing import Any, Literal
 
 import numpy as np
-from pydantic import BaseModel, ConfigDict, PrivateAttr, model_validator
+from pydantic import PrivateAttr, model_validator
 
 from . import tables
 from . import units as u
 from .errors import ScenarioError
+from .schema_base import Section
+from .schema_drivetrain import DrivetrainSpec
 from .tables import EngagementForce
 from .units import FreeText, Text
 from .yamlsource import copy_plain
@@ -25,22 +27,6 @@ SOLVERS = ("tsit5", "dopri5", "dopri8", "bosh3", "heun", "kvaerno3", "kvaerno5")
 
 # --------------------------------------------------------------------------------------
 # the schema: one model per section
-
-
-class Section(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
-
-    def _one_value_or_group(self, section: str, single: str, group: tuple, both: str, required: str) -> bool:
-        """Check that the section gives ``single`` or every key of ``group``, not both (one-line errors
-        naming the key; ``both`` and ``required`` say what to give); True where the group is given."""
-        given = [name for name in group if getattr(self, name) is not None]
-        if getattr(self, single) is not None and given:
-            raise ScenarioError(f"{section}.{given[0]}", f"give either {both}, not both")
-        if getattr(self, single) is None:
-            missing = [name for name in group if getattr(self, name) is None]
-            if missing:
-                raise ScenarioError(f"{section}.{missing[0] if given else single}", f"required: {required}")
-        return bool(given)
 
 
 class HarmonicSpec(Section):
@@ -377,11 +363,13 @@ class SimulationSpec(Section):
 class Scenario(Section):
     name: Text
     description: FreeText = ""
-    motor: MotorSpec
-    clutch: ClutchSpec
-    gears: GearSpec
-    drum: DrumSpec
-    load: LoadSpec
+    # the hoist's sections, or (instead of them, never with them) a drivetrain drawn as shafts and clutches
+    motor: MotorSpec | None = None
+    clutch: ClutchSpec | None = None
+    gears: GearSpec | None = None
+    drum: DrumSpec | None = None
+    load: LoadSpec | None = None
+    drivetrain: DrivetrainSpec | None = None
     gravity: u.quantity(u.ACCELERATION, ge=0.0) = 9.81
     initial: InitialSpec = InitialSpec()
     flywheel: FlywheelSpec | None = None
@@ -410,6 +398,21 @@ class Scenario(Section):
     def warnings(self) -> list[str]:
         """One line each: values accepted that may not say what was meant (a bare number on a speed)."""
         return list(self._warnings)
+
+    @model_validator(mode="after")
+    def _a_hoist_or_a_drivetrain(self):
+        hoist = ("motor", "clutch", "gears", "drum", "load")
+        if self.drivetrain is None:
+            for name in hoist:
+                if getattr(self, name) is None:
+                    raise ScenarioError(name, "required section is missing")
+            return self
+        for name in (*hoist, "flywheel", "reciprocating", "periodic", "brake", "ratchet", "clutch_heating",
+                     "bearings", "rope", "ground"):
+            if getattr(self, name) is not None:
+                raise ScenarioError(name, "cannot be given with drivetrain: (a scenario draws the hoist by its "
+                                    "sections or a machine as a drivetrain, not both)")
+        return self
 
     @model_validator(mode="after")
     def _brake_holds_still_drum(self):
@@ -472,6 +475,8 @@ class Scenario(Section):
         makes the machine periodic (a ripple, a slider-crank), None for a machine that is not."""
         if self.periodic is not None:
             return self.periodic
+        if self.drivetrain is not None:
+            return None
         periodic = (self.motor.ripple, self.drum.resisting_ripple, self.reciprocating)
         return PeriodicSpec() if any(part is not None for part in periodic) else None
 

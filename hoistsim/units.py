@@ -65,6 +65,7 @@ CONDUCTANCE = Dimension("thermal conductance", "W/K", "'20 W/K'")
 STIFFNESS = Dimension("stiffness", "N/m", "'2.5e5 N/m'")
 PRESSURE = Dimension("modulus (a pressure)", "Pa", "'100 GPa'")
 AREA = Dimension("area", "m^2", "'95 mm^2'")
+FREQUENCY = Dimension("frequency", "Hz", "'5 Hz'")
 
 # dimensionality (as pint prints it, radian power) -> what an engineer calls it
 _KNOWN = {

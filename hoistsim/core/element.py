@@ -66,7 +66,8 @@ Contributions, all read at trace time (``x`` is the machine at one instant,
   a column in units "1" is a flag or a mode, stored as a small integer;
 - ``speed_scale()``: a speed (rad/s) typical of the element, for the slip resolution;
 - ``panels``, ``shading``, ``summary_panels``, ``outcomes`` and ``headline(summary)``:
-  what the figures draw of it (:mod:`hoistsim.core.panel`), only where its columns are in the file.
+  what the figures draw of it (:mod:`hoistsim.core.panel`), only where its columns are in the file;
+  ``panels_for(run)`` and ``reads(column)`` where the panels are named after parts the user named.
 """
 
 from __future__ import annotations
@@ -126,6 +127,17 @@ class AbstractElement:
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         pytree_dataclass(cls)
+
+    @classmethod
+    def panels_for(cls, run: dict) -> tuple:
+        """The run figure's panels of this kind of part for a run read back (``run["parameters"]`` the
+        resolved scenario): ``panels``, or panels named after the parts a scenario drew (a drivetrain's)."""
+        return cls.panels
+
+    @classmethod
+    def reads(cls, column: str) -> bool:
+        """Whether the run figure reads a column beyond those its ``panels`` name (a part named by the user)."""
+        return False
 
     @classmethod
     def headline(cls, summary: dict) -> str | None:

@@ -171,7 +171,7 @@ def orients(layout: Layout, t, y, args) -> dict:
     """
     out = {}
     for element in layout.elements:
-        for kind in element.crossings:
+        for kind in (k for k in element.crossings if element.observes(k)):
             def value(t, y, element=element, kind=kind):
                 return element.observations(Instant(layout, t, y, args.modes, args.segment.table, args.reply))[kind]
 

@@ -14,6 +14,7 @@ from .bearings import DrumShaftLoads as DrumShaftLoads
 from .clutch_heating import ClutchHeating as ClutchHeating
 from .cone_clutch import ConeClutch as ConeClutch
 from .constant_torque_motor import ConstantTorqueMotor as ConstantTorqueMotor
+from .drivetrain import Drivetrain as Drivetrain
 from .drum import Drum as Drum
 from .elastic_load import ElasticLoad as ElasticLoad
 from .flywheel import Flywheel as Flywheel
@@ -54,6 +55,7 @@ REGISTRY: dict[str, object] = {
     "ratchet": Ratchet,
     "bearings": DrumShaftLoads,
     "periodic_regime": PeriodicRegime,  # scenario.periodic_regime: given, or implied by a ripple
+    "drivetrain": Drivetrain,  # a machine drawn as shafts and clutches: its elements, in its order
 }
 
 
@@ -80,4 +82,8 @@ def element_sections(scenario) -> list[tuple[str, object, type]]:
 
 def elements_for(scenario) -> tuple[AbstractElement, ...]:
     """The elements a scenario names, built from their sections, in registry order."""
-    return tuple(cls.from_spec(spec, scenario) for _, spec, cls in element_sections(scenario))
+    out: list = []
+    for _, spec, cls in element_sections(scenario):
+        built = cls.from_spec(spec, scenario)
+        out += built if isinstance(built, tuple) else [built]  # a drivetrain: an element per part
+    return tuple(out)

@@ -1,0 +1,42 @@
+"""A shaft of a drawn drivetrain: a body with its inertia and initial speed."""
+
+from __future__ import annotations
+
+from .._pytree import static
+from ..core.element import AbstractElement
+from ..core.panel import Panel, Trace
+
+
+class Shaft(AbstractElement):
+    """A rigid shaft turning at a speed of its own (a body), with its inertia; its speed is the output
+    ``<name>_speed``."""
+
+    inertia: object  # kg*m^2
+    initial_speed: object  # rad/s
+    section: str = static("")  # the shaft's name in drivetrain.shafts
+
+    @classmethod
+    def reads(cls, column: str) -> bool:
+        return column.endswith("_speed")
+
+    @classmethod
+    def panels_for(cls, run: dict) -> tuple:
+        shafts = (run.get("parameters", {}).get("drivetrain") or {}).get("shafts") or {}
+        traces = tuple(Trace(name, f"{name}_speed") for name in shafts)
+        return (Panel("shaft_speeds", "shaft speed [rad/s]", 0, traces, height=1.5),) if traces else ()
+
+    @property
+    def columns(self) -> dict:
+        return {f"{self.section}_speed": ("rad/s", f"speed of shaft {self.section}")}
+
+    def bodies(self) -> dict:
+        return {self.section: self.initial_speed}
+
+    def inertias(self) -> tuple:
+        return ((self.section, self.inertia),)
+
+    def speed_scale(self):
+        return abs(self.initial_speed)
+
+    def outputs(self, x) -> dict:
+        return {f"{self.section}_speed": x.speed(self.section)}

@@ -1,0 +1,113 @@
+"""Time signals in scenario files: a constant, a table of time, or an offset plus harmonics in time.
+
+A drivetrain's torques and clutch forces are signals of time:
+- a constant, ``10 N*m``;
+- a table ``[[t, value], ...]``, piecewise linear, a repeated time a step (held beyond its ends);
+- ``{offset: value, harmonics: [{amplitude, frequency, phase}, ...]}``: the offset plus each
+  amplitude * sin(2 pi frequency t + phase).
+Every form is read into one :class:`TimeSignal`: a table (one row for a constant or an offset) and
+harmonics (none for a table), so that an element evaluates all of them the same way.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Annotated, Any
+
+from pydantic import BaseModel, BeforeValidator, ConfigDict
+
+from .tables import TableError
+from .units import ANGLE, FREQUENCY, TIME, Dimension, UnitError, check_range, to_si
+
+
+class TimeSignal(BaseModel):
+    """A table of time (SI) plus harmonics: value(t) = table(t) + sum A sin(2 pi f t + phi)."""
+
+    model_config = ConfigDict(frozen=True)
+    times: tuple[float, ...]
+    values: tuple[float, ...]
+    amplitudes: tuple[float, ...] = ()
+    frequencies: tuple[float, ...] = ()  # Hz
+    phases: tuple[float, ...] = ()  # rad
+
+    @property
+    def has_harmonics(self) -> bool:
+        return bool(self.amplitudes)
+
+    def at(self, t: float) -> float:
+        """The value at ``t`` (s), on the host (numpy arithmetic, as the run evaluates it)."""
+        import numpy as np
+
+        from .core.schedule import table_at
+
+        value = float(table_at(np.asarray(self.times), np.asarray(self.values), t, xp=np))
+        return value + sum(a * math.sin(2 * math.pi * f * t + p)
+                           for a, f, p in zip(self.amplitudes, self.frequencies, self.phases))
+
+
+def _table(value: list, dimension: Dimension) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    times: list[float] = []
+    values: list[float] = []
+    for i, row in enumerate(value):
+        if not isinstance(row, (list, tuple)) or len(row) != 2:
+            raise TableError(i, f"must be a pair [time, {dimension.name}], like [0.4 s, {dimension.example.strip(chr(39))}]"
+                                f", got {row!r}")
+        try:
+            t = check_range(to_si(row[0], TIME), row[0], TIME, ge=0, hint=" (the run starts at 0 s)")
+            v = to_si(row[1], dimension)
+        except UnitError as exc:
+            raise TableError(i, str(exc)) from None
+        if times and t < times[-1]:
+            raise TableError(i, f"time goes backwards ({t:g} s after {times[-1]:g} s)")
+        if len(times) >= 2 and t == times[-1] == times[-2]:
+            raise TableError(i, f"a time may appear at most twice (a step); {t:g} s appears three times")
+        times.append(t)
+        values.append(v)
+    return tuple(times), tuple(values)
+
+
+def _harmonics(value: dict, dimension: Dimension) -> TimeSignal:
+    unknown = set(value) - {"offset", "harmonics"}
+    if unknown:
+        raise UnitError(f"unknown key {sorted(unknown)[0]!r}: a signal in harmonics has offset and harmonics")
+    rows = value.get("harmonics") or []
+    if not isinstance(rows, list):
+        raise UnitError("harmonics must be a list of {amplitude, frequency, phase}")
+    offset = to_si(value.get("offset", 0.0), dimension)
+    amplitudes, frequencies, phases = [], [], []
+    for i, row in enumerate(rows):
+        if not isinstance(row, dict) or "amplitude" not in row or "frequency" not in row:
+            raise TableError(i, f"a harmonic is {{amplitude, frequency, phase}}, got {row!r}")
+        extra = set(row) - {"amplitude", "frequency", "phase"}
+        if extra:
+            raise TableError(i, f"unknown key {sorted(extra)[0]!r} (a harmonic has amplitude, frequency, phase)")
+        try:
+            amplitudes.append(to_si(row["amplitude"], dimension))
+            frequencies.append(check_range(to_si(row["frequency"], FREQUENCY), row["frequency"], FREQUENCY, ge=0))
+            phases.append(to_si(row.get("phase", 0.0), ANGLE))
+        except UnitError as exc:
+            raise TableError(i, str(exc)) from None
+    return TimeSignal(times=(0.0,), values=(offset,), amplitudes=tuple(amplitudes),
+                      frequencies=tuple(frequencies), phases=tuple(phases))
+
+
+def time_signal(value: Any, dimension: Dimension) -> TimeSignal:
+    """Read a signal of ``dimension`` in any of its three forms (a bad one: a UnitError saying what to give)."""
+    if isinstance(value, TimeSignal):
+        return value
+    if isinstance(value, dict):
+        return _harmonics(value, dimension)
+    if isinstance(value, (list, tuple)):
+        if not value:
+            raise UnitError(f"the table is empty; give rows [time, {dimension.name}]")
+        times, values = _table(value, dimension)
+        return TimeSignal(times=times, values=values)
+    try:
+        return TimeSignal(times=(0.0,), values=(to_si(value, dimension),))
+    except UnitError as exc:
+        raise UnitError(f"{exc}; or a table [[time, {dimension.name}], ...], or {{offset, harmonics}}") from None
+
+
+def signal(dimension: Dimension):
+    """A pydantic field type: a time signal of ``dimension``."""
+    return Annotated[TimeSignal, BeforeValidator(lambda value: time_signal(value, dimension)), dimension]
