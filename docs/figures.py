@@ -90,6 +90,8 @@ FIGURES = {
                              _run_and_plot("lift_off_force_sweep.yaml", {"_summary": "lift_off_force_sweep.png"})),
     "snatch_from_slack": ("hoistsim run + plot scenarios/snatch_from_slack.yaml",
                           _run_and_plot("snatch_from_slack.yaml", {"": "snatch_from_slack.png"})),
+    "coupled_clutches": ("hoistsim run + plot scenarios/coupled_clutches.yaml",
+                         _run_and_plot("coupled_clutches.yaml", {"": "coupled_clutches.png"})),
     "brake_stop_on_an_elastic_rope": ("hoistsim run + plot scenarios/brake_stop_on_an_elastic_rope.yaml",
                                       _run_and_plot("brake_stop_on_an_elastic_rope.yaml",
                                                     {"": "brake_stop_on_an_elastic_rope.png"})),
