@@ -206,28 +206,14 @@ def run(scenario, output, overrides, sweeps, summary_only, resume, workers, sche
 @_guarded
 def check(scenario, overrides):
     """Validate SCENARIO and print the reduced model, without simulating."""
-    from .report import reduced_model_table
+    from .report import machine_table
     from .sweep_runs import SweepRuns
 
     scenario_path = scenario
     scenario = _scenario(scenario_path, overrides)
     count = len(SweepRuns(scenario))  # every value was validated as the file was read
-    if scenario.drivetrain is not None:
-        from .report import drivetrain_table
-
-        click.echo(drivetrain_table(scenario.drivetrain))
-    else:
-        click.echo(reduced_model_table(scenario))
+    click.echo(machine_table(scenario))
     click.echo(f"{scenario_path}: valid ({count} run{'s' if count != 1 else ''})")
-
-
-def _hoist_only(scenario, command: str) -> None:
-    """A command that answers the hoist's questions refuses a drawn drivetrain in one line."""
-    if scenario.drivetrain is not None:
-        from .errors import ScenarioError
-
-        raise ScenarioError("drivetrain", f"{command} answers the hoist's questions (motor, cone clutch, gears, "
-                            "drum, load); this scenario draws a drivetrain", source=scenario.source)
 
 
 @main.command()
@@ -241,10 +227,11 @@ def statics(scenario, as_json, overrides):
     import json
 
     from .report import fmt, table
+    from .schema_drivetrain import hoist_only
     from .statics import answers, warnings
 
     scenario = _scenario(scenario, overrides)
-    _hoist_only(scenario, "statics")
+    hoist_only(scenario, "statics")
     rows = answers(scenario)
     for warning in warnings(scenario):
         click.echo(f"hoistsim: warning: {warning}", err=True)
@@ -284,11 +271,12 @@ def flywheel(scenario, irregularity, as_json, overrides, density, width, outer_d
 
     from . import _jax, units
     from .periodic.flywheel import rim, size_flywheel
+    from .schema_drivetrain import hoist_only
 
     if figure is not None and Path(figure).suffix.lower() not in (".png", ".svg", ".pdf"):
         _fail(f"{figure}: the figure must be .png, .svg or .pdf")
     scenario = _scenario(scenario, overrides)
-    _hoist_only(scenario, "flywheel")
+    hoist_only(scenario, "flywheel")
 
     def quantity(option, value, dimension):
         try:

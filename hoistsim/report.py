@@ -198,6 +198,11 @@ def reduced_model_table(scenario) -> str:
     return table(["symbol", "quantity", "value", "unit"], rows, align="llrl")
 
 
+def machine_table(scenario) -> str:
+    """What ``check`` prints of a scenario's machine: the hoist's reduced model, or a drawn drivetrain."""
+    return reduced_model_table(scenario) if scenario.drivetrain is None else drivetrain_table(scenario.drivetrain)
+
+
 def drivetrain_table(drivetrain) -> str:
     """A drawn drivetrain as ``check`` prints it: its shafts, then its clutches with their capacities at
     the largest force they are given (for a force in harmonics, the offset plus every amplitude)."""

@@ -81,3 +81,10 @@ class DrivetrainSpec(Section):
                 raise ScenarioError(f"drivetrain.clutches.{name}.kinetic_friction", "must not exceed "
                                     f"static_friction ({clutch.static_friction:g}), got {clutch.kinetic_friction:g}")
         return self
+
+
+def hoist_only(scenario, command: str) -> None:
+    """A command that answers the hoist's questions refuses a drawn drivetrain in one line."""
+    if scenario.drivetrain is not None:
+        raise ScenarioError("drivetrain", f"{command} answers the hoist's questions (motor, cone clutch, gears, "
+                            "drum, load); this scenario draws a drivetrain", source=scenario.source)

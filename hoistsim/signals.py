@@ -11,13 +11,12 @@ harmonics (none for a table), so that an element evaluates all of them the same 
 
 from __future__ import annotations
 
-import math
 from typing import Annotated, Any
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict
 
-from .tables import TableError
-from .units import ANGLE, FREQUENCY, TIME, Dimension, UnitError, check_range, to_si
+from .tables import TableError, time_rows
+from .units import ANGLE, FREQUENCY, Dimension, UnitError, check_range, to_si
 
 
 class TimeSignal(BaseModel):
@@ -33,37 +32,6 @@ class TimeSignal(BaseModel):
     @property
     def has_harmonics(self) -> bool:
         return bool(self.amplitudes)
-
-    def at(self, t: float) -> float:
-        """The value at ``t`` (s), on the host (numpy arithmetic, as the run evaluates it)."""
-        import numpy as np
-
-        from .core.schedule import table_at
-
-        value = float(table_at(np.asarray(self.times), np.asarray(self.values), t, xp=np))
-        return value + sum(a * math.sin(2 * math.pi * f * t + p)
-                           for a, f, p in zip(self.amplitudes, self.frequencies, self.phases))
-
-
-def _table(value: list, dimension: Dimension) -> tuple[tuple[float, ...], tuple[float, ...]]:
-    times: list[float] = []
-    values: list[float] = []
-    for i, row in enumerate(value):
-        if not isinstance(row, (list, tuple)) or len(row) != 2:
-            raise TableError(i, f"must be a pair [time, {dimension.name}], like [0.4 s, {dimension.example.strip(chr(39))}]"
-                                f", got {row!r}")
-        try:
-            t = check_range(to_si(row[0], TIME), row[0], TIME, ge=0, hint=" (the run starts at 0 s)")
-            v = to_si(row[1], dimension)
-        except UnitError as exc:
-            raise TableError(i, str(exc)) from None
-        if times and t < times[-1]:
-            raise TableError(i, f"time goes backwards ({t:g} s after {times[-1]:g} s)")
-        if len(times) >= 2 and t == times[-1] == times[-2]:
-            raise TableError(i, f"a time may appear at most twice (a step); {t:g} s appears three times")
-        times.append(t)
-        values.append(v)
-    return tuple(times), tuple(values)
 
 
 def _harmonics(value: dict, dimension: Dimension) -> TimeSignal:
@@ -100,7 +68,7 @@ def time_signal(value: Any, dimension: Dimension) -> TimeSignal:
     if isinstance(value, (list, tuple)):
         if not value:
             raise UnitError(f"the table is empty; give rows [time, {dimension.name}]")
-        times, values = _table(value, dimension)
+        times, values = time_rows(value, dimension, f"[0.4 s, {dimension.example.strip(chr(39))}]")
         return TimeSignal(times=times, values=values)
     try:
         return TimeSignal(times=(0.0,), values=(to_si(value, dimension),))

@@ -40,14 +40,25 @@ def force_table(value: object) -> tuple[tuple[float, ...], tuple[float, ...]]:
         return (0.0,), (force,)
     if not value:
         raise UnitError("the table is empty; give rows [time, force], like [[0 s, 0 N], [0.5 s, 3000 N]]")
+
+    def force(entry):
+        return check_range(to_si(entry, FORCE), entry, FORCE, ge=0, hint=" (a clutch cannot be pushed apart)")
+
+    return time_rows(value, FORCE, "[0.5 s, 3000 N]", force)
+
+
+def time_rows(value: list, dimension: Dimension, example: str, read=None
+              ) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """Rows ``[time, value]`` of a table of time: times from 0 s, never going back, each at most twice (a
+    step); ``read`` converts and checks a value (default: to SI in ``dimension``)."""
     times: list[float] = []
-    forces: list[float] = []
+    values: list[float] = []
     for i, row in enumerate(value):
         if not isinstance(row, (list, tuple)) or len(row) != 2:
-            raise TableError(i, f"must be a pair [time, force], like [0.5 s, 3000 N], got {row!r}")
+            raise TableError(i, f"must be a pair [time, {dimension.name}], like {example}, got {row!r}")
         try:
             t = check_range(to_si(row[0], TIME), row[0], TIME, ge=0, hint=" (the run starts at 0 s)")
-            f = check_range(to_si(row[1], FORCE), row[1], FORCE, ge=0, hint=" (a clutch cannot be pushed apart)")
+            v = read(row[1]) if read is not None else to_si(row[1], dimension)
         except UnitError as exc:
             raise TableError(i, str(exc)) from None
         if times and t < times[-1]:
@@ -55,8 +66,8 @@ def force_table(value: object) -> tuple[tuple[float, ...], tuple[float, ...]]:
         if len(times) >= 2 and t == times[-1] == times[-2]:
             raise TableError(i, f"a time may appear at most twice (a step); {t:g} s appears three times")
         times.append(t)
-        forces.append(f)
-    return tuple(times), tuple(forces)
+        values.append(v)
+    return tuple(times), tuple(values)
 
 
 def pair_table(value: object, first: Dimension, second: Dimension, what: str, example: str

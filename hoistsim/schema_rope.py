@@ -1,0 +1,41 @@
+"""The schema of the rope and the ground: an elastic rope from the drum to the load, and the load resting
+on the ground at the start (values in SI)."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import model_validator
+
+from . import units as u
+from .schema_base import Section
+
+
+class RopeSpec(Section):
+    """An elastic rope from the drum to the load: a stiffness, or a wire rope's modulus, area and length."""
+
+    stiffness: u.quantity(u.STIFFNESS, gt=0.0) | None = None  # k, N/m
+    modulus: u.quantity(u.PRESSURE, gt=0.0) | None = None  # E of the rope (steel wire rope: 80-110 GPa)
+    metallic_area: u.quantity(u.AREA, gt=0.0) | None = None  # A: the wires' cross-section
+    free_length: u.quantity(u.LENGTH, gt=0.0) | None = None  # drum to load at t = 0
+    damping_ratio: u.quantity(u.DIMENSIONLESS, ge=0.0) = 0.0  # c = 2 zeta sqrt(k M), k at t = 0
+    initial_slack: u.quantity(u.LENGTH, ge=0.0) = 0.0  # rope paid out beyond taut at t = 0
+
+    @model_validator(mode="after")
+    def _one_stiffness(self):
+        self._one_value_or_group(
+            "rope", "stiffness", ("modulus", "metallic_area", "free_length"),
+            both="stiffness or a wire rope's modulus, metallic_area and free_length",
+            required="the rope's stiffness, or its modulus, metallic_area and free_length")
+        return self
+
+    @property
+    def characteristic(self) -> str:
+        """Which variant: ``stiffness`` (constant) or ``modulus`` (E A / L, L the free length)."""
+        return "stiffness" if self.stiffness is not None else "modulus"
+
+
+class GroundSpec(Section):
+    """The load starts resting on the ground, which holds it up and never down."""
+
+    hoisting_class: Literal["HC1", "HC2", "HC3", "HC4"] | None = None  # EN 13001-2, for phi2 beside the run
