@@ -244,37 +244,49 @@ def solve_response(layout: Layout, stuck, y=None) -> Response:
 TABULATED_COUPLINGS = 4
 
 
-def response_table(layout: Layout) -> Response | None:
-    """The response for every stuck set (entries stacked over 2^couplings), or None if too many.
+class ResponseTable:
+    """The response for every stuck set: a matrix, a row per set (row index bit k: coupling k stuck), a
+    column per entry of :class:`Response` that is not a structural zero."""
 
-    None too where an inertia varies: the response then changes with the state.
+    def __init__(self, matrix, treedef, absent):
+        self.matrix, self.treedef, self.absent = matrix, treedef, absent
+
+
+def response_table(layout: Layout) -> ResponseTable | None:
+    """The response for every stuck set, or None if too many couplings.
+
+    One solve, vmapped over the sets (one copy of it in the program).  None too
+    where an inertia varies: the response then changes with the state.
     """
     nc = len(layout.couplings)
     if nc > TABULATED_COUPLINGS or layout.inertia_varies:
         return None
-    replies = [solve_response(layout, [jnp.asarray(bool(index >> k & 1)) for k in range(nc)])
-               for index in range(2**nc)]
-    return jax.tree.map(lambda *entries: jnp.stack([jnp.asarray(e, dtype=jnp.float64) for e in entries]),
-                        *replies)
+    shape = {}
+
+    def solve(bits):
+        leaves, shape["treedef"] = jax.tree.flatten(solve_response(layout, [bits[k] for k in range(nc)]))
+        shape["absent"] = [_absent(v) for v in leaves]
+        return jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in leaves if not _absent(v)] or [jnp.zeros(())])
+
+    sets = jnp.asarray([[bool(index >> k & 1) for k in range(nc)] for index in range(2**nc)]).reshape(2**nc, nc)
+    return ResponseTable(jax.vmap(solve)(sets), shape["treedef"], shape["absent"])
 
 
 def response(layout: Layout, modes, y=None) -> Response:
     """The bodies' response for these modes: picked from ``layout.responses`` when the run tabulated it.
 
-    The pick is a tree of selects on the couplings' stuck bits, not a gather:
-    under vmap a gather with a per-lane index costs far more.
+    The pick halves the table on each coupling's stuck bit (a select over whole rows, not a gather:
+    under vmap a gather with a per-lane index costs far more).
     """
     stuck = [modes[k] == STUCK for k in range(len(layout.couplings))]
-    if layout.responses is None:
+    table = layout.responses
+    if table is None:
         return solve_response(layout, stuck, y)
-
-    def pick(entry):
-        options = [entry[i] for i in range(entry.shape[0])]
-        for bit in stuck:  # bit k of the table index is coupling k's
-            options = [jnp.where(bit, high, low) for low, high in zip(options[0::2], options[1::2])]
-        return options[0]
-
-    return jax.tree.map(pick, layout.responses)
+    rows = table.matrix
+    for bit in stuck:  # bit k of the table index is coupling k's
+        rows = jnp.where(bit, rows[1::2], rows[0::2])
+    picked = iter(rows[0][i] for i in range(rows.shape[1]))
+    return jax.tree.unflatten(table.treedef, [0.0 if absent else next(picked) for absent in table.absent])
 
 
 def keep_momentum(layout: Layout, y, stuck):

@@ -29,8 +29,11 @@ class Instant:
     accelerations and coupling torques are worked out on demand.
     """
 
-    def __init__(self, layout: Layout, t, y, modes=None, table=None, reply: Response | None = None):
+    def __init__(self, layout: Layout, t, y, modes=None, table=None, reply: Response | None = None,
+                 sliding=None):
         self.layout = layout
+        # each slipping coupling's sliding torque, where the caller sets it (None: its own law)
+        self._sliding = sliding
         self.t = t
         self.y = y
         self.modes = modes
@@ -103,7 +106,9 @@ class Instant:
     def _solve(self):
         r = self.reply
         tau = self.body_torques()
-        sigma = [slip_sign(self.modes[k]) * e.sliding_torque(self) if e.can_slip else 0.0
+        given = self._sliding or [None] * len(self.layout.coupling_elements)
+        sigma = [0.0 if not e.can_slip else slip_sign(self.modes[k]) * (e.sliding_torque(self) if given[k] is None
+                                                                         else given[k])
                  for k, e in enumerate(self.layout.coupling_elements)]
         accel = [dot(p, tau) + dot(q, sigma) for p, q in zip(r.accel_from_torque, r.accel_from_sliding)]
         torque = [dot(p, tau) + dot(q, sigma) for p, q in zip(r.torque_from_torque, r.torque_from_sliding)]

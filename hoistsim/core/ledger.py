@@ -37,6 +37,10 @@ def balance(terms: dict) -> dict[str, float]:
     return {name: float(value) for name, value in balance_columns(terms).items()}
 
 
+# J: the scale of the residual where every term is smaller (a machine at rest throughout)
+STILL = 1e-9
+
+
 def balance_columns(terms: dict) -> dict[str, np.ndarray]:
     """:func:`balance` for many runs at once: each start and end an array over the runs.
 
@@ -55,7 +59,8 @@ def balance_columns(terms: dict) -> dict[str, np.ndarray]:
             heat[kind[len(HEAT_OF):]] = heat.get(kind[len(HEAT_OF):], 0.0) + change
             continue
         residual = residual + change if kind == "work" else residual - change
-    scale = np.max(np.abs(np.asarray([*out.values(), np.full(np.shape(residual), 1e-300)])), axis=0)
+    # relative to the largest term; a machine that never moved has none, and its round-off is nothing
+    scale = np.max(np.abs(np.asarray([*out.values(), np.full(np.shape(residual), STILL)])), axis=0)
     out["residual"] = np.asarray(residual, dtype=float)
     out["relative_residual"] = np.abs(residual) / scale
     if heat:

@@ -145,6 +145,7 @@ def _record_transitions(plan: Plan, segment: Segment, c: _Carry, when, t, y, bef
                         columns: bool) -> _Carry:
     """One event row per coupling whose mode changed (if it reports its switches); count them."""
     layout = plan.layout
+    margins = switching.margins(layout, segment, t, y, after) if columns else None
     for k, (index, coupling) in enumerate(zip(layout.couplings, layout.coupling_elements)):
         if not coupling.reports_switches:
             continue
@@ -153,8 +154,7 @@ def _record_transitions(plan: Plan, segment: Segment, c: _Carry, when, t, y, bef
         if coupling.switch_names:  # the coupling's own names for them (lifting off a support)
             codes = jnp.asarray([layout.switch_code(coupling, core) for core in range(len(SWITCH_KINDS))])
             kind = jnp.where(happened, codes[jnp.maximum(kind, 0)], kind)
-        margin = switching.margin(layout, segment, t, y, after, k) if columns else jnp.nan
-        c = record(c, happened, t, kind, index, y, after, margin)
+        c = record(c, happened, t, kind, index, y, after, margins[k] if columns else jnp.nan)
         c = eqx.tree_at(lambda q: q.switches, c, c.switches + happened)
     return c
 
