@@ -20,8 +20,9 @@ import pytest
 from click.testing import CliRunner
 from conftest import SCENARIOS
 
-from hoistsim import load_scenario, scenario_from_dict, simulate
+from hoistsim import load_scenario, scenario_from_dict, scenario_from_text, simulate
 from hoistsim.cli import main
+from hoistsim.errors import ScenarioError
 
 REFERENCE = Path(__file__).parent / "data" / "coupled_clutches_systemmodeler.csv"
 PHASE = 1.57  # rad: clutch 1's force 20 sin(2 pi 0.2 t + 1.57) N, as in the reference
@@ -156,6 +157,18 @@ BAD = [  # (id, the drivetrain's text, the key, the words)
     ("an unknown key of a clutch",
      "  clutches:\n    c: {between: [a, b], static_friction: 0.3, kinetic_friction: 0.2, radius: 1 m,"
      " force: 10 N}\n", "drivetrain.clutches.c.radius", "unknown key"),
+    ("a clutch with a radius and a cone",
+     "  clutches:\n    c: {between: [a, b], static_friction: 0.3, kinetic_friction: 0.2, effective_radius: 1 m,"
+     " cone: {inner_radius: 20 cm, outer_radius: 24 cm, half_angle: 25 deg}, force: 10 N}\n",
+     "drivetrain.clutches.c.effective_radius", "either effective_radius or cone"),
+    ("two gear stages closing a loop with ratios that disagree",
+     "  gears:\n    g1: {between: [a, b], ratio: 2}\n    g2: {between: [b, a], ratio: 3}\n",
+     "drivetrain.gears.g2.ratio", "gears 'g1' whose ratios disagree"),
+    ("a gear stage on one shaft", "  gears:\n    g: {between: [a, a], ratio: 2}\n", "drivetrain.gears.g.between",
+     "to itself"),
+    ("a motor on an unknown shaft",
+     "  motors:\n    m: {shaft: x, stall_torque: 10 N*m, no_load_speed: 100 rad/s, inertia: 0.1 kg*m^2}\n",
+     "drivetrain.motors.m.shaft", "no shaft 'x'"),
 ]
 SHAFTS = "drivetrain:\n  shafts:\n    a: {inertia: 1 kg*m^2, speed: 1 rad/s}\n    b: {inertia: 1 kg*m^2}\n"
 SIMULATION = "simulation:\n  duration: 1 s\n  output_interval: 10 ms\n"
@@ -172,6 +185,21 @@ def test_a_bad_drivetrain_fails_in_one_line(text, key, words, tmp_path):
     assert len(lines) == 1 and lines[0].startswith("hoistsim: error: "), lines
     assert f" {key}: " in lines[0] and words in lines[0], lines[0]
     assert "Traceback" not in result.output and not output.exists()
+
+
+@pytest.mark.parametrize("shafts, key", [
+    ("    a: {inertia: 1 kg*m^2}\n    c: {inertia: 0 kg*m^2}\n", "drivetrain.shafts.c.inertia"),
+    # geared to a shaft of inertia, or turned by a motor's rotor, a shaft of none is part of a body that has
+    ("    a: {inertia: 1 kg*m^2}\n    c: {inertia: 0 kg*m^2}\n  gears:\n    g: {between: [a, c], ratio: 3}\n", None),
+    ("    c: {inertia: 0 kg*m^2}\n  motors:\n    m: {shaft: c, torque: 1 N*m, inertia: 0.1 kg*m^2}\n", None),
+], ids=["alone", "geared to one", "with a motor"])
+def test_a_shaft_without_inertia_needs_something_of_inertia_tied_to_it(shafts, key, tmp_path):
+    text = "name: massless\ndrivetrain:\n  shafts:\n" + shafts + SIMULATION
+    if key is None:
+        assert scenario_from_text(text).drivetrain.shafts["c"].inertia == 0.0
+        return
+    with pytest.raises(ScenarioError, match=f"{key}: has no inertia and nothing of inertia rigidly tied to it"):
+        scenario_from_text(text)
 
 
 def test_a_drivetrain_with_the_hoists_sections_is_refused(tmp_path):

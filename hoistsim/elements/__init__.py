@@ -14,6 +14,7 @@ from .bearings import DrumShaftLoads as DrumShaftLoads
 from .clutch_heating import ClutchHeating as ClutchHeating
 from .cone_clutch import ConeClutch as ConeClutch
 from .constant_torque_motor import ConstantTorqueMotor as ConstantTorqueMotor
+from ._motor_variants import MOTOR_VARIANTS
 from .drivetrain import Drivetrain as Drivetrain
 from .drum import Drum as Drum
 from .elastic_load import ElasticLoad as ElasticLoad
@@ -38,7 +39,7 @@ from .wire_rope import WireRope as WireRope
 # section with variants.
 # The order is the order of bodies, states and output columns.
 REGISTRY: dict[str, object] = {
-    "motor": {"linear": LinearMotor, "torque_speed": TableMotor, "torque": ConstantTorqueMotor},
+    "motor": MOTOR_VARIANTS,
     "motor.ripple": MotorRipple,
     "gears": GearPair,
     "gears.mesh": MeshFriction,  # a lossy mesh's friction: scenario.gears.mesh, given with an efficiency

@@ -2,21 +2,34 @@
 
 from __future__ import annotations
 
+from ..schema_drivetrain import gear_groups
+from ._motor_variants import MOTOR_VARIANTS
 from .friction_clutch import FrictionClutch
+from .rigid_load import RigidLoad
 from .shaft import Shaft
+from .shaft_motor import ShaftMotor
 from .shaft_torque import ShaftTorque
 from ._signal import signal_fields
 
 
 class Drivetrain:
-    """Builds a drivetrain's elements: its shafts (bodies), the torques on them, its clutches."""
+    """Builds a drivetrain's elements: its shafts (a body per gear train: its first shaft, the others
+    geared to it), the motors and torques on them, its clutches, the load hanging from one."""
 
-    parts = (Shaft, ShaftTorque, FrictionClutch)  # the kinds of element it builds (what a file may hold)
+    # the kinds of element it builds (what a file may hold)
+    parts = (Shaft, ShaftTorque, ShaftMotor, FrictionClutch, RigidLoad)
 
     @staticmethod
     def from_spec(spec, scenario) -> tuple:
-        shafts = [Shaft(inertia=s.inertia, initial_speed=s.speed, section=name) for name, s in spec.shafts.items()]
+        groups = gear_groups(spec)
+        shafts = [Shaft(inertia=s.inertia, initial_speed=spec.shafts[groups[name][0]].speed * groups[name][1],
+                        speed_ratio=groups[name][1], section=name,
+                        geared_to="" if groups[name][0] == name else groups[name][0])
+                  for name, s in spec.shafts.items()]
+        shafts.sort(key=lambda shaft: bool(shaft.geared_to))  # the bodies first, then what is geared to them
+        motors = [ShaftMotor.from_spec(name, m, MOTOR_VARIANTS) for name, m in spec.motors.items()]
         torques = [ShaftTorque(**signal_fields(t.torque, "torque"), shaft=t.shaft, section=f"torque{i + 1}")
                    for i, t in enumerate(spec.torques)]
         clutches = [FrictionClutch.from_spec(name, c) for name, c in spec.clutches.items()]
-        return (*shafts, *torques, *clutches)
+        load = [] if spec.load is None else [RigidLoad.on_shaft(spec.load, scenario)]
+        return (*shafts, *motors, *torques, *clutches, *load)

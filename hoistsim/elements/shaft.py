@@ -8,12 +8,15 @@ from ..core.panel import Panel, Trace
 
 
 class Shaft(AbstractElement):
-    """A rigid shaft turning at a speed of its own (a body), with its inertia; its speed is the output
+    """A rigid shaft with its inertia, turning at a speed of its own (a body) or geared to another shaft
+    (``geared_to``: its speed ``speed_ratio`` times that one's, the same body); its speed is the output
     ``<name>_speed``."""
 
     inertia: object  # kg*m^2
     initial_speed: object  # rad/s
+    speed_ratio: object = 1.0  # its speed over that of the shaft it is geared to
     section: str = static("")  # the shaft's name in drivetrain.shafts
+    geared_to: str = static("")  # the first shaft of its gear train ("" : it is that shaft)
 
     @classmethod
     def reads(cls, column: str) -> bool:
@@ -30,7 +33,10 @@ class Shaft(AbstractElement):
         return {f"{self.section}_speed": ("rad/s", f"speed of shaft {self.section}")}
 
     def bodies(self) -> dict:
-        return {self.section: self.initial_speed}
+        return {} if self.geared_to else {self.section: self.initial_speed}
+
+    def shafts(self) -> dict:
+        return {self.section: (self.geared_to, self.speed_ratio)} if self.geared_to else {}
 
     def inertias(self) -> tuple:
         return ((self.section, self.inertia),)

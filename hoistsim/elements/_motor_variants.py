@@ -1,0 +1,9 @@
+"""The motor's characteristics by the name the schema gives them (the hoist's motor, a drivetrain's motors)."""
+
+from __future__ import annotations
+
+from .constant_torque_motor import ConstantTorqueMotor
+from .linear_motor import LinearMotor
+from .motor_table import TableMotor
+
+MOTOR_VARIANTS = {"linear": LinearMotor, "torque_speed": TableMotor, "torque": ConstantTorqueMotor}
