@@ -92,6 +92,8 @@ FIGURES = {
                           _run_and_plot("snatch_from_slack.yaml", {"": "snatch_from_slack.png"})),
     "coupled_clutches": ("hoistsim run + plot scenarios/coupled_clutches.yaml",
                          _run_and_plot("coupled_clutches.yaml", {"": "coupled_clutches.png"})),
+    "two_speed_hoist": ("hoistsim run + plot scenarios/two_speed_hoist.yaml",
+                        _run_and_plot("two_speed_hoist.yaml", {"": "two_speed_hoist.png"})),
     "brake_stop_on_an_elastic_rope": ("hoistsim run + plot scenarios/brake_stop_on_an_elastic_rope.yaml",
                                       _run_and_plot("brake_stop_on_an_elastic_rope.yaml",
                                                     {"": "brake_stop_on_an_elastic_rope.png"})),

@@ -22,7 +22,7 @@ FEW = 4  # more runs than this are drawn as a colour-mapped family
 MAX_EVENT_LINES = 40  # a run with more events than this (periodic stick-slip) has its events listed, not drawn
 THIN_TO = 600  # in a family, a curve longer than 2 x this many rows is thinned to its extremes per bucket
 
-_TRACE_COLOURS = ("#1f4e79", "#c1440e", "#2a7f62", "#6a3d9a")
+_TRACE_COLOURS = ("#1f4e79", "#c1440e", "#2a7f62", "#6a3d9a", "#b8860b", "#17becf", "#8c564b", "#e377c2")
 _LIMIT_COLOUR = "0.35"
 _EVENT_STYLE = {"lock": ("#1b7837", "-"), "unlock": ("#b2182b", "--"), "reversal": ("#762a83", ":"),
                 "brake_release": ("#8c510a", "-."), "engage": ("#2166ac", (0, (1, 1))),
@@ -116,7 +116,7 @@ def _draw_panel(ax, panel, runs, run_colours, mode, plt):
                     continue
                 drawn = True
                 if mode == "one":
-                    colour = _LIMIT_COLOUR if trace.limit else _TRACE_COLOURS[curves.index(trace) % 4]
+                    colour = _LIMIT_COLOUR if trace.limit else _TRACE_COLOURS[curves.index(trace) % len(_TRACE_COLOURS)]
                     label = trace.label
                 else:
                     label = None

@@ -186,11 +186,29 @@ _SWEEP_EXAMPLE = ("like 'clutch.engagement_force: [1000 N, 2000 N]' or "
                   "'clutch.engagement_force: {from: 1000 N, to: 9000 N, count: 9}'")
 
 
-def _check_key(dotted: str, origin: str) -> None:
-    """Raise unless ``dotted`` names a scalar (or table) key of the schema."""
+def _check_key(dotted: str, origin: str, raw: dict | None = None) -> None:
+    """Raise unless ``dotted`` names a scalar (or table) key of the schema (and, given the scenario's
+    ``raw`` data, a member it has where the key names one: a clutch by its name, a torque by its index)."""
     model: type[BaseModel] = Scenario
     parts = dotted.split(".")
+    member = False  # the part names a member of sections by name or in a list (a clutch, a torque's index)
+    node = raw
     for i, part in enumerate(parts):
+        if member:
+            if members[0] is list and not part.isdigit():
+                raise ScenarioError(".".join(parts[: i + 1]), "is a list: name a member by its index, from 0",
+                                    source=origin)
+            if node is not None:
+                have = list(node) if isinstance(node, dict) else [str(k) for k in range(len(node))]
+                if part not in have:
+                    raise ScenarioError(".".join(parts[: i + 1]), f"there is no such member (there are: "
+                                        f"{', '.join(have) or 'none'})", source=origin)
+                node = node[part] if isinstance(node, dict) else node[int(part)]
+            if i == len(parts) - 1:
+                raise ScenarioError(dotted, "is a section; name one of its keys, e.g. "
+                                    f"{dotted}.{next(iter(model.model_fields))}", source=origin)
+            member = False
+            continue
         if part == "sweep" and model is Scenario:
             what = "given with --set; edit the file's sweep: section" if origin == "--set" else "swept"
             raise ScenarioError("sweep", f"cannot be {what}", source=origin)
@@ -198,9 +216,15 @@ def _check_key(dotted: str, origin: str) -> None:
             known = [k for k in model.model_fields if k != "sweep"]
             raise ScenarioError(".".join(parts[: i + 1]), "unknown key" + _suggest(part, known, ".".join(parts[:i])),
                                 source=origin)
+        members = _members_of(model, part)
+        node = node.get(part) if isinstance(node, dict) else None
+        if members is not None and i < len(parts) - 1:
+            model, member = members[1], True
+            node = node if isinstance(node, (dict, list)) else None if raw is None else {}
+            continue
         sub = _model_of(model, part)
         if i == len(parts) - 1:
-            if sub is not None:
+            if sub is not None or members is not None:
                 raise ScenarioError(dotted, "is a section; name one of its keys, e.g. "
                                     f"{dotted}.{next(iter(sub.model_fields))}", source=origin)
             return
@@ -234,10 +258,13 @@ def _assign(raw: dict, dotted: str, value: Any) -> None:
     node = raw
     parts = dotted.split(".")
     for part in parts[:-1]:
-        if not isinstance(node.get(part), dict):
+        if isinstance(node, list):  # a member of sections in a list, by its index
+            node = node[int(part)]
+            continue
+        if not isinstance(node.get(part), (dict, list)):
             node[part] = {}
         node = node[part]
-    node[parts[-1]] = value
+    node[int(parts[-1]) if isinstance(node, list) else parts[-1]] = value
     for other in _ALTERNATIVES.get(dotted, ()):
         node.pop(other, None)
 
@@ -283,7 +310,7 @@ def scenario_from_text(text: str, source: str = "<scenario>",
         parse_override(item) for item in (overrides or [])
     ]
     for key, value in pairs:
-        _check_key(key, "--set")
+        _check_key(key, "--set", raw)
         _assign(raw, key, value)
     if pairs:
         text = text.rstrip("\n") + "\n# overrides from the command line:\n" + "".join(

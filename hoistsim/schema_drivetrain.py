@@ -68,7 +68,17 @@ class FrictionClutchSpec(Section):
 
 class GearStageSpec(Section):
     between: tuple[Text, Text]  # [input shaft, output shaft]
-    ratio: u.quantity(u.DIMENSIONLESS, gt=0.0)  # the input's speed over the output's (z_out / z_in)
+    ratio: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = None  # the input's speed over the output's
+    teeth: tuple[u.whole("teeth"), u.whole("teeth")] | None = None  # [z_in, z_out]: ratio z_out / z_in
+
+    @model_validator(mode="after")
+    def _one_ratio(self):
+        if (self.ratio is None) == (self.teeth is None):
+            raise ScenarioError(".ratio", "give either ratio (the input's speed over the output's) or teeth "
+                                "[input, output], one of them")
+        if self.teeth is not None:
+            object.__setattr__(self, "ratio", self.teeth[1] / self.teeth[0])  # read as ratio from here on
+        return self
 
 
 class ShaftMotorSpec(MotorSpec):

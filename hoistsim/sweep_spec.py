@@ -33,7 +33,7 @@ def _check_sweep(scenario: Scenario, raw: dict, key: str, values: list, tree: An
     value as validated (what the key holds in that run: a sweep's runs are built from these)."""
     where = _Where(f"sweep.{key}", source, tree, ("sweep", key))
     try:
-        _check_key(key, source)
+        _check_key(key, source, raw)
     except ScenarioError as exc:
         raise ScenarioError(f"sweep.{exc.key}", exc.message, source=source, line=where["line"]) from None
     if not isinstance(values, list) or not values:
@@ -68,7 +68,7 @@ def with_swept_value(scenario: Scenario, key: str, value: Any, raw: dict | None 
     *path, leaf = key.split(".")
     models = [scenario]
     for part in path:
-        models.append(getattr(models[-1], part))
+        models.append(_child(models[-1], part))
         if models[-1] is None:  # the sweep adds a section
             if raw is None:
                 raw = {k: v for k, v in scenario._raw.items() if k != "sweep"}
@@ -90,21 +90,45 @@ def with_validated_value(scenario: Scenario, key: str, value: Any) -> Scenario:
     """The scenario with one key set to a value validated already (as the file was read): copies, no checks."""
     models = [scenario]
     for part in key.split(".")[:-1]:
-        models.append(getattr(models[-1], part))
+        models.append(_child(models[-1], part))
     return _copied_with(models, key, value, check=False)
+
+
+def _child(parent, part: str):
+    """What ``part`` names in a section, or in sections by name (a dict) or in a list (by index)."""
+    if isinstance(parent, dict):
+        return parent[part]
+    if isinstance(parent, (list, tuple)):
+        return parent[int(part)]
+    return getattr(parent, part)
+
+
+def _with_child(parent, part: str, new, check: bool):
+    """``parent`` copied with what ``part`` names replaced by ``new`` (a section's checks run again if
+    ``check``)."""
+    if isinstance(parent, dict):
+        return {**parent, part: new}
+    if isinstance(parent, (list, tuple)):
+        members = list(parent)
+        members[int(part)] = new
+        return type(parent)(members)
+    copied = parent.model_copy(update={part: new})
+    if check:
+        for validate in type(copied).__pydantic_decorators__.model_validators.values():
+            validate.func(copied)  # the section's checks across its keys (each returns the model)
+    return copied
 
 
 def _copied_with(models: list, key: str, new: Any, check: bool) -> Scenario:
     """``models`` (the scenario and each section on the key's path) copied with the key's leaf set to ``new``;
     ``check``: each copied section's checks across its keys run again."""
     *path, leaf = key.split(".")
-    update = {leaf: new, **{other: None for other in _ALTERNATIVES.get(key, ())}}
-    for model, part in zip(reversed(models), reversed([None, *path])):  # each model, and its name in its parent
-        new = model.model_copy(update=update)
-        if check:
-            for validate in type(new).__pydantic_decorators__.model_validators.values():
-                validate.func(new)  # the section's checks across its keys (each returns the model)
-        update = {part: new}
+    new = models[-1].model_copy(update={leaf: new, **{other: None for other in _ALTERNATIVES.get(key, ())}})
+    if check:
+        for validate in type(new).__pydantic_decorators__.model_validators.values():
+            validate.func(new)  # the section's checks across its keys (each returns the model)
+    for model, part in zip(reversed(models[:-1]), reversed(path)):  # each holder, and the name it holds it by
+        new = _with_child(model, part, new, check)
     return new
 
 

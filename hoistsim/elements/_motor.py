@@ -29,6 +29,11 @@ class AbstractMotor(AbstractElement):
     }
     panels: ClassVar[tuple] = (speed_panel(Trace("motor", "motor_speed")),)
 
+    @classmethod
+    def panels_for(cls, run: dict) -> tuple:
+        # a drawn drivetrain's shaft may be named motor: its speed is in the shafts' panel, not the hoist's
+        return () if (run.get("parameters") or {}).get("drivetrain") else cls.panels
+
     def characteristic(self, speed):
         """Motor torque (N*m) at shaft speed ``speed`` (rad/s)."""
         raise NotImplementedError
