@@ -51,16 +51,19 @@ def balance_columns(terms: dict) -> dict[str, np.ndarray]:
     the loss already counts.
     """
     out: dict = {}
-    residual, heat = 0.0, {}
+    residual, heat, held = 0.0, {}, []
     for name, (kind, start, end) in terms.items():
+        if name == "kinetic_energy":  # what the machine holds: a run whose works cancel still turns
+            held += [np.abs(np.asarray(start, dtype=float)), np.abs(np.asarray(end, dtype=float))]
         change = np.asarray(end, dtype=float) - np.asarray(start, dtype=float)
         out[f"{name}_change" if kind == "potential" else name] = change
         if kind.startswith(HEAT_OF):
             heat[kind[len(HEAT_OF):]] = heat.get(kind[len(HEAT_OF):], 0.0) + change
             continue
         residual = residual + change if kind == "work" else residual - change
-    # relative to the largest term; a machine that never moved has none, and its round-off is nothing
-    scale = np.max(np.abs(np.asarray([*out.values(), np.full(np.shape(residual), STILL)])), axis=0)
+    # relative to the largest term or kinetic energy held; a machine that never moved has none, and its
+    # round-off is nothing
+    scale = np.max(np.abs(np.asarray([*out.values(), *held, np.full(np.shape(residual), STILL)])), axis=0)
     out["residual"] = np.asarray(residual, dtype=float)
     out["relative_residual"] = np.abs(residual) / scale
     if heat:
