@@ -22,7 +22,7 @@ import jax.numpy as jnp
 
 from .._pytree import pytree_dataclass
 from ..schema import SOLVERS as SOLVER_NAMES
-from . import switching
+from . import static_check, switching
 from .bodies import Response, keep_momentum, response, response_table
 from .dynamics import Instant, slip_sign, vector_field
 from .element import SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STUCK
@@ -145,7 +145,7 @@ def _record_transitions(plan: Plan, segment: Segment, c: _Carry, when, t, y, bef
                         columns: bool) -> _Carry:
     """One event row per coupling whose mode changed (if it reports its switches); count them."""
     layout = plan.layout
-    margins = switching.margins(layout, segment, t, y, after) if columns else None
+    margins = static_check.margins(layout, segment, t, y, after) if columns else None
     for k, (index, coupling) in enumerate(zip(layout.couplings, layout.coupling_elements)):
         if not coupling.reports_switches:
             continue
@@ -162,8 +162,8 @@ def _record_transitions(plan: Plan, segment: Segment, c: _Carry, when, t, y, bef
 def _scheduled_switches(plan: Plan, segment: Segment, c: _Carry, columns: bool) -> _Carry:
     """At a boundary: record the elements' scheduled events, then re-decide every coupling."""
     layout = plan.layout
-    modes, candidates = switching.candidates_at_boundary(layout, segment, c.y, plan.speed_scale)
-    decided, _ = switching.settle(layout, segment, c.t, c.y, modes, candidates)
+    modes, candidates = static_check.candidates_at_boundary(layout, segment, c.y, plan.speed_scale)
+    decided, _ = static_check.settle(layout, segment, c.t, c.y, modes, candidates)
     decided_y = switching.with_impacts(layout, c.y, keep_momentum(layout, c.y, [m == STUCK for m in decided]),
                                        c.modes, decided)
     before = c.modes
@@ -243,7 +243,7 @@ def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit
             jnp.abs(x.relative_speed(coupling.section)) <= SHARED_ZERO * SLIP_RESOLUTION * plan.speed_scale)
         modes = modes.at[k].set(jnp.where(together, STUCK, modes[k]))
         candidates[k] = candidates[k] | together
-    new_modes, new_y = switching.settle(layout, segment, t, y, modes, candidates)
+    new_modes, new_y = static_check.settle(layout, segment, t, y, modes, candidates)
     new_y = switching.with_impacts(layout, y, new_y, c.modes, new_modes)
     c = _record_transitions(plan, segment, c, hit, t, new_y, c.modes, new_modes, columns)
     return eqx.tree_at(lambda k: (k.y, k.modes), c,

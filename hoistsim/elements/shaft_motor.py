@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 from .._pytree import static
-from ..core.element import AbstractElement
 from ._motor import AbstractMotor
+from ._shaft_work import AbstractShaftWork
 
 
-class ShaftMotor(AbstractElement):
+class ShaftMotor(AbstractShaftWork):
     """A motor whose rotor turns with a shaft: its inertia joins the shaft's, its torque is its
     characteristic (linear, a torque-speed table or constant: the hoist's motor variants, ``law``) at the
     shaft's speed.  Its work is a state and a work term of the ledger; outputs ``<name>_torque`` and
@@ -28,30 +28,14 @@ class ShaftMotor(AbstractElement):
         return {f"{self.section}_torque": ("N*m", f"torque of motor {self.section} on shaft {self.shaft}"),
                 f"{self.section}_work": ("J", f"work done by motor {self.section} so far")}
 
-    @property
-    def ledger_kinds(self) -> dict:
-        return {f"{self.section}_work": "work"}
-
     def torque(self, x):
         return self.law.characteristic(x.speed(self.shaft))
 
     def inertias(self) -> tuple:
         return ((self.shaft, self.law.inertia),)
 
-    def torques(self, x) -> tuple:
-        return ((self.shaft, self.torque(x)),)
-
-    def states(self) -> dict:
-        return {f"{self.section}_work": 0.0}
-
-    def rates(self, x) -> dict:
-        return {f"{self.section}_work": self.torque(x) * x.speed(self.shaft)}
-
-    def ledger(self, x) -> dict:
-        return {f"{self.section}_work": x.state(f"{self.section}_work")}
-
     def speed_scale(self):
         return self.law.speed_scale()
 
     def outputs(self, x) -> dict:
-        return {f"{self.section}_torque": self.torque(x), f"{self.section}_work": x.state(f"{self.section}_work")}
+        return {f"{self.section}_torque": self.torque(x), f"{self.section}_work": x.state(self.work_state)}
