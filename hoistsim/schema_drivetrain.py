@@ -70,6 +70,20 @@ class GearStageSpec(Section):
     between: tuple[Text, Text]  # [input shaft, output shaft]
     ratio: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = None  # the input's speed over the output's
     teeth: tuple[u.whole("teeth"), u.whole("teeth")] | None = None  # [z_in, z_out]: ratio z_out / z_in
+    # the mesh's efficiency when the input drives the output, and when the output drives the input
+    # (default: the same); either given, the stage is lossy (absent: ideal)
+    efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
+    backdrive_efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
+
+    @property
+    def lossy(self) -> bool:
+        return self.efficiency is not None or self.backdrive_efficiency is not None
+
+    @property
+    def efficiencies(self) -> tuple[float, float]:
+        """(input driving, output driving): 1 and 1 for an ideal stage; the second defaults to the first."""
+        forward = 1.0 if self.efficiency is None else self.efficiency
+        return forward, forward if self.backdrive_efficiency is None else self.backdrive_efficiency
 
     @model_validator(mode="after")
     def _one_ratio(self):
@@ -138,6 +152,9 @@ class DrivetrainSpec(Section):
                                     f"outer_radius ({clutch.cone.outer_radius:g} m)")
         self._parts_named()
         groups = gear_groups(self)
+        for name, stage in self.gears.items():
+            if stage.lossy:
+                beyond_stage(self, name)  # a lossy stage in a loop of stages is refused there
         self._speeds_agree(groups)
         self._every_body_has_inertia(groups)
         return self
@@ -224,6 +241,28 @@ def gear_groups(spec: DrivetrainSpec) -> dict:
                                         f"{other!r} would turn {groups[other][1]:.6g} and {other_ratio:.6g} times "
                                         f"as fast as {start!r} (the machine could not turn)")
     return groups
+
+
+def beyond_stage(spec: DrivetrainSpec, name: str) -> tuple:
+    """The shafts on a gear stage's output side: its output shaft first, then every shaft geared to it
+    by other stages.  The tooth load is what these take; a stage in a loop of stages has no such side
+    (its tooth load is not determined by the machine's motion): refused for a lossy one."""
+    first, out = spec.gears[name].between
+    reached, beyond = [out], [out]
+    while reached:
+        shaft = reached.pop()
+        for other, stage in spec.gears.items():
+            if other == name or shaft not in stage.between:
+                continue
+            far = stage.between[1] if shaft == stage.between[0] else stage.between[0]
+            if far == first:
+                raise ScenarioError(f"drivetrain.gears.{name}.efficiency", f"the stage is in a loop of gear "
+                                    f"stages (through {other!r}): the torque its teeth pass is not determined, "
+                                    "give it no efficiency")
+            if far not in beyond:
+                beyond.append(far)
+                reached.append(far)
+    return tuple(beyond)
 
 
 def hoist_only(scenario, command: str) -> None:

@@ -118,6 +118,44 @@ def test_a_brake_stops_a_shaft_in_closed_form():
     assert run.summary["brake_slip_energy"] == pytest.approx(0.5 * 2 * 30**2, rel=1e-9)
 
 
+def test_a_force_ramping_through_zero_opens_the_clutch_where_it_crosses():
+    """F = 100 (1 - 2 t) N (a table row at 0 and at 1 s): the clutch slides with 0.1 * F N*m until the force
+    crosses zero at 0.5 s, where it opens; each shaft's speed moves by 0.1 * 100 (t - t^2) until then and
+    stays.  The crossing is a segment boundary: no step straddles the kink of max(F, 0)."""
+    scene = _drivetrain({"a": {"inertia": "1 kg*m^2", "speed": "10 rad/s"}, "b": {"inertia": "1 kg*m^2"}},
+                        {"c": {"between": ["a", "b"], "static_friction": 0.2, "kinetic_friction": 0.1,
+                               "effective_radius": "1 m", "force": [["0 s", "100 N"], ["1 s", "-100 N"]]}})
+    run = simulate(scene)
+    t = run.time
+    moved = 10.0 * (np.minimum(t, 0.5) - np.minimum(t, 0.5) ** 2)
+    np.testing.assert_allclose(run["a_speed"], 10.0 - moved, rtol=0, atol=1e-11)
+    np.testing.assert_allclose(run["b_speed"], moved, rtol=0, atol=1e-11)
+    assert np.all(run["c_mode"][t > 0.5] == 3) and np.all(run["c_mode"][t < 0.5] == 1)
+    assert run.summary["c_slip_energy"] == pytest.approx((10.0**2 - 7.5**2 - 2.5**2) / 2, rel=1e-10)  # kinetic lost
+
+
+def test_a_brake_holding_a_shaft_at_rest_breaks_away_at_the_first_peak_over_its_capacity():
+    """A shaft held at rest by a brake whose capacity falls, 20 - 10 t N*m, against 14 sin(6 pi t) N*m.
+    Held, the machine does not move: nothing limits the steps, and a peak of the torque may rise over the
+    capacity and fall back within one.  The brake must break away where the torque first reaches its
+    capacity (between the peaks at 0.417 s, under it, and 0.75 s, over it), found here independently."""
+    from scipy.optimize import brentq
+
+    from hoistsim.core.element import STICK_TOLERANCE, TORQUE_RESOLUTION
+
+    scene = _drivetrain({"wheel": {"inertia": "1 kg*m^2"}},
+                        {"brake": {"between": ["wheel", "ground"], "static_friction": 1.0, "kinetic_friction": 0.8,
+                                   "effective_radius": "1 m", "force": [["0 s", "20 N"], ["1 s", "10 N"]]}},
+                        [{"shaft": "wheel", "torque": {"harmonics": [{"amplitude": "14 N*m", "frequency": "3 Hz"}]}}])
+    run = simulate(scene)
+    reach = brentq(lambda t: 14 * math.sin(6 * math.pi * t) - ((20 - 10 * t) * (1 + STICK_TOLERANCE) + TORQUE_RESOLUTION),
+                   0.6, 0.75, xtol=1e-15)
+    assert _events(run)[0][1:] == ("unlock", "brake")
+    assert _events(run)[0][0] == pytest.approx(reach, abs=1e-9)
+    held = run.time < reach
+    assert np.all(run["wheel_speed"][held] == 0.0)
+
+
 def test_two_shafts_engage_as_the_textbook_says():
     """Ja = 3, Jb = 1 kg*m^2, 40 rad/s apart, T = 0.3 * 200 N * 0.25 m * 2 = 30 N*m: lock-up after
     Ja Jb dw / (T (Ja + Jb)) = 1 s, heat Ja Jb dw^2 / (2 (Ja + Jb)) = 600 J, at the common speed of momentum."""
@@ -164,6 +202,11 @@ BAD = [  # (id, the drivetrain's text, the key, the words)
     ("two gear stages closing a loop with ratios that disagree",
      "  gears:\n    g1: {between: [a, b], ratio: 2}\n    g2: {between: [b, a], ratio: 3}\n",
      "drivetrain.gears.g2.ratio", "gears 'g1' whose ratios disagree"),
+    ("a lossy gear stage in a loop of stages",
+     "  gears:\n    g1: {between: [a, b], ratio: 2}\n    g2: {between: [b, a], ratio: 0.5, efficiency: 0.9}\n",
+     "drivetrain.gears.g2.efficiency", "in a loop of gear stages"),
+    ("an efficiency above 1", "  gears:\n    g: {between: [a, b], ratio: 2, efficiency: 1.1}\n",
+     "drivetrain.gears.g.efficiency", "1"),
     ("a gear stage on one shaft", "  gears:\n    g: {between: [a, a], ratio: 2}\n", "drivetrain.gears.g.between",
      "to itself"),
     ("a motor on an unknown shaft",

@@ -76,3 +76,20 @@ def test_the_brake_start_drawn_as_a_drivetrain_is_the_hoist():
     hoist_run, drawn_run = simulate(scenario), simulate(scenario_from_dict(data))
     assert_same(hoist_run, drawn_run)
     np.testing.assert_allclose(drawn_run["brake_torque"], -hoist_run["brake_torque"], rtol=0, atol=1e-12 * 1000)
+
+
+def test_a_lossy_stage_drawn_is_the_hoists_lossy_mesh():
+    # the load runs back through the mesh (the wheel drives, eta_b) until the clutch engages and lifts it (the
+    # pinion drives, eta): both laws of the losses, and the switch between them
+    hoist = copy.deepcopy(EXERCISE6)
+    hoist["clutch"]["engagement_force"] = [["0 s", "0 N"], ["0.3 s", "0 N"], ["0.4 s", "3201 N"]]
+    hoist["gears"].update(efficiency=0.9, backdrive_efficiency=0.8)
+    hoist["simulation"]["duration"] = "1.5 s"
+    data = drawn(hoist)
+    data["drivetrain"]["gears"]["stage"].update(efficiency=0.9, backdrive_efficiency=0.8)
+    hoist_run, drawn_run = simulate(scenario_from_dict(hoist)), simulate(scenario_from_dict(data))
+    assert set(np.unique(hoist_run["mesh_mode"])) >= {1, 2}
+    assert_same(hoist_run, drawn_run, SHARED | {"mesh_torque": "stage_mesh_torque", "mesh_mode": "stage_mesh_mode",
+                                                "mesh_heat": "stage_mesh_heat", "mesh_loss_power": "stage_mesh_loss_power"})
+    assert drawn_run.summary["stage_mesh_loss_energy"] == pytest.approx(hoist_run.summary["mesh_loss_energy"],
+                                                                       rel=1e-12)

@@ -112,42 +112,56 @@ class Instant:
                  for k, e in enumerate(self.layout.coupling_elements)]
         accel = [dot(p, tau) + dot(q, sigma) for p, q in zip(r.accel_from_torque, r.accel_from_sliding)]
         torque = [dot(p, tau) + dot(q, sigma) for p, q in zip(r.torque_from_torque, r.torque_from_sliding)]
-        for k, e in enumerate(self.layout.coupling_elements):
-            if e.can_slip and e.pressed_by is not None:
-                # what k passes besides moves everything along its column of the response
-                column = ([q[k] for q in r.accel_from_sliding], [u[k] for u in r.torque_from_sliding])
-                added = self._pressed(k, e, (accel, torque), column)
+        pressed = [k for k, e in enumerate(self.layout.coupling_elements) if e.can_slip and e.pressed_by is not None]
+        if pressed:
+            # what each passes besides moves everything along its column of the response
+            columns = [([q[k] for q in r.accel_from_sliding], [u[k] for u in r.torque_from_sliding]) for k in pressed]
+            for added, column in zip(self._pressed(pressed, (accel, torque), columns), columns):
                 accel = [v + added * c for v, c in zip(accel, column[0])]
                 torque = [v + added * c for v, c in zip(torque, column[1])]
         self._solved = (accel, torque)
 
-    def _pressed(self, k, coupling, solved, column):
-        """What coupling k's faces add to its sliding torque (with its slip's sign), pressed by a shaft's torque.
+    def _pressed(self, pressed, solved, columns):
+        """What the faces of couplings pressed by a shaft's torque add to their sliding torques (with their
+        slips' signs), solved together (one's pressing torque carries what those beyond it pass to the ground).
 
-        The pressing torque P = P0 + dP/dsigma_k sigma_k responds to what k
-        passes (``solved``: the machine without it; ``column``: its response to a
-        unit of it), and k passes s f |P|: with the side fixed by the sign of P0
-        (the same as P's, the factor being positive and the machine passive),
-        P = P0 / (1 - dP/dsigma_k s f sign(P0)).
+        The pressing torque of coupling k, P_k = P0_k + sum_j dP_k/dsigma_j sigma_j, responds to what each
+        passes (``solved``: the machine without them; ``columns``: their responses to a unit of each), and
+        k passes sigma_k = s f |P_k| = F_k P_k: with the side fixed by the sign of P0_k (the same as P_k's,
+        the factors being positive and the machine passive), sigma = (I - F C)^-1 F P0.
         """
-        s = slip_sign(self.modes[k])
-        pressing = self._into(coupling.pressed_by, *solved, applied=True)
-        change = self._into(coupling.pressed_by, *column, applied=False)
-        factor = s * coupling.sliding_per_load(self, jnp.sign(s * pressing)) * jnp.sign(pressing)
-        return factor * pressing / (1.0 - change * factor)
+        couplings = self.layout.coupling_elements
+        signs = [slip_sign(self.modes[k]) for k in pressed]
+        pressing = [self._into(couplings[k].pressed_by, *solved, applied=True) for k in pressed]
+        factor = [s * couplings[k].sliding_per_load(self, jnp.sign(s * p)) * jnp.sign(p)
+                  for k, s, p in zip(pressed, signs, pressing)]
+        change = [[self._into(couplings[k].pressed_by, *column, applied=False) for column in columns] for k in pressed]
+        if len(pressed) == 1:
+            return [factor[0] * pressing[0] / (1.0 - change[0][0] * factor[0])]
+        f = jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in factor])
+        c = jnp.stack([jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in row]) for row in change])
+        p0 = jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in pressing])
+        added = jnp.linalg.solve(jnp.eye(len(pressed)) - f[:, None] * c, f * p0)
+        return [added[i] for i in range(len(pressed))]
 
-    def _into(self, shaft, accel, passed, applied: bool):
-        """The torque a shaft's body passes into the shaft (N*m at it): what its inertia takes, less the
-        torques applied to it, plus what couplings at it pass on; linear in the accelerations and the
-        coupling torques (``applied`` False: their part alone)."""
-        body, ratio = self.layout.shaft(shaft)
-        inertia = sum((value for e in self.layout.elements for on, value in e.inertias() if on == shaft), 0.0)
-        into = inertia * ratio * accel[body]
-        if applied:
-            into = into - self.shaft_torques.get(shaft, 0.0)
-        for k, coupling in enumerate(self.layout.coupling_elements):
-            a, b = coupling.joins()
-            into = into + (passed[k] if a == shaft else 0.0) - (passed[k] if b == shaft else 0.0)
+    def _into(self, shafts, accel, passed, applied: bool):
+        """The torque the rest of a body passes into some of its shafts (N*m at the first): what their
+        inertia takes, less the torques applied to them, plus what couplings at them pass on, each
+        brought to the first shaft by the speeds' ratio; linear in the accelerations and the coupling
+        torques (``applied`` False: their part alone).  ``shafts``: one shaft's name, or a tuple."""
+        shafts = (shafts,) if isinstance(shafts, str) else shafts
+        into = 0.0
+        for shaft in shafts:
+            body, ratio = self.layout.shaft(shaft)
+            inertia = sum((value for e in self.layout.elements for on, value in e.inertias() if on == shaft), 0.0)
+            taken = inertia * ratio * accel[body]
+            if applied:
+                taken = taken - self.shaft_torques.get(shaft, 0.0)
+            for k, coupling in enumerate(self.layout.coupling_elements):
+                a, b = coupling.joins()
+                taken = taken + (passed[k] if a == shaft else 0.0) - (passed[k] if b == shaft else 0.0)
+            # torque at this shaft, at the first: the power it passes is the same
+            into = taken if shaft == shafts[0] else into + taken * ratio / self.layout.shaft(shafts[0])[1]
         return into
 
     def torque_into(self, shaft):

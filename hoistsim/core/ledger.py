@@ -39,6 +39,10 @@ def balance(terms: dict) -> dict[str, float]:
 
 # J: the scale of the residual where every term is smaller (a machine at rest throughout)
 STILL = 1e-9
+# the kind of a term that is no energy of the ledger but a size of it: the most kinetic energy the machine
+# held during the run (the residual's scale where works cancel and the machine ends as it started)
+HELD = "held"
+PEAK_TERM = "kinetic_energy_peak"
 
 
 def balance_columns(terms: dict) -> dict[str, np.ndarray]:
@@ -53,6 +57,9 @@ def balance_columns(terms: dict) -> dict[str, np.ndarray]:
     out: dict = {}
     residual, heat, held = 0.0, {}, []
     for name, (kind, start, end) in terms.items():
+        if kind == HELD:
+            held.append(np.abs(np.asarray(end, dtype=float)))
+            continue
         if name == "kinetic_energy":  # what the machine holds: a run whose works cancel still turns
             held += [np.abs(np.asarray(start, dtype=float)), np.abs(np.asarray(end, dtype=float))]
         change = np.asarray(end, dtype=float) - np.asarray(start, dtype=float)

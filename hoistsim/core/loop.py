@@ -3,8 +3,9 @@
 Each pass of the loop integrates the current modes from the current time to
 the next scheduled boundary (a table knot, an element's scheduled time, the
 end), stopping early where a guard reaches zero (:mod:`.stepping`); the event
-time is found by root-finding on the step's own interpolant.  The switch is then applied
-(reset + new modes) and the loop goes on.  The loop names no part of the
+time is found by root-finding on the step's own interpolant.  The switch is decided
+where the next pass starts, with a boundary's decision (:mod:`.decisions`: one static
+check a step), and the loop goes on.  The loop names no part of the
 machine: it asks the elements (through :class:`Layout`) for bodies, states,
 couplings, guards, boundaries, observations and summaries.  Every number is a
 traced input of :class:`Plan`: a new value reuses the compiled loop.
@@ -22,13 +23,13 @@ import jax.numpy as jnp
 
 from .._pytree import pytree_dataclass
 from ..schema import SOLVERS as SOLVER_NAMES
-from . import static_check, switching
-from .bodies import Response, keep_momentum, response, response_table
-from .dynamics import Instant, slip_sign, vector_field
-from .element import SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STUCK
-from .layout import NO_EVENT, SWITCH_KINDS, Layout
+from . import decisions, switching
+from .bodies import Response, response, response_table
+from .dynamics import Instant, slip_sign
+from .element import STUCK
+from .layout import Layout
 from .columns import row_outputs, summary_values
-from .eventlog import LOG_FIELDS, record, unpack
+from .eventlog import LOG_FIELDS, unpack
 from .ledger import ledger_values
 from .readout import RawRun
 from .schedule import Segment, segment_from
@@ -42,9 +43,6 @@ STATUS_TEXT = {OK: "ok", CHATTERING: "chattering", SOLVER_FAILED: "solver failed
 SOLVERS = {name: getattr(diffrax, name.capitalize()) for name in SOLVER_NAMES}
 
 MAX_STEPS_PER_SEGMENT = 200_000
-# Where one coupling's sides meet, another's meet at the same instant if their relative speed is within
-# this many slip resolutions (the round-off of the located root).
-SHARED_ZERO = 16
 # Passes that may end at a kink, per allowed switch (beyond, kinks are stepped across).
 KINK_BUDGET = 100
 _REDUCTIONS = {"max": -jnp.inf, "min": jnp.inf, "first": jnp.nan, "first_value": jnp.nan, "duration": 0.0}
@@ -115,6 +113,10 @@ class _Carry(eqx.Module):
     step_cap: jax.Array  # s: the largest step allowed (inf but while re-solving a missed crossing)
     switches_from: jax.Array  # s: switches held off before this time (-inf but while re-solving for a limit)
     fired: dict  # observation and valley guards -> whether one ended the last pass
+    # a switch located at the end of the last pass, to be decided at the start of the next (see _decide)
+    pending: jax.Array
+    pending_modes: jax.Array  # the couplings' modes as the guards that fired leave them
+    pending_candidates: jax.Array  # which couplings the static check decides
     extremes: dict  # running reductions of the run, for its summary (exact: every extremum is a row)
 
 
@@ -122,132 +124,31 @@ def _instant(plan: Plan, segment: Segment, t, y, modes, reply=None) -> Instant:
     return Instant(plan.layout, t, y, modes, segment.table, reply=reply)
 
 
+# the core's own running reduction: the most kinetic energy held at a row or a pass's end (the energy
+# ledger's scale where the works cancel over the run and the machine ends as it started)
+KINETIC_PEAK = "kinetic_energy_peak"
+
+
 def _reductions(plan: Plan, x: Instant) -> dict:
-    out = {}
+    out = {KINETIC_PEAK: ("max", x.kinetic_energy())}
     for element in plan.layout.elements:
         out.update(element.extremes(x))
     return out
 
 
-def _note(plan: Plan, segment: Segment, c: _Carry, t, y, modes, reply=None) -> _Carry:
-    """Fold the state at (t, y, modes) into the run's running extremes."""
-    folded = {}
+def _note(plan: Plan, segment: Segment, c: _Carry, t, y, modes, reply=None) -> tuple[_Carry, dict]:
+    """Fold the state at (t, y, modes) into the run's running extremes; and whether each duration's
+    condition holds there (it holds over the pass that starts there)."""
+    folded, holding = {}, {}
     for name, (kind, value) in _reductions(plan, _instant(plan, segment, t, y, modes, reply)).items():
+        if kind == "duration":
+            holding[name] = value
         old = c.extremes[name]
         folded[name] = {"max": lambda: jnp.maximum(old, value), "min": lambda: jnp.minimum(old, value),
                         "first": lambda: jnp.where(jnp.isnan(old) & value, t, old),
                         "first_value": lambda: jnp.where(jnp.isnan(old) & value[0], value[1], old),
                         "duration": lambda: old}[kind]()
-    return eqx.tree_at(lambda k: k.extremes, c, folded)
-
-
-def _record_transitions(plan: Plan, segment: Segment, c: _Carry, when, t, y, before, after,
-                        columns: bool) -> _Carry:
-    """One event row per coupling whose mode changed (if it reports its switches); count them."""
-    layout = plan.layout
-    margins = static_check.margins(layout, segment, t, y, after) if columns else None
-    for k, (index, coupling) in enumerate(zip(layout.couplings, layout.coupling_elements)):
-        if not coupling.reports_switches:
-            continue
-        kind = switching.transition_kind(before[k], after[k])
-        happened = when & (kind != NO_EVENT)
-        if coupling.switch_names:  # the coupling's own names for them (lifting off a support)
-            codes = jnp.asarray([layout.switch_code(coupling, core) for core in range(len(SWITCH_KINDS))])
-            kind = jnp.where(happened, codes[jnp.maximum(kind, 0)], kind)
-        c = record(c, happened, t, kind, index, y, after, margins[k] if columns else jnp.nan)
-        c = eqx.tree_at(lambda q: q.switches, c, c.switches + happened)
-    return c
-
-
-def _scheduled_switches(plan: Plan, segment: Segment, c: _Carry, columns: bool) -> _Carry:
-    """At a boundary: record the elements' scheduled events, then re-decide every coupling."""
-    layout = plan.layout
-    modes, candidates = static_check.candidates_at_boundary(layout, segment, c.y, plan.speed_scale)
-    decided, _ = static_check.settle(layout, segment, c.t, c.y, modes, candidates)
-    decided_y = switching.with_impacts(layout, c.y, keep_momentum(layout, c.y, [m == STUCK for m in decided]),
-                                       c.modes, decided)
-    before = c.modes
-    new_modes = jnp.where(c.at_boundary, decided, c.modes)
-    c = eqx.tree_at(lambda k: (k.y, k.modes), c, (jnp.where(c.at_boundary, decided_y, c.y), new_modes))
-    for index, element in enumerate(layout.elements):
-        for kind, happens in element.boundary_events(c.t):
-            c = record(c, c.at_boundary & happens, c.t, layout.kind_code(kind), index, c.y, new_modes, jnp.nan)
-    # The first decision (t = 0) sets the initial modes; it is not an event.
-    before = jnp.where(c.segments == 0, -1, before)
-    return _record_transitions(plan, segment, c, c.at_boundary, c.t, c.y, before, new_modes, columns)
-
-
-def _apply_event(plan: Plan, segment: Segment, c: _Carry, t, y, masks: dict, hit, columns: bool,
-                 coinciding: dict, orients: dict) -> _Carry:
-    """A guard fired at (t, y): lock, reverse or unlock with the matching reset, or an observation.
-
-    ``coinciding``: knots reached at (t, y) along with the guard that fired; ``orients``: the way each
-    two-way observation left the pass's start (+1: it fell to zero; see switching.orients).
-    """
-    layout = plan.layout
-    # At most one guard fires at a time (the earliest; the first listed at one instant): one row for any observation.
-    observed, kind, element = jnp.zeros((), bool), NO_EVENT, -1
-    for role, name, _ in switching.guards(layout):
-        if role in ("observe", "limit"):
-            section, what = name.rsplit(".", 1)
-            named = layout.elements[layout.sections.index(section)].crossing_events.get(what)
-            code = layout.kind_code(what) if named is None else jnp.where(
-                orients[name] > 0, layout.kind_code(named[1]), layout.kind_code(named[0]))
-            kind = jnp.where(masks[name], code, kind)
-            element = jnp.where(masks[name], layout.sections.index(section), element)
-            observed = observed | masks[name]
-    c = record(c, observed, t, kind, element, y, c.modes, jnp.nan)
-    # A limit crossed at the same instant as the located guard: a row of its own, at that instant.
-    for role, name, _ in switching.guards(layout):
-        if role == "limit":
-            section, what = name.rsplit(".", 1)
-            c = record(c, coinciding[name], t, layout.kind_code(what), layout.sections.index(section), y, c.modes,
-                       jnp.nan)
-            c = eqx.tree_at(lambda k: k.observations, c, c.observations + coinciding[name])
-    valley = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in switching.guards(layout) if r == "valley"],
-                              jnp.zeros((), bool))
-    kinked = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in switching.guards(layout) if r == "kink"],
-                              jnp.zeros((), bool))
-    # A cycle's end: a row of its kind, and the budgets start again.
-    cycled = jnp.zeros((), bool)
-    for index, kink, kind in layout.cycles:
-        names = [f"{layout.sections[index]}.{kink}{side}" for side in "+-"]
-        crossed = functools.reduce(jnp.logical_or, [masks[n] | coinciding[n] for n in names])
-        c = record(c, crossed, t, layout.kind_code(kind), index, y, c.modes, jnp.nan)
-        cycled = cycled | crossed
-    c = eqx.tree_at(lambda k: (k.observations, k.kinks), c,
-                    (c.observations + (observed | valley), c.kinks + kinked))
-    now = jnp.stack([c.switches, c.observations, c.kinks])
-    c = eqx.tree_at(lambda k: k.cycle_start, c, jnp.where(cycled, now, c.cycle_start))
-    hit = hit & ~observed & ~valley & ~kinked
-    # Sides that meet move on together (momentum kept); a coupling whose
-    # capacity is exceeded slips the way its torque pushes.
-    modes, candidates = c.modes, [m == STUCK for m in c.modes]
-    for k, coupling in enumerate(layout.coupling_elements):
-        if not coupling.can_slip:
-            continue
-        name = coupling.section
-        met, up, down = masks[f"{name}.slip"], masks[f"{name}.breakaway+"], masks[f"{name}.breakaway-"]
-        modes = modes.at[k].set(jnp.where(up, SLIP_FORWARD, jnp.where(down, SLIP_BACKWARD,
-                                                                       jnp.where(met, STUCK, modes[k]))))
-        candidates[k] = (candidates[k] & ~up & ~down) | met
-    # Sides that meet where another coupling's sides meet (one zero of speed shared by both, a shaft
-    # stopping against two holds at once) are tried stuck too: a pass reports one guard.
-    meeting = functools.reduce(jnp.logical_or, [masks[f"{e.section}.slip"] for e in layout.coupling_elements
-                                                if e.can_slip], jnp.zeros((), bool))
-    x = Instant(layout, t, y)
-    for k, coupling in enumerate(layout.coupling_elements):
-        if not coupling.can_slip:
-            continue
-        together = meeting & (slip_sign(modes[k]) != 0.0) & switching.touching(coupling, x) & (
-            jnp.abs(x.relative_speed(coupling.section)) <= SHARED_ZERO * SLIP_RESOLUTION * plan.speed_scale)
-        modes = modes.at[k].set(jnp.where(together, STUCK, modes[k]))
-        candidates[k] = candidates[k] | together
-    new_modes, new_y = static_check.settle(layout, segment, t, y, modes, candidates)
-    new_y = switching.with_impacts(layout, y, new_y, c.modes, new_modes)
-    c = _record_transitions(plan, segment, c, hit, t, new_y, c.modes, new_modes, columns)
-    return eqx.tree_at(lambda k: (k.y, k.modes), c,
-                       (jnp.where(hit, new_y, c.y), jnp.where(hit, new_modes, c.modes)))
+    return eqx.tree_at(lambda k: k.extremes, c, folded), holding
 
 
 def _in_cycle(c: _Carry):
@@ -285,12 +186,10 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     layout = plan.layout
     guards = switching.guards(layout)
     segment = segment_from(plan.elements, plan.boundaries, plan.duration, c.t)
-    c = _scheduled_switches(plan, segment, c, columns)
+    c = decisions.decide(plan, segment, c, columns)
     # one response per pass while the modes hold; none where an inertia varies (worked out at each use)
     reply = None if layout.inertia_varies else response(layout, c.modes)
-    c = _note(plan, segment, c, c.t, c.y, c.modes, reply)
-    durations = {name: value for name, (kind, value) in
-                 _reductions(plan, _instant(plan, segment, c.t, c.y, c.modes, reply)).items() if kind == "duration"}
+    c, durations = _note(plan, segment, c, c.t, c.y, c.modes, reply)
     start_t, start_y = c.t, c.y
     pass_args, armed, sol = _solve_segment(plan, segment, c, solver, guards, reply, columns)
 
@@ -299,13 +198,22 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     # A slip valley of the wrong sign: the crossing fell inside one step and was
     # missed.  Throw this pass away and solve again from its start with steps
     # capped well below the dip's length, so that a step ends inside it.
+    # Likewise a stuck coupling over its capacity at its margin's valley: it broke away within the step.
     end = Instant(layout, t_end, y_end)
     missed = jnp.zeros((), bool)
+    by_name = {name: g for _, name, g in guards}
+    margin_valley, over = jnp.zeros((), bool), jnp.zeros((), bool)
     for k, coupling in enumerate(layout.coupling_elements):
         if coupling.can_slip:
+            name = coupling.section
             gap = coupling.gap(end)  # a contact's sides passed through each other
-            wrong = slip_sign(c.modes[k]) * end.relative_speed(coupling.section) < 0 if gap is None else gap < 0
-            missed = missed | (masks[f"{coupling.section}.slip_valley"] & wrong)
+            wrong = slip_sign(c.modes[k]) * end.relative_speed(name) < 0 if gap is None else gap < 0
+            missed = missed | (masks[f"{name}.slip_valley"] & wrong)
+            # (one valley is located where several couplings' margins dip at once: any of them may be over)
+            margin_valley = margin_valley | masks[f"{name}.margin_valley"]
+            over = over | (by_name[f"{name}.breakaway+"](t_end, y_end, pass_args) < 0.0) | (
+                by_name[f"{name}.breakaway-"](t_end, y_end, pass_args) < 0.0)
+    missed = missed | (margin_valley & over)
     overtaken, limit_overtaken, coinciding = switching.crossed_together(guards, pass_args, t_end, y_end, armed,
                                                                         masks)
     # An observation or a limit below zero at the switch located, yet not the crossing found (it crossed and
@@ -327,7 +235,7 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     grid_modes = jnp.where(rows[:, None], c.modes, c.grid_modes)
     y_end = jnp.where(missed, start_y, y_end)
     t_reached = jnp.where(missed, start_t, t_end)
-    c = _note(plan, segment, c, t_reached, y_end, c.modes, reply)
+    c, _ = _note(plan, segment, c, t_reached, y_end, c.modes, reply)
     spent = jnp.where(~failed & kept, t_end - start_t, 0.0)
     extremes = dict(c.extremes, **{name: c.extremes[name] + jnp.where(on, spent, 0.0)
                                    for name, on in durations.items()})
@@ -340,9 +248,8 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
         c,
         (extremes, grid_state, grid_modes, c.steps + sol.steps, c.rejected + sol.rejected, c.segments + 1, fired),
     )
-    c = _apply_event(plan, segment, eqx.tree_at(lambda k: k.y, c, y_end), t_end, y_end, masks, hit & kept,
-                     columns, coinciding, pass_args.orients)
-    c = _note(plan, segment, c, t_reached, c.y, c.modes)
+    c = decisions.apply_event(plan, segment, eqx.tree_at(lambda k: k.y, c, y_end), t_end, y_end, masks, hit & kept,
+                     coinciding, pass_args.orients)
     switches, _, _ = _in_cycle(c)
     status = jnp.where(failed, SOLVER_FAILED, jnp.where(switches > plan.max_switches, CHATTERING, c.status))
     return eqx.tree_at(
@@ -382,11 +289,15 @@ def _run(plan: Plan, solver, max_segments: int, log_size: int, columns: bool = T
         step_cap=jnp.full((), jnp.inf),
         switches_from=jnp.full((), -jnp.inf),
         fired={name: jnp.array(False) for role, name, _ in switching.guards(layout) if role in ("observe", "limit", "valley")},
+        pending=jnp.array(False),
+        pending_modes=jnp.full((couplings,), STUCK),
+        pending_candidates=jnp.zeros((couplings,), bool),
         extremes=_initial_extremes(plan),
     )
 
     def going(c: _Carry):
-        return (c.t < plan.duration) & (c.status == OK) & (c.segments < max_segments)
+        # a switch located at the very end is still decided (a pass of no length follows it)
+        return ((c.t < plan.duration) | c.pending) & (c.status == OK) & (c.segments < max_segments)
 
     c = jax.lax.while_loop(going, functools.partial(_step, plan, solver, columns), c)
     status = jnp.where((c.status == OK) & (c.t < plan.duration), TOO_MANY_SEGMENTS, c.status)
@@ -395,7 +306,7 @@ def _run(plan: Plan, solver, max_segments: int, log_size: int, columns: bool = T
     grid_state = jnp.where(last[:, None] & (status == OK), c.y, c.grid_state)
     grid_modes = jnp.where(last[:, None] & (status == OK), c.modes, c.grid_modes)
     scalars = [c.t, *summary_values(plan, c.extremes, c.y, c.modes), *ledger_values(layout, plan.initial_state),
-               *ledger_values(layout, c.y)]
+               *ledger_values(layout, c.y), c.extremes[KINETIC_PEAK]]
     log_time, log_margin, codes, log_state, log_modes = unpack(c.log, c.log_count, couplings, columns)
     # the grid's rows and the events' through one evaluation (one copy of it in the program)
     outputs = row_outputs(plan, jnp.concatenate([plan.grid, log_time]), jnp.concatenate([grid_state, log_state]),
@@ -418,10 +329,16 @@ def _run(plan: Plan, solver, max_segments: int, log_size: int, columns: bool = T
 
 def _initial_extremes(plan: Plan) -> dict:
     """Each running reduction's starting value (its identity: -inf for a max, NaN for a first time...)."""
-    x = Instant(plan.layout, jnp.zeros(()), plan.initial_state, jnp.full((len(plan.layout.couplings),), STUCK),
-                lambda name, t: jnp.zeros(()))
-    return {name: jnp.asarray(_REDUCTIONS[kind], dtype=jnp.float64) for name, (kind, _) in
-            _reductions(plan, x).items()}
+    kinds = {}
+
+    def probe(state):  # traced apart (eval_shape): the kinds are wanted, not the values
+        x = Instant(plan.layout, jnp.zeros(()), state, jnp.full((len(plan.layout.couplings),), STUCK),
+                    lambda name, t: jnp.zeros(()))
+        kinds.update({name: kind for name, (kind, _) in _reductions(plan, x).items()})
+        return jnp.zeros(())
+
+    jax.eval_shape(probe, plan.initial_state)
+    return {name: jnp.asarray(_REDUCTIONS[kind], dtype=jnp.float64) for name, kind in kinds.items()}
 
 
 @functools.lru_cache(maxsize=None)

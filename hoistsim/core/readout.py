@@ -7,6 +7,7 @@ import numpy as np
 
 from .._pytree import pytree_dataclass
 from .layout import Layout
+from .ledger import HELD, PEAK_TERM
 
 EVENT_COUNT, SWITCHES, STATUS, STEPS, REJECTED, PASSES = range(6)
 
@@ -123,8 +124,10 @@ class Readout:
         n = len(self.layout.ledger_kinds)
         start = self.raw.scalars[1 + len(self.layout.summaries):][:n]
         end = self.raw.scalars[1 + len(self.layout.summaries) + n:][:n]
-        return {name: (kind, float(a), float(b))
-                for (name, kind), a, b in zip(self.layout.ledger_kinds.items(), start, end)}
+        peak = self.raw.scalars[1 + len(self.layout.summaries) + 2 * n]
+        terms = {name: (kind, float(a), float(b))
+                 for (name, kind), a, b in zip(self.layout.ledger_kinds.items(), start, end)}
+        return terms | {PEAK_TERM: (HELD, 0.0, float(peak))}
 
 
 class BatchReadout:
@@ -148,5 +151,6 @@ class BatchReadout:
         """:meth:`Readout.ledger` of every run: name -> (kind, starts, ends)."""
         n, first = len(self.layout.ledger_kinds), 1 + len(self.layout.summaries)
         scalars = np.asarray(self.raw.scalars[: self.count_runs])
-        return {name: (kind, scalars[:, first + i], scalars[:, first + n + i])
-                for i, (name, kind) in enumerate(self.layout.ledger_kinds.items())}
+        terms = {name: (kind, scalars[:, first + i], scalars[:, first + n + i])
+                 for i, (name, kind) in enumerate(self.layout.ledger_kinds.items())}
+        return terms | {PEAK_TERM: (HELD, np.zeros(self.count_runs), scalars[:, first + 2 * n])}

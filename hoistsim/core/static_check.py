@@ -89,8 +89,12 @@ def _check(layout: Layout, segment, t, met, modes, candidate):
     """
     x = Instant(layout, t, met, modes, segment.table)
     reply = x.reply
+    couplings = layout.coupling_elements
+    signs = [slip_sign(modes[k]) for k in range(len(couplings))]
+    partings = [signs[k] * x.relative_acceleration(c.section) for k, c in enumerate(couplings)]
+    let_go = [candidate[k] & (signs[k] != 0.0) for k in range(len(couplings))]
     stressed, cannot_hold, parting_ok, torques = [], [], [], []
-    for k, coupling in enumerate(layout.coupling_elements):
+    for k, coupling in enumerate(couplings):
         torque = jnp.asarray(x.coupling_torques[k], dtype=jnp.float64)
         held = candidate[k] & (modes[k] == STUCK)
         stressed.append(jnp.where(held, jnp.abs(torque) / holding_capacity(coupling, x, jnp.sign(torque)), 0.0))
@@ -99,16 +103,25 @@ def _check(layout: Layout, segment, t, met, modes, candidate):
             cannot_hold.append(jnp.ones((), bool))
             parting_ok.append(jnp.ones((), bool))
             continue
-        sign = slip_sign(modes[k])
-        parting = sign * x.relative_acceleration(coupling.section)
+        sign, parting = signs[k], partings[k]
         limit = holding_capacity(coupling, x, sign)
-        against = parting
+        cannot = parting >= 0.0
         if coupling.pressed_by is None:
-            # d(relative acceleration)/d(its signed sliding torque): negative, friction holds the sides
-            own = dot(x.rows[k], [q[k] for q in reply.accel_from_sliding])
-            against = parting + (jnp.where(jnp.isfinite(limit), limit, 0.0) - coupling.sliding_torque(x)) * own
+            # how each coupling's relative acceleration answers this one's signed sliding torque
+            response = [q[k] for q in reply.accel_from_sliding]
+            extra = jnp.where(jnp.isfinite(limit), limit, 0.0) - coupling.sliding_torque(x)
+            # own answer negative: friction holds the sides
+            cannot = parting + extra * dot(x.rows[k], response) >= 0.0
+            # Carrying its whole capacity, it would stop another let go from sliding the way it does (a
+            # mesh's law, which changes with the way it rolls, met a torque its present way cannot
+            # answer): this way's premise fails before the question is answered, and holding it is
+            # decided by the ways with it held, tried first.
+            for j in range(len(couplings)):
+                if j != k and couplings[j].can_slip:
+                    turned = partings[j] + signs[j] * sign * extra * dot(x.rows[j], response) < 0.0
+                    cannot = cannot | (let_go[j] & turned)
         # (at zero, others hold its sides together: letting it go changes nothing it could carry)
-        cannot_hold.append(jnp.isfinite(limit) & (against >= 0.0))
+        cannot_hold.append(jnp.isfinite(limit) & cannot)
         parting_ok.append(parting >= 0.0)
     return jnp.stack(stressed), jnp.stack(cannot_hold), jnp.stack(parting_ok), jnp.stack(torques)
 

@@ -22,6 +22,13 @@ so a guard that is exactly zero at a restart cannot fire.
   carry the slip below zero and back so that neither end of the step shows the
   crossing; the valley between is always seen, and if the slip there has the
   wrong sign the loop re-solves with shorter steps.
+- ``margin_valley`` (a safeguard, the same for a stuck coupling): minus the rate
+  of its margin (capacity less |torque|), through 0 where the margin stops
+  shrinking.  A machine held
+  at rest has nothing for the step size to resolve, so a torque in time may
+  rise over the capacity and fall back within one step; the margin's valley is
+  always seen, and if the coupling is over its capacity there the loop
+  re-solves with shorter steps.
 
 Switching guards come first: a pass ends at the earliest crossing of a step, and
 where two guards reach zero at one instant the first in this order fired: a
@@ -72,6 +79,27 @@ def _instant(t, y, args) -> Instant:
     return x
 
 
+def _margin_rates(t, y, args):
+    """d/dt of each coupling's margin were it stuck (capacity less |torque|) along the motion at (t, y):
+    the margins' derivative in the direction (1, dy/dt).  Shared by the guards at one (t, y)."""
+    shared = args.__dict__.get("_margin_rates")
+    if shared is not None and shared[0] is t and shared[1] is y:
+        return shared[2]
+    layout = args.layout
+
+    def margins(t, y):
+        x = Instant(layout, t, y, args.modes, args.segment.table, args.reply)
+        torques = [jnp.asarray(x.coupling_torque(c.section), dtype=jnp.float64) for c in layout.coupling_elements]
+        return jnp.stack([holding_capacity(c, x, jnp.sign(q)) - jnp.abs(q)
+                          for c, q in zip(layout.coupling_elements, torques)])
+
+    at = jnp.asarray(t, dtype=jnp.float64)
+    _, rates = jax.jvp(margins, (at, y), (jnp.ones_like(at), vector_field(at, y, args)))
+    rates = jnp.where(jnp.isfinite(rates), rates, -1.0)  # a coupling that holds whatever it carries: no valley
+    args.__dict__["_margin_rates"] = (t, y, rates)
+    return rates
+
+
 def touching(coupling, x):
     """Whether a coupling's sides touch: always, but for a contact whose gap is open."""
     gap = coupling.gap(x)
@@ -119,12 +147,17 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
                        else -s * x.relative_acceleration(name))
             return jnp.where((s != 0.0) & args.observing, closing - args.offsets[f"{name}.slip_valley"], 1.0)
 
+        def margin_dip(t, y, args, k=k, name=name, **_):
+            falling = -_margin_rates(t, y, args)[k]
+            return jnp.where((args.modes[k] == STUCK) & args.observing,
+                             falling - args.offsets[f"{name}.margin_valley"], 1.0)
+
         switch += [("switch", f"{name}.slip", held_off(slip)),
                    ("switch", f"{name}.breakaway+", held_off(breakaway(1.0))),
                    ("switch", f"{name}.breakaway-", held_off(breakaway(-1.0)))]
         if coupling.observes_slip_peak:
             observe.append(("observe", f"{name}.slip_peak", peak))
-        valley.append(("valley", f"{name}.slip_valley", dip))
+        valley += [("valley", f"{name}.slip_valley", dip), ("valley", f"{name}.margin_valley", margin_dip)]
     for element in layout.elements:
         for kind in (k for k in element.observation_kinds if element.observes(k)):
             def seen(t, y, args, element=element, kind=kind, **_):

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
-from ..schema_drivetrain import gear_groups
+from ..schema_drivetrain import beyond_stage, gear_groups
 from ._motor_variants import MOTOR_VARIANTS
 from .friction_clutch import FrictionClutch
+from .mesh_friction import MeshFriction
 from .rigid_load import RigidLoad
 from .shaft import Shaft
 from .shaft_motor import ShaftMotor
@@ -14,10 +15,11 @@ from ._signal import signal_fields
 
 class Drivetrain:
     """Builds a drivetrain's elements: its shafts (a body per gear train: its first shaft, the others
-    geared to it), the motors and torques on them, its clutches, the load hanging from one."""
+    geared to it), the motors and torques on them, its clutches, the losses of its lossy gear stages, the
+    load hanging from one."""
 
     # the kinds of element it builds (what a file may hold)
-    parts = (Shaft, ShaftTorque, ShaftMotor, FrictionClutch, RigidLoad)
+    parts = (Shaft, ShaftTorque, ShaftMotor, FrictionClutch, MeshFriction, RigidLoad)
 
     @staticmethod
     def from_spec(spec, scenario) -> tuple:
@@ -31,5 +33,7 @@ class Drivetrain:
         torques = [ShaftTorque(**signal_fields(t.torque, "torque"), shaft=t.shaft, section=f"torque{i + 1}")
                    for i, t in enumerate(spec.torques)]
         clutches = [FrictionClutch.from_spec(name, c) for name, c in spec.clutches.items()]
+        meshes = [MeshFriction.in_stage(name, stage, beyond_stage(spec, name))
+                  for name, stage in spec.gears.items() if stage.lossy]
         load = [] if spec.load is None else [RigidLoad.on_shaft(spec.load, scenario)]
-        return (*shafts, *motors, *torques, *clutches, *load)
+        return (*shafts, *motors, *torques, *clutches, *meshes, *load)

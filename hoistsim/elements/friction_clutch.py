@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import ClassVar
 
 import jax.numpy as jnp
+import numpy as np
 
 from .._pytree import static
 from ..core.element import STUCK
@@ -17,7 +18,8 @@ class FrictionClutch(AbstractSlipHeat):
     """Faces pressed by a force F(t), a time signal: static capacity mu_s c F and sliding torque mu_k c F,
     c = effective radius times surfaces (Modelica's ``cgeo``), nothing where F <= 0.
 
-    A force given as a table is open over any segment where it stays at or below zero; a force in
+    A force given as a table is open over any segment where it stays at or below zero (where it
+    crosses zero between two rows is a segment boundary, like the rows); a force in
     harmonics may cross zero anywhere, so its sign is watched: the crossing is found like a switch
     (events ``disengage`` falling, ``engage`` rising) and no step straddles the kink of max(F, 0).  Its
     heat of slip is a state and a loss of the ledger; its events carry its name.
@@ -113,11 +115,24 @@ class FrictionClutch(AbstractSlipHeat):
     def sliding_torque(self, x):
         return self.kinetic_friction * self.torque_per_newton * self.pressing(x)
 
+    def boundaries(self) -> tuple:
+        """Where the force table crosses zero between two knots: a segment boundary, like the knots, so
+        that the kink of max(F, 0) is never inside a segment (one per interval, at its start where the
+        force does not cross: the count is the table's structure, the times its numbers)."""
+        t, v = np.asarray(self.force_times, float), np.asarray(self.force_values, float)  # on the host, as knots
+        if t.shape[-1] < 2:
+            return ()
+        t0, t1, v0, v1 = t[..., :-1], t[..., 1:], v[..., :-1], v[..., 1:]
+        crosses = (v0 * v1 < 0.0) & (t1 > t0)
+        at = np.where(crosses, t0 + v0 / np.where(crosses, v0 - v1, 1.0) * (t1 - t0), t0)
+        return tuple(at[..., i] for i in range(at.shape[-1]))
+
     def is_open(self, segment):
         if self.in_harmonics:
             return False
+        # the force's sign holds over a segment (its zeros are boundaries): the middle's decides
         value, slope = segment.lines[f"{self.section}.force"]
-        return (value <= 0.0) & (value + slope * (segment.end - segment.start) <= 0.0)
+        return value + slope * 0.5 * (segment.end - segment.start) <= 0.0
 
     def observes(self, kind: str) -> bool:
         return self.in_harmonics

@@ -6,6 +6,7 @@ from typing import ClassVar
 
 import jax.numpy as jnp
 
+from .._pytree import static
 from ..core.dynamics import slip_sign
 from ..core.element import OPEN, STUCK
 from ..core.panel import Panel, Phase, SummaryPanel, Trace
@@ -38,24 +39,18 @@ class MeshFriction(AbstractSlipHeat):
     efficiency: object  # eta: the pinion drives
     backdrive_efficiency: object  # eta_b: the wheel drives
     ratio: object  # z1/z2: the drum's speed over the pinion's
+    section: str = static("mesh")  # the hoist's mesh, or a drawn gear stage's name
+    prefix: str = static("mesh")  # its outputs' names begin so: mesh_torque, or <stage>_mesh_torque
+    driving: str = static("pinion")  # the input shaft, whose losses it is
+    # the output shaft and every shaft geared beyond it: the tooth load is what the pinion passes into them
+    beyond: tuple = static(("drum",))
 
-    section: ClassVar[str] = "mesh"
-    heat_state: ClassVar[str] = "mesh_loss_energy"
-    pressed_by: ClassVar[str] = "drum"  # the tooth load: what the pinion passes into the drum shaft
     yields: ClassVar[bool] = True
     observes_slip_peak: ClassVar[bool] = False
     # where the tooth load changes sign while the gear rolls, the side that drives changes and with it the
     # law of the losses: a row of its own, and no step across it
     observation_kinds: ClassVar[tuple] = ("power_reversal",)
     crossings: ClassVar[tuple] = ("power_reversal",)
-    summaries: ClassVar[dict] = {"mesh_loss_energy": "J"}
-    ledger_kinds: ClassVar[dict] = {"mesh_loss_energy": "loss"}
-    columns: ClassVar[dict] = {
-        "mesh_torque": ("N*m", "tooth load: the torque the pinion passes to the wheel, at the drum shaft"),
-        "mesh_loss_power": ("W", "power the tooth flanks' friction turns into heat"),
-        "mesh_heat": ("J", "energy the mesh has lost so far (the summary's mesh_loss_energy at the end)"),
-        "mesh_mode": ("1", "0 the gear held at rest, 1 the pinion drives the wheel, 2 the wheel drives the pinion"),
-    }
     panels: ClassVar[tuple] = (Panel("mesh", "mesh [N*m]\n(tooth load at the drum)", 45, (
         Trace("tooth load", "mesh_torque"),), zero_line=True, height=0.8),)
     shading: ClassVar[tuple] = (Phase("wheel drives the pinion", "mesh_mode", 2, "#b2182b", hatch="..."),)
@@ -68,11 +63,66 @@ class MeshFriction(AbstractSlipHeat):
                    ratio=float(spec.pinion_teeth) / float(spec.wheel_teeth))
 
     @classmethod
+    def in_stage(cls, name: str, stage, beyond: tuple) -> "MeshFriction":
+        """A drawn gear stage's lossy mesh: the input shaft's losses, pressed by what the shafts beyond take."""
+        efficiency, backdrive = stage.efficiencies
+        return cls(efficiency=efficiency, backdrive_efficiency=backdrive, ratio=1.0 / stage.ratio, section=name,
+                   prefix=f"{name}_mesh", driving=stage.between[0], beyond=beyond)
+
+    @classmethod
     def headline(cls, summary: dict) -> str | None:
-        return f"mesh losses {float(summary['mesh_loss_energy']) / 1000:.2f} kJ"
+        losses = [float(v) for key, v in summary.items() if key.endswith("mesh_loss_energy")]
+        return f"mesh losses {sum(losses) / 1000:.2f} kJ" if losses else None
+
+    @classmethod
+    def reads(cls, column: str) -> bool:
+        return column.endswith("_mesh_torque")
+
+    @classmethod
+    def panels_for(cls, run: dict) -> tuple:
+        """The hoist's mesh panel, or for a drawn drivetrain one panel of every lossy stage's tooth load."""
+        drawn = (run.get("parameters") or {}).get("drivetrain")
+        if not drawn:
+            return cls.panels
+        lossy = [name for name, stage in (drawn.get("gears") or {}).items()
+                 if stage.get("efficiency") is not None or stage.get("backdrive_efficiency") is not None]
+        traces = tuple(Trace(name, f"{name}_mesh_torque") for name in lossy)
+        return (Panel("meshes", "tooth load [N*m]\n(at each stage's output)", 45, traces, zero_line=True,
+                      height=0.8),) if traces else ()
+
+    @property
+    def heat_state(self) -> str:
+        return f"{self.prefix}_loss_energy"
+
+    @property
+    def summaries(self) -> dict:
+        return {self.heat_state: "J"}
+
+    @property
+    def ledger_kinds(self) -> dict:
+        return {self.heat_state: "loss"}
+
+    @property
+    def columns(self) -> dict:
+        p, out = self.prefix, self.beyond[0]
+        return {
+            f"{p}_torque": ("N*m", f"tooth load: the torque the {self.driving} shaft passes to the {out} shaft, "
+                                   f"at the {out} shaft"),
+            f"{p}_loss_power": ("W", "power the tooth flanks' friction turns into heat"),
+            f"{p}_heat": ("J", f"energy the mesh has lost so far (the summary's {self.heat_state} at the end)"),
+            f"{p}_mode": ("1", f"0 the gear held at rest, 1 the {self.driving} shaft drives, 2 the {out} shaft "
+                               "drives"),
+        }
+
+    @property
+    def pressed_by(self) -> tuple:
+        return self.beyond
 
     def joins(self) -> tuple:
-        return ("pinion", None)
+        return (self.driving, None)
+
+    def tooth_load(self, x):
+        return x.torque_into(self.pressed_by)
 
     def _per_load(self, side):
         # N*m lost at the pinion per N*m of tooth load at the drum: side +1 the pinion drives
@@ -86,24 +136,24 @@ class MeshFriction(AbstractSlipHeat):
 
     def capacity_toward(self, x, sign):
         # held at rest, the gear starts the way the pinion is pushed once it loses what rolling that way would
-        load = x.torque_into("drum")
+        load = self.tooth_load(x)
         return jnp.abs(load) * self._per_load(sign * load)
 
     def capacity(self, x):
         return jnp.maximum(self.capacity_toward(x, 1.0), self.capacity_toward(x, -1.0))
 
     def observations(self, x) -> dict:
-        rolling = (x.mode("mesh") != STUCK) & (x.mode("mesh") != OPEN)
-        return {"power_reversal": jnp.where(rolling, x.torque_into("drum"), 1.0)}
+        rolling = (x.mode(self.section) != STUCK) & (x.mode(self.section) != OPEN)
+        return {"power_reversal": jnp.where(rolling, self.tooth_load(x), 1.0)}
 
     def summary(self, x) -> dict:
-        return {"mesh_loss_energy": x.state("mesh_loss_energy")}
+        return {self.heat_state: x.state(self.heat_state)}
 
     def outputs(self, x) -> dict:
-        mode = x.mode("mesh")
+        mode, p = x.mode(self.section), self.prefix
         rolling = (mode != STUCK) & (mode != OPEN)
-        load = x.torque_into("drum")
+        load = self.tooth_load(x)
         drives = load * slip_sign(mode) >= 0.0  # the load pushes the way the gear rolls: the pinion drives
-        return {"mesh_torque": load, "mesh_loss_power": self.slip_power(x),
-                "mesh_heat": x.state("mesh_loss_energy"),
-                "mesh_mode": jnp.where(rolling, jnp.where(drives, 1, 2), 0).astype(jnp.int8)}
+        return {f"{p}_torque": load, f"{p}_loss_power": self.slip_power(x),
+                f"{p}_heat": x.state(self.heat_state),
+                f"{p}_mode": jnp.where(rolling, jnp.where(drives, 1, 2), 0).astype(jnp.int8)}

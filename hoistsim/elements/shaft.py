@@ -2,9 +2,14 @@
 
 from __future__ import annotations
 
+import numpy as np
+
 from .._pytree import static
 from ..core.element import AbstractElement
 from ..core.panel import Panel, Trace
+
+
+SPEED_SCALE_FLOOR = 1.0  # rad/s
 
 
 class Shaft(AbstractElement):
@@ -42,7 +47,9 @@ class Shaft(AbstractElement):
         return ((self.section, self.inertia),)
 
     def speed_scale(self):
-        return abs(self.initial_speed)
+        # at least 1 rad/s: a machine started at rest (or at a speed lost in round-off) still resolves slips
+        # against the speeds its torques give it, not against nothing
+        return np.maximum(np.abs(self.initial_speed), SPEED_SCALE_FLOOR)
 
     def outputs(self, x) -> dict:
         return {f"{self.section}_speed": x.speed(self.section)}

@@ -1,0 +1,143 @@
+"""What a switch or a boundary does to the couplings: the static check decides them, the events are recorded.
+
+The loop (:mod:`.loop`) calls :func:`apply_event` where a pass ends at a guard (an observation's row, or a
+switch left pending) and :func:`decide` where the next pass starts (at a boundary, or after a switch):
+one static check a step in the compiled program.
+"""
+
+from __future__ import annotations
+
+import functools
+
+import equinox as eqx
+import jax.numpy as jnp
+
+from . import static_check, switching
+from .bodies import keep_momentum
+from .dynamics import Instant, slip_sign
+from .element import SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STUCK
+from .eventlog import record
+from .layout import NO_EVENT, SWITCH_KINDS
+
+# Where one coupling's sides meet, another's meet at the same instant if their relative speed is within
+# this many slip resolutions (the round-off of the located root).
+SHARED_ZERO = 16
+
+
+def _record_transitions(plan, segment, c, when, t, y, before, after,
+                        columns: bool):
+    """One event row per coupling whose mode changed (if it reports its switches); count them."""
+    layout = plan.layout
+    margins = static_check.margins(layout, segment, t, y, after) if columns else None
+    for k, (index, coupling) in enumerate(zip(layout.couplings, layout.coupling_elements)):
+        if not coupling.reports_switches:
+            continue
+        kind = switching.transition_kind(before[k], after[k])
+        happened = when & (kind != NO_EVENT)
+        if coupling.switch_names:  # the coupling's own names for them (lifting off a support)
+            codes = jnp.asarray([layout.switch_code(coupling, core) for core in range(len(SWITCH_KINDS))])
+            kind = jnp.where(happened, codes[jnp.maximum(kind, 0)], kind)
+        c = record(c, happened, t, kind, index, y, after, margins[k] if columns else jnp.nan)
+        c = eqx.tree_at(lambda q: q.switches, c, c.switches + happened)
+    return c
+
+
+def decide(plan, segment, c, columns: bool):
+    """At a boundary, or after a switch located where the last pass ended: the static check decides the
+    couplings (one copy of it in the program for both), the scheduled events and the switches are recorded.
+
+    At a boundary every coupling whose sides move together is a candidate (the scheduled change may free or
+    catch any); after a switch, those the guards that fired leave stuck or meeting.
+    """
+    layout = plan.layout
+    boundary_modes, boundary_candidates = static_check.candidates_at_boundary(layout, segment, c.y, plan.speed_scale)
+    at = c.at_boundary
+    modes = jnp.where(at, boundary_modes, c.pending_modes).astype(c.modes.dtype)
+    candidates = [jnp.where(at, b, c.pending_candidates[k]) for k, b in enumerate(boundary_candidates)]
+    decided, met = static_check.settle(layout, segment, c.t, c.y, modes, candidates)
+    # at a boundary the stuck ones' sides take their common speed; after a switch the candidates' met already
+    met = jnp.where(at, keep_momentum(layout, c.y, [m == STUCK for m in decided]), met)
+    decided_y = switching.with_impacts(layout, c.y, met, c.modes, decided)
+    when = at | c.pending
+    before = c.modes
+    new_modes = jnp.where(when, decided, c.modes)
+    c = eqx.tree_at(lambda k: (k.y, k.modes, k.pending), c,
+                    (jnp.where(when, decided_y, c.y), new_modes, jnp.zeros((), bool)))
+    for index, element in enumerate(layout.elements):
+        for kind, happens in element.boundary_events(c.t):
+            c = record(c, at & happens, c.t, layout.kind_code(kind), index, c.y, new_modes, jnp.nan)
+    # The first decision (t = 0) sets the initial modes; it is not an event.
+    before = jnp.where(c.segments == 0, -1, before)
+    return _record_transitions(plan, segment, c, when, c.t, c.y, before, new_modes, columns)
+
+
+def apply_event(plan, segment, c, t, y, masks: dict, hit, coinciding: dict,
+                 orients: dict):
+    """A guard fired at (t, y): an observation's row, or a switch (lock, reverse or unlock) left pending
+    for the static check where the next pass starts.
+
+    ``coinciding``: knots reached at (t, y) along with the guard that fired; ``orients``: the way each
+    two-way observation left the pass's start (+1: it fell to zero; see switching.orients).
+    """
+    layout = plan.layout
+    # At most one guard fires at a time (the earliest; the first listed at one instant): one row for any observation.
+    observed, kind, element = jnp.zeros((), bool), NO_EVENT, -1
+    for role, name, _ in switching.guards(layout):
+        if role in ("observe", "limit"):
+            section, what = name.rsplit(".", 1)
+            named = layout.elements[layout.sections.index(section)].crossing_events.get(what)
+            code = layout.kind_code(what) if named is None else jnp.where(
+                orients[name] > 0, layout.kind_code(named[1]), layout.kind_code(named[0]))
+            kind = jnp.where(masks[name], code, kind)
+            element = jnp.where(masks[name], layout.sections.index(section), element)
+            observed = observed | masks[name]
+    c = record(c, observed, t, kind, element, y, c.modes, jnp.nan)
+    # A limit crossed at the same instant as the located guard: a row of its own, at that instant.
+    for role, name, _ in switching.guards(layout):
+        if role == "limit":
+            section, what = name.rsplit(".", 1)
+            c = record(c, coinciding[name], t, layout.kind_code(what), layout.sections.index(section), y, c.modes,
+                       jnp.nan)
+            c = eqx.tree_at(lambda k: k.observations, c, c.observations + coinciding[name])
+    valley = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in switching.guards(layout) if r == "valley"],
+                              jnp.zeros((), bool))
+    kinked = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in switching.guards(layout) if r == "kink"],
+                              jnp.zeros((), bool))
+    # A cycle's end: a row of its kind, and the budgets start again.
+    cycled = jnp.zeros((), bool)
+    for index, kink, kind in layout.cycles:
+        names = [f"{layout.sections[index]}.{kink}{side}" for side in "+-"]
+        crossed = functools.reduce(jnp.logical_or, [masks[n] | coinciding[n] for n in names])
+        c = record(c, crossed, t, layout.kind_code(kind), index, y, c.modes, jnp.nan)
+        cycled = cycled | crossed
+    c = eqx.tree_at(lambda k: (k.observations, k.kinks), c,
+                    (c.observations + (observed | valley), c.kinks + kinked))
+    now = jnp.stack([c.switches, c.observations, c.kinks])
+    c = eqx.tree_at(lambda k: k.cycle_start, c, jnp.where(cycled, now, c.cycle_start))
+    hit = hit & ~observed & ~valley & ~kinked
+    # Sides that meet move on together (momentum kept); a coupling whose
+    # capacity is exceeded slips the way its torque pushes.
+    modes, candidates = c.modes, [m == STUCK for m in c.modes]
+    for k, coupling in enumerate(layout.coupling_elements):
+        if not coupling.can_slip:
+            continue
+        name = coupling.section
+        met, up, down = masks[f"{name}.slip"], masks[f"{name}.breakaway+"], masks[f"{name}.breakaway-"]
+        modes = modes.at[k].set(jnp.where(up, SLIP_FORWARD, jnp.where(down, SLIP_BACKWARD,
+                                                                       jnp.where(met, STUCK, modes[k]))))
+        candidates[k] = (candidates[k] & ~up & ~down) | met
+    # Sides that meet where another coupling's sides meet (one zero of speed shared by both, a shaft
+    # stopping against two holds at once) are tried stuck too: a pass reports one guard.
+    meeting = functools.reduce(jnp.logical_or, [masks[f"{e.section}.slip"] for e in layout.coupling_elements
+                                                if e.can_slip], jnp.zeros((), bool))
+    x = Instant(layout, t, y)
+    for k, coupling in enumerate(layout.coupling_elements):
+        if not coupling.can_slip:
+            continue
+        together = meeting & (slip_sign(modes[k]) != 0.0) & switching.touching(coupling, x) & (
+            jnp.abs(x.relative_speed(coupling.section)) <= SHARED_ZERO * SLIP_RESOLUTION * plan.speed_scale)
+        modes = modes.at[k].set(jnp.where(together, STUCK, modes[k]))
+        candidates[k] = candidates[k] | together
+    # decided where the next pass starts, with the boundary's decision (one static check a step)
+    return eqx.tree_at(lambda k: (k.pending, k.pending_modes, k.pending_candidates), c,
+                       (hit, modes.astype(c.modes.dtype), jnp.stack(candidates)))
