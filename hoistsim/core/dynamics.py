@@ -193,12 +193,16 @@ class Instant:
 
 def vector_field(t, y, args):
     """dy/dt: the bodies' accelerations, then every element's state rates."""
-    layout = args.layout
-    x = Instant(layout, t, y, args.modes, args.segment.table, args.reply)
+    return rates_at(Instant(args.layout, t, y, args.modes, args.segment.table, args.reply), y.dtype)
+
+
+def rates_at(x: Instant, dtype):
+    """dy/dt at an instant already worked out."""
+    layout = x.layout
     rates = list(x.accelerations) + [0.0] * (layout.size - len(layout.bodies))
     for element in layout.elements:
         for name, rate in element.rates(x).items():
             rates[layout.state_index(name)] = rate
     for shaft in layout.angle_shafts:
         rates[layout.state_index(angle_state(shaft))] = x.speed(shaft)
-    return jnp.stack([jnp.asarray(r, dtype=y.dtype) for r in rates])
+    return jnp.stack([jnp.asarray(r, dtype=dtype) for r in rates])

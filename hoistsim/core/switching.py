@@ -51,7 +51,7 @@ from __future__ import annotations
 import jax
 import jax.numpy as jnp
 
-from .dynamics import Instant, slip_sign, vector_field
+from .dynamics import Instant, rates_at, slip_sign, vector_field
 from .element import OPEN, SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STICK_TOLERANCE, STUCK, TORQUE_RESOLUTION
 from .layout import DISENGAGE, ENGAGE, LOCK, NO_EVENT, REVERSAL, UNLOCK, Layout
 
@@ -94,7 +94,7 @@ def _margin_rates(t, y, args):
                           for c, q in zip(layout.coupling_elements, torques)])
 
     at = jnp.asarray(t, dtype=jnp.float64)
-    _, rates = jax.jvp(margins, (at, y), (jnp.ones_like(at), vector_field(at, y, args)))
+    _, rates = jax.jvp(margins, (at, y), (jnp.ones_like(at), rates_at(_instant(t, y, args), y.dtype)))
     rates = jnp.where(jnp.isfinite(rates), rates, -1.0)  # a coupling that holds whatever it carries: no valley
     args.__dict__["_margin_rates"] = (t, y, rates)
     return rates
