@@ -20,52 +20,19 @@ Format 2 (the contract's names; see README), one layout for one run or a million
 
 from __future__ import annotations
 
-import contextlib
 import datetime as _dt
 import json
-import os
 import platform
-import tempfile
 from dataclasses import dataclass
-from pathlib import Path
 
 import h5py
 import numpy as np
 
+from .atomic import atomic_path
+from .output_periodic import write_diagram, write_periods
 from .results import Summaries
 
 _TEXT = h5py.string_dtype()
-
-
-@contextlib.contextmanager
-def atomic_path(path):
-    """Yield a temporary path beside ``path``; move it into place only if the block succeeds.
-
-    A failure, an exception or a killed process leaves any existing file at
-    ``path`` untouched (at worst a stray hidden temporary file remains).
-    """
-    target = Path(path)
-    directory = target.parent if str(target.parent) else Path(".")
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".partial", dir=directory)
-    os.close(fd)
-    try:
-        yield Path(tmp)
-        with open(tmp, "rb+") as handle:  # make the bytes durable before they take the name
-            os.fsync(handle.fileno())
-        # mkstemp creates the file readable by its owner alone; a results file is for colleagues
-        # too, as any file this user creates: the mode the umask allows
-        os.chmod(tmp, 0o666 & ~_umask())
-        os.replace(tmp, target)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise
-
-
-def _umask() -> int:
-    mask = os.umask(0)  # the only way to read it is to set it: put it straight back
-    os.umask(mask)
-    return mask
 
 
 def provenance() -> dict[str, str]:
@@ -219,9 +186,9 @@ def write_record(f: h5py.Group, indices, outcomes, *, summary_only: bool, time, 
     for k, run in enumerate(runs):
         if run.periodic is not None:
             group = f.create_group(f"periodic/{k}")
-            _write_periods(group.create_group("periods"), run.periodic.regime)
+            write_periods(group.create_group("periods"), run.periodic.regime)
             if run.periodic.diagram is not None:
-                _write_diagram(group.create_group("turning_moment"), run.periodic.diagram)
+                write_diagram(group.create_group("turning_moment"), run.periodic.diagram)
 
 
 @dataclass
@@ -344,50 +311,6 @@ class Assembly:
             data.resize((start + added,))
             data[start:] = values
         self.instants += added
-
-
-def _write_diagram(group: h5py.Group, diagram) -> None:
-    """Tredgold's turning-moment diagram of the analysed regime, on the dimension ``angle``."""
-    angle = group.create_dataset("angle", data=diagram.angle)
-    angle.attrs["units"] = "rad"
-    angle.attrs["long_name"] = "motor angle from the start of the first analysed period"
-    angle.make_scale("angle")
-    for name, values, units, text in (
-            ("driving_torque", diagram.driving, "N*m", "driving torque M'_m at the motor shaft, at the mean speed"),
-            ("resisting_torque", diagram.resisting, "N*m",
-             "resisting torque M'_r at the motor shaft (inertia torques of reciprocating parts at the mean speed)"),
-            ("energy", diagram.energy, "J", "integral of (M'_m - M'_r) over the angle from the period's start")):
-        data = group.create_dataset(name, data=values)
-        data.attrs["units"] = units
-        data.attrs["long_name"] = text
-        data.dims[0].attach_scale(angle)
-    for key in ("mean_speed", "inertia", "energy_fluctuation", "min_speed_angle", "max_speed_angle",
-                "work_residual", "irregularity"):
-        group.attrs[key] = getattr(diagram, key)
-
-
-def _write_periods(group: h5py.Group, regime) -> None:
-    """The periodic regime, one row per whole period: a dataset per column on the dimension ``period``."""
-    from .periodic.regime import PERIOD_DESCRIPTIONS
-
-    table = regime.table
-    group.attrs["period"] = regime.period
-    group.attrs["period_units"] = "rad"
-    group.attrs["settling_tolerance"] = regime.tolerance
-    group.attrs["settled"] = regime.settled
-    group.attrs["message"] = regime.message
-    index = group.create_dataset("period", data=table["period"])
-    index.attrs["units"] = "1"
-    index.attrs["long_name"] = PERIOD_DESCRIPTIONS["period"]
-    index.make_scale("period")
-    for name, values in table.items():
-        if name == "period":
-            continue
-        data = group.create_dataset(name, data=values)
-        data.attrs["units"] = regime.units[name]
-        data.attrs["long_name"] = PERIOD_DESCRIPTIONS.get(name, f"{name.removesuffix('_per_period')} "
-                                                                "gained in the period (J)")
-        data.dims[0].attach_scale(index)
 
 
 # Summary columns the host adds to the elements' own (which declare their units).

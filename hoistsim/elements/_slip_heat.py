@@ -18,6 +18,10 @@ class AbstractSlipHeat(AbstractCoupling):
 
     heat_state: ClassVar[str]
 
+    @property
+    def ledger_kinds(self) -> dict:
+        return {self.heat_state: "loss"}
+
     def slip_power(self, x):
         return slip_power(x, self.section)
 

@@ -42,7 +42,6 @@ class ConeClutch(AbstractSlipHeat):
     heat_state: ClassVar[str] = "clutch_energy"
     summaries: ClassVar[dict] = {"lockup_time": "s", "slip_duration": "s", "peak_clutch_torque": "N*m",
                                  "peak_slip_speed": "rad/s", "slip_energy": "J"}
-    ledger_kinds: ClassVar[dict] = {"clutch_energy": "loss"}
     columns: ClassVar[dict] = {
         "slip_speed": ("rad/s", "motor speed minus clutch-output (pinion) speed"),
         "clutch_torque": ("N*m", "torque through the clutch, positive when the motor drives the load"),

@@ -78,10 +78,6 @@ class FrictionClutch(AbstractSlipHeat):
         return f"{self.section}_energy"
 
     @property
-    def ledger_kinds(self) -> dict:
-        return {self.heat_state: "loss"}
-
-    @property
     def summaries(self) -> dict:
         return {f"{self.section}_lockup_time": "s", f"{self.section}_slip_energy": "J"}
 

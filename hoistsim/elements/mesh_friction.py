@@ -99,10 +99,6 @@ class MeshFriction(AbstractSlipHeat):
         return {self.heat_state: "J"}
 
     @property
-    def ledger_kinds(self) -> dict:
-        return {self.heat_state: "loss"}
-
-    @property
     def columns(self) -> dict:
         p, out = self.prefix, self.beyond[0]
         return {
