@@ -1,12 +1,13 @@
 """hoistsim: time-domain start-up of a winch hoist with a stick-slip cone clutch.
 
 Public names are imported on first use, so the command line pays only for
-what a command needs (a run never loads the closed-form solver's scipy parts).
+what a command needs (a run never loads the closed-form solver's scipy parts,
+checking a scenario never loads JAX).  Every module that uses JAX imports
+:mod:`hoistsim._jax` first (directly, or through ``hoistsim.core`` or
+``hoistsim._pytree``), so float64 is set before any array exists.
 """
 
 from importlib import import_module
-
-from . import _jax  # noqa: F401  (float64 before any array exists)
 
 __version__ = "0.1.0"
 

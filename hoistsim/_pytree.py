@@ -14,6 +14,8 @@ import functools
 
 import jax
 
+from . import _jax  # noqa: F401  (float64 before any array exists)
+
 _STATIC = "hoistsim_static"
 
 

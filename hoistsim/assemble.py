@@ -9,7 +9,7 @@ import numpy as np
 
 from .core.element import AbstractCoupling
 from .core.layout import Layout, LayoutError
-from .core.loop import KINK_BUDGET, Plan
+from .core.plan import KINK_BUDGET, Plan
 from .core.schedule import scheduled_times
 from .elements import elements_for
 from .errors import ScenarioError

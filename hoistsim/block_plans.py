@@ -27,7 +27,7 @@ from pydantic import BaseModel
 from .assemble import build_plan, plan_from
 from .core.schedule import scheduled_times
 from ._pytree import static_values
-from .core.loop import Plan
+from .core.plan import Plan
 from .elements import element_sections
 from .sweep_spec import swept_field, with_validated_value
 from .swept_values import SweptValues

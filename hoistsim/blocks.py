@@ -24,7 +24,8 @@ from jax.sharding import Mesh, NamedSharding, PartitionSpec
 from . import _jax
 from .assemble import build_plan, loop_sizes
 from .block_plans import block_plans, padded
-from .core.loop import OK, SOLVERS, Plan, _run
+from .core.loop import SOLVERS, _run
+from .core.plan import OK, Plan
 from .core.readout import STATUS, BatchReadout, Readout
 from .errors import ScenarioError
 from .periodic.analysis import periodic_regime
@@ -179,7 +180,7 @@ def _launch(runs, scenarios, group, plans, fast, summary_only: bool, chunk: int,
             stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *batch + [batch[-1]] * (chunk - len(batch)))
         chunks.append((part, stacked))
     solver = first.simulation.solver
-    run = _jax.executable(compiled_batch(solver, *sizes, not lean, devices), chunks[0][1],
+    run = _jax.executable(functools.partial(compiled_batch, solver, *sizes, not lean, devices), chunks[0][1],
                           name=f"sweep-{solver}-{sizes}-{lean}", devices=devices)
     # launched, not waited for: the host goes on while they run
     calls = [(time.perf_counter(), run(stacked)) if lean else None for _, stacked in chunks]
@@ -194,7 +195,8 @@ def _results(group: dict):
     for (part, stacked), call in zip(group["chunks"], group["calls"]):
         while True:
             if built != sizes:
-                run = _jax.executable(compiled_batch(group["solver"], *sizes, True, group["devices"]), stacked,
+                run = _jax.executable(functools.partial(compiled_batch, group["solver"], *sizes, True, group["devices"]),
+                                      stacked,
                                       name=f"sweep-{group['solver']}-{sizes}-False", devices=group["devices"])
                 built = sizes
             started, pending = call if call is not None else (time.perf_counter(), run(stacked))

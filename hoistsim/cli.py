@@ -20,7 +20,7 @@ os.environ.setdefault("EQX_ON_ERROR", "nan")
 
 import click  # noqa: E402
 
-from .scenario import ScenarioError  # noqa: E402
+from .errors import ScenarioError  # noqa: E402
 from .terminal import compiling, progress_printer  # noqa: E402
 
 BAD_INPUT, RUN_FAILED = 2, 1
@@ -147,7 +147,6 @@ def run(scenario, output, overrides, sweeps, summary_only, resume, workers, sche
     from .output import write_runs
     from .report import periodic_table, summary_table
     from .simulation import SimulationError, simulate
-    from .sweeps import sweep
 
     _jax.enable_compilation_cache()
     _jax.compile_notice = compiling
@@ -168,6 +167,8 @@ def run(scenario, output, overrides, sweeps, summary_only, resume, workers, sche
     clustered = workers is not None or scheduler is not None
     try:
         if scenario.sweep or summary_only or clustered:  # written block by block as the runs finish
+            from .sweeps import sweep
+
             result = sweep(scenario, summary_only=summary_only, progress=progress_printer(), output=target,
                            command=command, resume=resume, workers=workers, scheduler=scheduler)
             summaries, warnings = result.summaries, result.warnings

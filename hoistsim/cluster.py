@@ -20,7 +20,6 @@ import contextlib
 import uuid
 from concurrent.futures import CancelledError
 
-from .blocks import devices_for, run_block
 
 CONNECT_SECONDS = 5  # an address with no scheduler behind it fails this fast
 RETRIES = 3  # submissions of a block the cluster cancels before the sweep gives up
@@ -39,6 +38,8 @@ def cluster_blocks(client, runs, blocks, *, summary_only: bool, chunk: int):
     """The blocks ``(start, stop)`` of ``runs`` computed on the cluster, yielded in order as they finish."""
     sweep_id = uuid.uuid4().hex[:12]  # a running cluster may serve other sweeps: keys of our own
     shared = [client.scatter(runs, broadcast=True)]  # sent once to each worker, not with every block
+    from .blocks import devices_for  # here: the command line names this module's errors before any sweep
+
     devices = devices_for(chunk)  # the client's split, kept by every worker: the same bits as one process
     window = 2 * max(1, len(client.scheduler_info()["workers"])) + 2
     tries = collections.Counter()
@@ -107,6 +108,7 @@ def _remote_block(runs, start: int, stop: int, summary_only: bool, chunk: int, d
     """On a worker: one block, its chunks split over the client's ``devices`` (the programs compiled once
     per worker process, kept in the persistent cache)."""
     from . import _jax
+    from .blocks import run_block
 
     _jax.enable_compilation_cache()
     import jax

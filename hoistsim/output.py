@@ -30,7 +30,7 @@ import numpy as np
 
 from .atomic import atomic_path
 from .output_periodic import write_diagram, write_periods
-from .results import Summaries
+from .summaries import Summaries
 
 _TEXT = h5py.string_dtype()
 

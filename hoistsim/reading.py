@@ -14,7 +14,7 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-from .results import Summaries
+from .summaries import Summaries
 
 
 def _version(f: h5py.File) -> int:

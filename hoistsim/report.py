@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import math
 
-from .model import Machine
 
 
 def table(headers: list[str], rows: list[list[str]], align: str | None = None) -> str:
@@ -176,6 +175,7 @@ def reduced_model_table(scenario) -> str:
     from .core.bodies import Bodies
     from .core.layout import Layout
     from .errors import ScenarioError
+    from .model import Machine
 
     layout = Layout(machine_elements(scenario))
     rows = [[f"J[{body}]", f"inertia of the {body} body (all its shafts carry, reduced)", fmt(float(j)), "kg*m^2"]

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import time as _time
 
 import jax
@@ -11,9 +12,8 @@ from . import _jax
 from .assemble import build_plan, loop_sizes
 from .core.element import MODE_NAMES
 from .core.layout import SWITCH_KINDS
-from .core.loop import CHATTERING, OK, SOLVER_FAILED, STATUS_TEXT, compiled_run
+from .core.plan import CHATTERING, OK, SOLVER_FAILED, STATUS_TEXT
 from .core.readout import Readout
-from .periodic.analysis import periodic_regime
 from .results import RunResult
 from .errors import ScenarioError
 from .scenario import Scenario
@@ -29,7 +29,7 @@ def simulate(scenario: Scenario, label: str = "") -> RunResult:
     sim = scenario.simulation
     sizes = loop_sizes(plan, sim.max_switches)
     while True:
-        run = _jax.executable(compiled_run(sim.solver, *sizes), plan, name=f"run-{sim.solver}-{sizes}")
+        run = _jax.executable(functools.partial(_loop, sim.solver, *sizes), plan, name=f"run-{sim.solver}-{sizes}")
         started = _time.perf_counter()
         raw = Readout(plan.layout, jax.device_get(run(plan)))
         elapsed = _time.perf_counter() - started
@@ -40,6 +40,13 @@ def simulate(scenario: Scenario, label: str = "") -> RunResult:
     if raw.status != OK:
         raise SimulationError(failure_message(scenario, raw))
     return run_result(scenario, label, grid, raw, elapsed)
+
+
+def _loop(solver: str, *sizes):
+    """The compiled loop, imported (with the solver library) only where no stored program serves."""
+    from .core.loop import compiled_run
+
+    return compiled_run(solver, *sizes)
 
 
 def scenario_errors(scenario: Scenario, raw: Readout) -> None:
@@ -87,7 +94,11 @@ def run_result(scenario: Scenario, label: str, grid: np.ndarray, raw: Readout, e
     mode_after = [MODE_NAMES[int(modes[i, layout.coupling_index(e)])] if e in layout.coupling_names else ""
                   for i, e in enumerate(elements)]
     columns = layout.columns()
-    periodic = periodic_regime(scenario, raw)
+    periodic = None
+    if scenario.periodic_regime is not None:  # its analysis (and scipy's root finder) only where there is one
+        from .periodic.analysis import periodic_regime
+
+        periodic = periodic_regime(scenario, raw)
     cycles = [kind for _, _, kind in layout.cycles]
     category = np.asarray(["observation" if k in layout.observation_kinds else "cycle" if k in cycles
                            else "switch" if k in SWITCH_KINDS else "scheduled" for k in kinds], dtype=object)

@@ -26,7 +26,7 @@ import h5py
 import numpy as np
 
 from . import output
-from .results import Summaries
+from .summaries import Summaries
 
 FILE_BYTES = 32 * 2**20  # series gathered into one chunk file
 FILE_RUNS = 65536  # summaries gathered into one chunk file

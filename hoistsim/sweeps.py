@@ -19,6 +19,7 @@ from pathlib import Path
 import jax
 import numpy as np
 
+from . import _jax  # noqa: F401  (float64 before any array exists)
 from .assemble import build_plan, output_grid
 from .blocks import chunk_for, run_blocks
 from .errors import ScenarioError

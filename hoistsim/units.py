@@ -21,18 +21,48 @@ from __future__ import annotations
 
 import math
 import re
+import sys
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Annotated, Any, get_args
+from typing import TYPE_CHECKING, Annotated, Any, get_args
 
-import pint
 from pydantic import BeforeValidator
+
+from .cache_folders import cache_folder
+
+if TYPE_CHECKING:
+    import pint
+
+
+def _pint():
+    """pint, imported where a unit is first read (a scenario of bare SI numbers never needs it).
+
+    pint imports Dask at its own import when Dask is installed, to recognise
+    Dask arrays of quantities, which hoistsim never makes: 80 ms of every
+    command's start.  Dask is hidden while pint is imported, unless it is
+    already there.
+    """
+    if "pint" in sys.modules:
+        return sys.modules["pint"]
+    hidden = "dask" not in sys.modules
+    if hidden:
+        sys.modules["dask"] = None  # importlib's "not installed" mark
+    try:
+        import pint
+    finally:
+        if hidden:
+            del sys.modules["dask"]
+    return pint
 
 
 @lru_cache(maxsize=1)
 def registry() -> pint.UnitRegistry:
-    # pint's registry is costly to build; one per process is enough.
-    ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    # pint's registry is costly to build (0.12 s): one per process, its parsed definitions kept on disk (0.04 s).
+    pint = _pint()
+    try:
+        ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=cache_folder("pint"))
+    except Exception:  # pint writes its cache in place: another process's half-written file
+        ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
     ureg.define("@alias revolution = rev")  # "3 rev/s"
     return ureg
 
@@ -170,7 +200,7 @@ def _to_si(value: object, dimension: Dimension) -> float:
     ureg = registry()
     try:
         quantity = ureg.Quantity(text)
-    except pint.UndefinedUnitError as exc:
+    except _pint().UndefinedUnitError as exc:
         names = ", ".join(repr(n) for n in exc.args) or "a name"
         raise UnitError(f"{expected}, got {value!r}: unknown unit {names}") from None
     except Exception:  # pint raises several unrelated types for bad text

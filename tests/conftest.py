@@ -32,7 +32,7 @@ if "JAX_COMPILATION_CACHE_DIR" not in os.environ:
     os.environ["JAX_PERSISTENT_CACHE_MIN_COMPILE_TIME_SECS"] = "0.5"
     atexit.register(shutil.rmtree, _session_cache, ignore_errors=True)
 
-import hoistsim  # noqa: E402,F401  (enables float64 before any test creates an array)
+import hoistsim._jax  # noqa: E402,F401  (float64 before any test creates an array)
 
 sys.path.insert(0, str(Path(__file__).parent))
 

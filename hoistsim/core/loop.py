@@ -28,6 +28,7 @@ from .bodies import Response, response, response_table
 from .dynamics import Instant, slip_sign
 from .element import STUCK
 from .layout import Layout
+from .plan import CHATTERING, KINK_BUDGET, OK, SOLVER_FAILED, TOO_MANY_SEGMENTS, Plan
 from .columns import row_outputs, summary_values
 from .eventlog import LOG_FIELDS, unpack
 from .ledger import ledger_values
@@ -35,40 +36,15 @@ from .readout import RawRun
 from .schedule import Segment, segment_from
 from .stepping import integrate_pass
 
-OK, CHATTERING, SOLVER_FAILED, TOO_MANY_SEGMENTS = range(4)
-STATUS_TEXT = {OK: "ok", CHATTERING: "chattering", SOLVER_FAILED: "solver failed",
-               TOO_MANY_SEGMENTS: "too many segments"}
-
 # The names a scenario accepts (schema.SOLVERS) are diffrax's class names in lower case.
 SOLVERS = {name: getattr(diffrax, name.capitalize()) for name in SOLVER_NAMES}
 
 MAX_STEPS_PER_SEGMENT = 200_000
-# Passes that may end at a kink, per allowed switch (beyond, kinks are stepped across).
-KINK_BUDGET = 100
 _REDUCTIONS = {"max": -jnp.inf, "min": jnp.inf, "first": jnp.nan, "first_value": jnp.nan, "duration": 0.0}
 
 # Incremented each time the loop is traced (i.e. compiled): tests use it to show
 # that new parameter values do not recompile.
 trace_count = 0
-
-
-@pytree_dataclass
-class Plan:
-    """Everything one run needs, as arrays: the traced inputs of the compiled loop."""
-
-    elements: tuple
-    boundaries: jax.Array  # s, scheduled segment boundaries (any order, within [0, duration])
-    initial_state: jax.Array  # named by Layout(elements).state_names
-    speed_scale: jax.Array  # rad/s, for the slip resolution
-    duration: jax.Array  # s
-    grid: jax.Array  # s, output times (padded with the duration)
-    rtol: jax.Array
-    atol: jax.Array
-    max_switches: jax.Array  # mode switches allowed before the run counts as chattering
-
-    @cached_property
-    def layout(self) -> Layout:
-        return Layout(self.elements)
 
 
 @pytree_dataclass

@@ -5,3 +5,5 @@
 - :mod:`.tredgold`: the turning-moment diagram at constant speed and Tredgold's answer;
 - :mod:`.flywheel`: the flywheel that meets a degree of irregularity.
 """
+
+from .. import _jax  # noqa: F401  (float64 before any array exists)

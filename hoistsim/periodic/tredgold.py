@@ -23,7 +23,6 @@ from dataclasses import dataclass
 import jax
 import jax.numpy as jnp
 import numpy as np
-from scipy.optimize import brentq
 
 from .. import _jax  # noqa: F401  (float64 before any array)
 from ..core.bodies import Bodies
@@ -145,6 +144,8 @@ def _root(f, a: float, b: float) -> float:
     fa, fb = f(a), f(b)
     if fa * fb > 0:  # both ends on one side by round-off: the root sits at the nearer end
         return a if abs(fa) < abs(fb) else b
+    from scipy.optimize import brentq  # here: importing scipy.optimize costs a plain run 0.2 s
+
     return brentq(f, a, b, xtol=1e-15, rtol=1e-15)
 
 
