@@ -202,6 +202,44 @@ def run(scenario, output, overrides, sweeps, summary_only, resume, workers, sche
 
 @main.command()
 @click.argument("scenario", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", "output", type=click.Path(dir_okay=False),
+              help="HDF5 file to rewrite (atomically) after each run.")
+@click.option("--plot", "figure", type=click.Path(dir_okay=False), metavar="FIG.png",
+              help="Figure to redraw (atomically) after each run: .png, .svg or .pdf.")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a scenario key.")
+@debug_option
+@_guarded
+def watch(scenario, output, figure, overrides):
+    """Run SCENARIO again at each save: results, figure and the run's headline, in a process kept warm.
+
+    A new value runs without compiling; a new structure compiles once.  A bad edit prints its error
+    and the last good results are kept.  Ctrl-C stops.
+    """
+    from . import _jax
+    from .watching import Watch, watch as watch_loop
+
+    if output is not None and Path(output).suffix.lower() not in RESULT_SUFFIXES:
+        _fail(f"{output}: results are HDF5: name the file .h5, .hdf5 or .nc")
+    if figure is not None and Path(figure).suffix.lower() not in (".png", ".svg", ".pdf"):
+        _fail(f"{figure}: the figure must be .png, .svg or .pdf")
+    for path in (output, figure):
+        if path is not None and str(Path(path).parent) and not Path(path).parent.exists():
+            _fail(f"{path}: the folder {Path(path).parent} does not exist")
+    if not Path(scenario).is_file():
+        _fail(f"{scenario}: no such scenario file")
+    _jax.enable_compilation_cache()
+    _jax.compile_notice = compiling
+    watched = Watch(Path(scenario), output=output and Path(output), figure=figure and Path(figure),
+                    overrides=overrides, echo=lambda line: click.echo(line, err=line.startswith("hoistsim:")))
+    click.echo(f"watching {scenario} (Ctrl-C stops)", err=True)
+    try:
+        watch_loop(watched)
+    finally:
+        watched.close()
+
+
+@main.command()
+@click.argument("scenario", type=click.Path(dir_okay=False))
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a scenario key.")
 @debug_option
 @_guarded

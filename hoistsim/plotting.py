@@ -13,7 +13,9 @@ from pathlib import Path
 
 import numpy as np
 
+from .atomic import atomic_path
 from .core.panel import RPM
+from .elements import element_classes as element_classes  # noqa: F401  (the figures' modules read it here)
 from .reading import read_runs, read_summary, read_swept_keys
 
 
@@ -39,7 +41,8 @@ def plot_file(path, output) -> list[str]:
     written = []
 
     def save(fig, target):
-        fig.savefig(target, dpi=150)
+        with atomic_path(target) as partial:  # a figure open in a viewer is replaced whole, never half-drawn
+            fig.savefig(partial, dpi=150, format=target.suffix[1:].lower())
         plt.close(fig)
         written.append(str(target))
 
@@ -54,18 +57,6 @@ def plot_file(path, output) -> list[str]:
         target = output.with_name(output.stem + "_summary" + output.suffix) if runs else output
         save(summary_figure(summaries, swept, plt, scenario_name(path), scenario_parameters(path)), target)
     return written
-
-
-def element_classes() -> list:
-    """Every kind of element there is, in registry order (what may have columns in a file)."""
-    from .elements import REGISTRY
-
-    classes = []
-    for entry in REGISTRY.values():
-        for cls in (entry.values() if isinstance(entry, dict) else getattr(entry, "parts", (entry,))):
-            if cls not in classes:
-                classes.append(cls)
-    return classes
 
 
 class _Read:

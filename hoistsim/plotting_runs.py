@@ -17,6 +17,7 @@ import numpy as np
 
 from .core.layout import SWITCH_KINDS
 from .plotting import colour_scale, element_classes, swept_label
+from .report import headline
 
 FEW = 4  # more runs than this are drawn as a colour-mapped family
 MAX_EVENT_LINES = 40  # a run with more events than this (periodic stick-slip) has its events listed, not drawn
@@ -296,18 +297,7 @@ def _title(runs, classes, swept) -> str:
     name = str(attrs.get("name", ""))
     if len(runs) > 1:
         return f"{name}: {len(runs)} runs, coloured by {swept_label(swept)}"
-    said, asked = [], set()
-    for cls in classes:
-        if cls.headline.__func__ in asked:  # variants of one part (a load on a rigid or an elastic rope) say it once
-            continue
-        asked.add(cls.headline.__func__)
-        try:
-            text = cls.headline(attrs)
-        except KeyError:  # a part the run has not
-            continue
-        if text:
-            said.append(text)
-    return f"{name}: " + "; ".join(said)
+    return f"{name}: " + "; ".join(headline(attrs, classes))
 
 
 def _run_name(run) -> str:

@@ -218,3 +218,20 @@ def drivetrain_table(drivetrain) -> str:
     clutches = table(["clutch", "between", "largest force [N]", "capacity [N*m]", "sliding [N*m]"], rows,
                      align="llrrr")
     return shafts + ("\n\n" + clutches if rows else "")
+
+
+def headline(summary: dict, classes) -> list[str]:
+    """What each part of a run says of it in a few words (when the clutch locks, its heat, where the load
+    went, the peak rope force): each of ``classes`` the run has, once per part (variants share theirs)."""
+    said, asked = [], set()
+    for cls in classes:
+        if cls.headline.__func__ in asked:  # variants of one part (a load on a rigid or an elastic rope) say it once
+            continue
+        asked.add(cls.headline.__func__)
+        try:
+            text = cls.headline(summary)
+        except KeyError:  # a part the run has not
+            continue
+        if text:
+            said.append(text)
+    return said

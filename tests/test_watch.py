@@ -1,0 +1,108 @@
+"""`hoistsim watch`: each save runs the scenario again; a new value never compiles, a bad edit keeps the last results."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import h5py
+import pytest
+
+from hoistsim.core import loop
+from hoistsim.watching import Watch
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENE = (ROOT / "scenarios" / "exercise6_direct_start.yaml").read_text(encoding="utf-8")
+SHORT = SCENE.replace("  duration: 3 s\n", "  duration: 0.4 s\n", 1)
+
+
+def _force(text: str, newtons: int) -> str:
+    lines = [f"  engagement_force: {newtons} N" if line.strip().startswith("engagement_force:") else line
+             for line in text.splitlines()]
+    return "\n".join(lines) + "\n"
+
+
+def test_a_new_value_reruns_without_compiling_and_a_bad_edit_keeps_the_last_results(tmp_path):
+    assert "duration: 0.4 s" in SHORT
+    scenario, output = tmp_path / "scene.yaml", tmp_path / "scene.h5"
+    said = []
+    watched = Watch(scenario, output=output, echo=said.append)
+    scenario.write_text(_force(SHORT, 3200), encoding="utf-8")
+    assert watched.run()
+    with h5py.File(output) as f:
+        first = f["runs/engagement_force"][0, -1] if "engagement_force" in f["runs"] else None
+        first_heat = float(f["runs/slip_energy"][0])
+    traced = loop.trace_count
+    scenario.write_text(_force(SHORT, 2600), encoding="utf-8")  # a new value: slips, never locks
+    assert watched.run()
+    assert loop.trace_count == traced  # the compiled loop served
+    with h5py.File(output) as f:
+        assert float(f["runs/slip_energy"][0]) != first_heat
+        if first is not None:
+            assert f["runs/engagement_force"][0, -1] == 2600
+    kept = output.read_bytes()
+    scenario.write_text(_force(SHORT, 2600).replace("engagement_force: 2600 N", "engagement_force: [["),
+                        encoding="utf-8")
+    assert not watched.run()
+    assert said[-1].startswith("hoistsim: error: ") and "engagement_force" in said[-1]
+    assert said[-1].endswith("(the last good results are kept)") and len(said[-1].splitlines()) == 1
+    assert output.read_bytes() == kept
+    assert "clutch never locks" in said[1] and said[1].startswith(tuple("0123456789"))
+    scenario.write_text(_force(SHORT, 2600).replace("solver: tsit5", "solver: dopri5"), encoding="utf-8")
+    assert watched.run()  # another solver: another structure, compiled once
+    assert loop.trace_count == traced + 1
+    watched.close()
+
+
+def test_a_sweep_is_refused_with_its_key(tmp_path):
+    scenario = tmp_path / "scene.yaml"
+    scenario.write_text(SHORT + "sweep:\n  clutch.engagement_force: [2600 N, 3000 N]\n", encoding="utf-8")
+    said = []
+    assert not Watch(scenario, echo=said.append).run()
+    assert said == [f"hoistsim: error: {scenario}: sweep: watch runs one scenario: remove the sweep: section "
+                    "(hoistsim run sweeps it)"]
+
+
+@pytest.mark.slow
+def test_the_command_runs_again_at_each_save_and_redraws_the_figure(tmp_path):
+    """The real loop: a process watching the file through the operating system's notifications."""
+    scenario, figure = tmp_path / "scene.yaml", tmp_path / "scene.png"
+    scenario.write_text(_force(SHORT, 3200), encoding="utf-8")
+    env = dict(os.environ, HOISTSIM_CACHE_DIR=str(tmp_path / "cache"), PYTHONUNBUFFERED="1")
+    proc = subprocess.Popen([sys.executable, "-m", "hoistsim.cli", "watch", str(scenario), "--plot", str(figure)],
+                            cwd=tmp_path, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    out, err = [], []
+    for stream, lines in ((proc.stdout, out), (proc.stderr, err)):
+        threading.Thread(target=lambda s=stream, l=lines: [l.append(line) for line in s], daemon=True).start()
+
+    def wait_for(lines, count, seconds=120):
+        deadline = time.monotonic() + seconds
+        while len(lines) < count and time.monotonic() < deadline and proc.poll() is None:
+            time.sleep(0.02)
+        assert len(lines) >= count, (out, err)
+
+    try:
+        wait_for(out, 1)
+        while not figure.exists():
+            time.sleep(0.02)
+        drawn = figure.stat().st_ino
+        time.sleep(0.2)
+        scenario.write_text(_force(SHORT, 2600), encoding="utf-8")
+        wait_for(out, 2, 30)
+        assert "clutch never locks" in out[1]
+        deadline = time.monotonic() + 30
+        while figure.stat().st_ino == drawn and time.monotonic() < deadline:
+            time.sleep(0.02)
+        assert figure.stat().st_ino != drawn  # replaced whole, by rename
+        compiling = [line for line in err if "compiling" in line]
+        assert len(compiling) == 1  # the first run's; the new value loaded nothing, compiled nothing
+        scenario.write_text("clutch: [\n", encoding="utf-8")
+        wait_for(err, len(err) + 1, 30)
+        assert err[-1].startswith("hoistsim: error: ") and proc.poll() is None
+    finally:
+        proc.terminate()
+        proc.wait(20)
