@@ -14,6 +14,7 @@ from pathlib import Path
 import jax
 
 from .cache_folders import cache_folder, cache_root
+from .program_pool import ProgramPool
 
 jax.config.update("jax_enable_x64", True)
 
@@ -71,7 +72,7 @@ _one_object_per_cpu_program()
 
 
 _executables: str | None = None  # folder of serialised executables, when the cache is on
-_loaded: dict = {}  # the executables this process has compiled or loaded, by file
+programs = ProgramPool()  # the programs this process has compiled or loaded, by key
 # Set by the command line: a context manager, given the program's name, that tells the user a
 # compilation is under way (it takes seconds, and the first run of a scene would otherwise sit silent).
 compile_notice = None
@@ -120,11 +121,14 @@ def _program_origin() -> tuple:
 
 
 def executable(program, *args, name: str, devices: int = 1):
-    """``program()`` (a jitted function) compiled for ``args``, loaded from disk when a run of the same shape
-    compiled it before.
+    """``program()`` (a jitted function) compiled for ``args``: held by the process's pool of programs, or
+    loaded from disk when a run of the same shape compiled it before, or compiled.
 
-    ``program`` is called only where the stored program cannot serve: a loaded
-    run never imports or traces the loop.
+    ``program`` is called only where neither can serve: a loaded run never
+    imports or traces the loop.  Every program is compiled ahead of time and
+    held by :data:`programs` alone (never by jit's own caches), so that the
+    least recently used can be let go before the process runs out of memory
+    maps (:mod:`.program_pool`).
 
     ``devices``: how many of the process's devices the program runs on (the
     first ones); a loaded program is bound to them, not to every device the
@@ -135,56 +139,69 @@ def executable(program, *args, name: str, devices: int = 1):
     serialised executable skips both.  The key covers everything the program
     depends on: the package's source (:func:`source_digest`), the versions of
     the libraries that trace it, the backend, the function's name and the
-    arguments' structure, shapes and dtypes.  Without the cache, the usual jit call.
+    arguments' structure, shapes and dtypes.
     """
-    if _executables is None:
-        return program()
-    import pickle
-    import tempfile
-
-    from jax.experimental.serialize_executable import deserialize_and_load, serialize
-
     leaves, treedef = jax.tree.flatten(args)
     signature = repr((name, _program_origin(), jax.default_backend(), devices, str(treedef),
                       [(getattr(x, "shape", ()), str(getattr(x, "dtype", type(x)))) for x in leaves]))
-    path = os.path.join(_executables, hashlib.sha256(signature.encode()).hexdigest() + ".bin")
-    if path in _loaded:
-        return _loaded[path]
-    try:
-        with open(path, "rb") as handle:
-            loaded = deserialize_and_load(*pickle.load(handle), execution_devices=jax.devices()[:devices])
-            _loaded[path] = _falling_back(loaded, program, path)
-            return _loaded[path]
-    except Exception:  # absent, stale or unreadable: compile afresh
-        pass
+    key = hashlib.sha256(signature.encode()).hexdigest()
+    held = programs.get(key)
+    if held is not None:
+        return held
+    return programs.make(key, lambda: _load_or_compile(program, args, name, key, devices))
+
+
+def _load_or_compile(program, args, name: str, key: str, devices: int):
+    if _executables is not None:
+        import pickle
+
+        from jax.experimental.serialize_executable import deserialize_and_load
+
+        path = os.path.join(_executables, key + ".bin")
+        try:
+            with open(path, "rb") as handle:
+                loaded = deserialize_and_load(*pickle.load(handle), execution_devices=jax.devices()[:devices])
+            return _falling_back(loaded, program, args, key, path)
+        except Exception:  # absent, stale or unreadable: compile afresh
+            pass
     with compile_notice(name) if compile_notice is not None else contextlib.nullcontext():
         compiled = program().lower(*args).compile()
-    _loaded[path] = compiled
+    if _executables is not None:
+        _store(compiled, os.path.join(_executables, key + ".bin"))
+    return compiled
+
+
+def _store(compiled, path: str) -> None:
+    import pickle
+    import tempfile
+
+    from jax.experimental.serialize_executable import serialize
+
     try:
-        fd, tmp = tempfile.mkstemp(dir=_executables, suffix=".partial")
+        fd, tmp = tempfile.mkstemp(dir=os.path.dirname(path), suffix=".partial")
         with os.fdopen(fd, "wb") as handle:
             pickle.dump(serialize(compiled), handle)
         os.replace(tmp, path)
     except Exception:  # a full disk or an executable that cannot be serialised: still run
         pass
-    return compiled
 
 
-def _falling_back(loaded, program, path):
-    """Call a loaded executable; if XLA cannot run it in this process, forget it and use ``program()``.
+def _falling_back(loaded, program, args, key: str, path: str):
+    """Call a loaded executable; if XLA cannot run it in this process, forget it and compile ``program()``.
 
-    (A long-lived process that has compiled other programs can fail to link a
-    loaded CPU executable's kernels; the answer is then computed the usual way.)
-    The first call is waited for, where such a failure shows; later ones return
-    at once, so that a sweep's host work goes on while they run.
+    (A process whose JAX started before hoistsim set up XLA cannot run a stored
+    CPU program: see :func:`_one_object_per_cpu_program`; the answer is then
+    computed the usual way.)  The first call is waited for, where such a
+    failure shows; later ones return at once, so that a sweep's host work goes
+    on while they run.
     """
     ran = []
 
-    def call(*args):
+    def call(*call_args):
         if ran:
-            return loaded(*args)
+            return loaded(*call_args)
         try:
-            out = jax.block_until_ready(loaded(*args))  # errors surface here, not at the call
+            out = jax.block_until_ready(loaded(*call_args))  # errors surface here, not at the call
             ran.append(True)
             return out
         except Exception:
@@ -192,7 +209,8 @@ def _falling_back(loaded, program, path):
                 os.unlink(path)
             except OSError:
                 pass
-            _loaded[path] = program()
-            return _loaded[path](*args)
+            compiled = program().lower(*args).compile()
+            programs.replace(key, compiled)
+            return compiled(*call_args)
 
     return call

@@ -11,6 +11,9 @@ is assembled from the chunks one at a time under a temporary name and takes
 the target's name in one rename; the folder goes.  ``--resume`` checks the
 key and runs only the chunks after those in the folder: chunks are computed
 in a fixed order, so the file holds the same numbers as an uninterrupted run.
+Chunk files are written by size and by time (every FILE_SECONDS at the
+latest), so a kill loses seconds of work; ``--resume`` where nothing was kept
+starts afresh and says so.
 """
 
 from __future__ import annotations
@@ -20,6 +23,7 @@ import hashlib
 import json
 import os
 import shutil
+import time
 from pathlib import Path
 
 import h5py
@@ -30,6 +34,8 @@ from .summaries import Summaries
 
 FILE_BYTES = 32 * 2**20  # series gathered into one chunk file
 FILE_RUNS = 65536  # summaries gathered into one chunk file
+FILE_SECONDS = 10.0  # and at the latest: a kill loses at most the runs of the last ten seconds or so
+clock = time.monotonic
 
 
 class ResumeError(Exception):
@@ -64,10 +70,8 @@ class StreamedFile:
         self.key = resume_key(scenario, summary_only, split)
         self.time, self.padded = None, False
         self.discarded = 0
-        if resume:
-            if not (self.folder / "key").is_file():
-                raise ResumeError(f"no interrupted sweep ({self.folder.name}) beside {self.target.name} to resume; "
-                                  "run without --resume")
+        self.nothing_to_resume = resume and not (self.folder / "key").is_file()  # then a fresh start, said
+        if resume and not self.nothing_to_resume:
             if (self.folder / "key").read_text() != self.key:
                 raise ResumeError(f"{self.folder.name} holds another scenario or other options (or another "
                                   "hoistsim, chunk size or CPU device count); run without --resume to start again")
@@ -83,6 +87,7 @@ class StreamedFile:
             with h5py.File(self._chunk(self.files), "r") as f:
                 self.blocks_done += int(f.attrs["sweep_blocks"])
         self.pending: list = []  # blocks finished, not yet in a file
+        self.written_at = clock()  # when the last file was written (or the sweep began)
 
     def _chunk(self, number: int) -> Path:
         return self.folder / f"chunk-{number:07d}.h5"
@@ -98,12 +103,13 @@ class StreamedFile:
         """One finished block of runs (:class:`hoistsim.blocks.Block`).
 
         Blocks are gathered into files of about FILE_BYTES of series (or FILE_RUNS summaries): few
-        files, each written once; what a kill loses is at most one file's worth of runs.
+        files, each written once; and a file is written at the latest FILE_SECONDS after the last, so
+        that a kill loses at most the blocks of those seconds (and the one under way).
         """
         self.pending.append(block)
         runs = sum(b.stop - b.start for b in self.pending)
         size = 0 if self.summary_only else runs * self.time.size * 8 * len(block.outcome[0].series)
-        if size >= FILE_BYTES or runs >= FILE_RUNS:
+        if size >= FILE_BYTES or runs >= FILE_RUNS or clock() - self.written_at >= FILE_SECONDS:
             self._flush()
 
     def _flush(self) -> None:
@@ -123,6 +129,7 @@ class StreamedFile:
                                 padded=self.padded)
         os.replace(partial, final)
         self.pending = []
+        self.written_at = clock()
 
     # ------------------------------------------------------------------ the file
 

@@ -135,6 +135,9 @@ def _sweep(runs, client, *, summary_only, chunk_size, progress, output, command,
         split = (chunk, jax.device_count()) if client is None else (chunk,)  # a cluster's workers: their own
         stream = StreamedFile(output, scenario, runs.labels, runs.parameters, summary_only=summary_only,
                               command=command, resume=resume, split=split)
+        if stream.nothing_to_resume:
+            warnings.append(f"{Path(output).name}: nothing was kept to resume (no {stream.folder.name}); "
+                            "started afresh")
         if stream.discarded:
             warnings.append(f"{Path(output).name}: an interrupted sweep's {stream.discarded} chunk file(s) were "
                             "discarded (--resume keeps them)")

@@ -61,6 +61,9 @@ def _compiled_programs_within_the_map_limit():
     if held > 0.7 * limit:
         import jax
 
+        from hoistsim import _jax
+
+        _jax.programs.clear()
         jax.clear_caches()
         gc.collect()
 

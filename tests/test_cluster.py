@@ -173,3 +173,28 @@ def test_a_worker_with_fewer_devices_than_the_split_says_so_in_one_line():
 
     with pytest.raises(cluster.ClusterError, match="start the workers with HOISTSIM_CPU_DEVICES=3$"):
         cluster._remote_block(_short(4), 0, 4, True, 3, 3)
+
+
+def _structures_in_one_worker(scenario_text: str) -> tuple[int, int, list[float]]:
+    """In a worker process: three runs, each of another structure (solver), with room for one program."""
+    import os
+
+    os.environ["HOISTSIM_MAX_PROGRAMS"] = "1"
+    from hoistsim import _jax, scenario_from_text, simulate
+
+    heats = []
+    for solver in ("tsit5", "dopri5", "tsit5"):
+        run = simulate(scenario_from_text(scenario_text.replace("solver: tsit5", f"solver: {solver}")))
+        heats.append(run.summary["slip_energy"])
+    os.environ.pop("HOISTSIM_MAX_PROGRAMS")
+    return len(_jax.programs), _jax.programs.let_go, heats
+
+
+@pytest.mark.slow
+def test_a_worker_that_meets_more_structures_than_it_may_hold_lets_the_oldest_go(cluster):
+    from test_watch import SHORT, _force
+
+    with distributed.Client(cluster.scheduler_address) as client:
+        held, let_go, heats = client.submit(_structures_in_one_worker, _force(SHORT, 2600), pure=False).result()
+    assert held == 1 and let_go >= 2
+    assert heats[0] == heats[2] and abs(heats[1] - heats[0]) < 1e-6 * heats[0]

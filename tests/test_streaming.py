@@ -86,9 +86,57 @@ def test_resume_refuses_another_scenario_in_one_line(tmp_path, monkeypatch):
     assert result.exit_code == 2
     lines = result.output.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("hoistsim: error: --resume: ") and not target.exists()
-    nothing = CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(tmp_path / "new.h5"), "--summary-only",
-                                        "--resume"])
-    assert nothing.exit_code == 2 and "no interrupted sweep" in nothing.output
+
+
+def test_resume_with_nothing_kept_starts_afresh_and_says_so_in_one_line(tmp_path):
+    target = tmp_path / "new.h5"
+    nothing = CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(target), "--summary-only", "--resume",
+                                        "--set", "simulation.duration=0.4 s",
+                                        "--sweep", "clutch.engagement_force=3 kN:12 kN:4"])
+    assert nothing.exit_code == 0, nothing.output
+    notices = [line for line in nothing.output.splitlines() if line.startswith("hoistsim: warning:")]
+    assert notices == ["hoistsim: warning: new.h5: nothing was kept to resume (no .new.h5.partial); started afresh"]
+    assert target.exists() and not partial_path(target).exists()
+
+
+def test_a_sweep_keeps_its_finished_blocks_every_few_seconds_and_a_resume_redoes_only_those_after(
+        tmp_path, monkeypatch):
+    """Files by time as well as by size: blocks that each take 4 s (a clock that says so) under a 10 s
+    limit go to a file every third block; stopped after five blocks (as a kill would stop it), the
+    sweep keeps three, loses the two of the last 8 s, and --resume ends with the file of a whole run."""
+    from hoistsim import streaming
+
+    monkeypatch.setattr(streaming, "FILE_RUNS", 10**6)  # never by count here
+    now = [0.0]
+    monkeypatch.setattr(streaming, "clock", lambda: now[0])
+    original = StreamedFile.write
+
+    def four_seconds_a_block(self, block):
+        now[0] += 4.0
+        original(self, block)
+
+    monkeypatch.setattr(StreamedFile, "write", four_seconds_a_block)
+    scenario, target = _short(24), tmp_path / "timed.h5"
+    _interrupted(scenario, target, 5, True, monkeypatch)
+    kept = sorted(partial_path(target).glob("chunk-*.h5"))
+    assert len(kept) == 1
+    import h5py
+
+    with h5py.File(kept[0]) as f:
+        assert int(f.attrs["sweep_blocks"]) == 3
+    monkeypatch.setattr(StreamedFile, "write", four_seconds_a_block)
+    redone = {"blocks": 0}
+    counting = StreamedFile.write
+
+    def counted(self, block):
+        redone["blocks"] += 1
+        counting(self, block)
+
+    monkeypatch.setattr(StreamedFile, "write", counted)
+    sweep(scenario, summary_only=True, chunk_size=4, output=target, resume=True)
+    assert redone["blocks"] == 6 - 3  # 24 runs in blocks of 4: only those after the kept three
+    sweep(scenario, summary_only=True, chunk_size=4, output=tmp_path / "whole.h5")
+    same(datasets(tmp_path / "whole.h5"), datasets(target))
 
 
 @pytest.mark.slow
