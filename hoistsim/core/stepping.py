@@ -216,19 +216,21 @@ def _crossing(guards, args, interpolant, lower, upper, crossed):
         return crossed & (guards(t, interpolant.evaluate(t), args) <= 0.0)
 
     def going(bracket):
-        lo, hi = bracket
+        lo, hi, _ = bracket
         middle = lo + 0.5 * (hi - lo)
         return (hi - lo > CROSSING_ATOL + CROSSING_RTOL * jnp.abs(hi)) & (middle > lo) & (middle < hi)
 
     def halve(bracket):
-        lo, hi = bracket
+        lo, hi, fired = bracket
         middle = lo + 0.5 * (hi - lo)
-        reached = jnp.any(below(middle))
-        return jnp.where(reached, lo, middle), jnp.where(reached, middle, hi)
+        at_middle = below(middle)
+        reached = jnp.any(at_middle)
+        return jnp.where(reached, lo, middle), jnp.where(reached, middle, hi), jnp.where(reached, at_middle, fired)
 
-    _, t = jax.lax.while_loop(going, halve, (lower, upper))
+    # The guards below zero at the bracket's upper end are carried along (at the step's end: those that
+    # crossed), not worked out again where the bisection stops: the guards are most of the program.
+    _, t, fired = jax.lax.while_loop(going, halve, (lower, upper, crossed))
     y = interpolant.evaluate(t)
-    fired = below(t)
     fired = jnp.where(jnp.any(fired), fired, crossed)  # round-off: the guard that crossed at the step's end
     first = jnp.argmax(fired)
     return t, y, jnp.arange(fired.shape[0]) == first
