@@ -45,16 +45,25 @@ def main() -> None:
         assert KEY.search(text), "the scenario needs a clutch.engagement_force line"
         scenario.write_text(text, encoding="utf-8")
         env = dict(os.environ, HOISTSIM_CACHE_DIR=str(folder / "cache"), PYTHONUNBUFFERED="1")
+        errors = open(folder / "stderr.txt", "w+", encoding="utf-8")
         proc = subprocess.Popen([sys.executable, "-m", "hoistsim.cli", "watch", str(scenario), "-o",
                                  str(folder / "scene.h5"), "--plot", str(figure)], cwd=ROOT, env=env,
-                                stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+                                stdout=subprocess.PIPE, stderr=errors, text=True)
+
+        def waiting(done) -> None:
+            """Until ``done()``; a watch that stopped is an error, with what it said on stderr."""
+            while not done():
+                if proc.poll() is not None:
+                    errors.seek(0)
+                    raise SystemExit(f"the watch stopped (exit {proc.returncode}): {errors.read().strip()}")
+                time.sleep(0.001)
+
         lines: list[tuple[float, str]] = []
         reader = threading.Thread(target=lambda: [lines.append((time.perf_counter(), line)) for line in proc.stdout],
                                   daemon=True)
         reader.start()
         try:
-            while not lines:  # the first run: compiling
-                time.sleep(0.05)
+            waiting(lambda: _inode(figure) != -1 and len(lines) >= 1)  # the first run: its headline and figure
             to_figure, to_headline = [], []
             for i in range(options.saves):
                 time.sleep(0.3)  # the watch at rest, as between a user's saves
@@ -63,11 +72,9 @@ def main() -> None:
                 edited = KEY.sub(lambda m: f"{m.group(1)}{force} N", text)
                 started = time.perf_counter()
                 scenario.write_text(edited, encoding="utf-8")
-                while _inode(figure) == before:
-                    time.sleep(0.001)
+                waiting(lambda: _inode(figure) != before)
                 to_figure.append(time.perf_counter() - started)
-                while len(lines) == seen:
-                    time.sleep(0.001)
+                waiting(lambda: len(lines) > seen)
                 to_headline.append(lines[seen][0] - started)
         finally:
             proc.terminate()

@@ -38,6 +38,7 @@ class Watch:
         self.output = Path(output) if output is not None else None
         self.echo = echo
         self.runs = 0  # runs that wrote results
+        self._read: bytes | None = None  # the scenario file as the last run read it
 
     def files(self) -> list[Path]:
         """The files whose saves run the scenario again (a scenario names no other file today)."""
@@ -47,6 +48,16 @@ class Watch:
         """Whether a file event is a save of a watched file (watchfiles' filter)."""
         return Path(path).resolve() in self.files()
 
+    def _contents(self) -> bytes | None:
+        try:
+            return self.scenario.read_bytes()
+        except OSError:
+            return None
+
+    def saved_since_run(self) -> bool:
+        """Whether the scenario file changed after the last run read it."""
+        return self._contents() != self._read
+
     def run(self) -> bool:
         """Load, simulate, write, draw; print the headline, or the error and that the last results stay.
 
@@ -55,6 +66,7 @@ class Watch:
         from .simulation import SimulationError, simulate
 
         started = time.perf_counter()
+        self._read = self._contents()  # before loading: a save from here on is a change the run did not see
         try:
             scenario = self._load()
             result = simulate(scenario)
@@ -105,6 +117,10 @@ def watch(watched: Watch, stop_event=None) -> None:
     import watchfiles
 
     watched.run()
+    # The files are watched from here on: a save made during the first run (which compiles for seconds)
+    # would be lost, so the file is compared with what that run read.
+    while watched.saved_since_run():
+        watched.run()
     folders = sorted({str(path.parent) for path in watched.files()})
     for _ in watchfiles.watch(*folders, watch_filter=watched.concerns, step=QUIET_MS, debounce=QUIET_MS * 10,
                               stop_event=stop_event, recursive=False, raise_interrupt=False):

@@ -15,7 +15,7 @@ import pytest
 
 from hoistsim import _jax
 from hoistsim.program_pool import ProgramPool
-from hoistsim.watching import Watch
+from hoistsim.watching import Watch, watch
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = (ROOT / "scenarios" / "exercise6_direct_start.yaml").read_text(encoding="utf-8")
@@ -70,6 +70,30 @@ def test_a_new_value_reruns_without_compiling_and_a_bad_edit_keeps_the_last_resu
     assert watched.run()  # another solver: another structure, compiled once
     assert len(compiled) == 2
     watched.close()
+
+
+def test_a_save_made_while_the_first_run_runs_is_run_too(tmp_path):
+    """The first run compiles for seconds before the files are watched: a save meanwhile is not lost."""
+    scenario = tmp_path / "scene.yaml"
+    scenario.write_text(_force(SHORT, 3200), encoding="utf-8")
+    said, stop = [], threading.Event()
+
+    class SavedDuringTheFirstRun(Watch):
+        def run(self):
+            ran = super().run()
+            if self.runs == 1:
+                scenario.write_text(_force(SHORT, 2600), encoding="utf-8")  # the run had read the file already
+            else:
+                stop.set()
+            return ran
+
+    watched = SavedDuringTheFirstRun(scenario, echo=said.append)
+    loop = threading.Thread(target=watch, args=(watched, stop), daemon=True)
+    loop.start()
+    loop.join(60)
+    stop.set()
+    assert not loop.is_alive() and watched.runs == 2, said
+    assert "clutch never locks" in said[-1]
 
 
 def test_a_sweep_is_refused_with_its_key(tmp_path):
