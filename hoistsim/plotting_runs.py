@@ -74,7 +74,7 @@ def runs_figure(runs, plt, swept):
             ax.legend(handles, labels, **{**_LEGEND, "bbox_to_anchor": (1.13 if panel.right_axis else 1.01, 1.0)})
     axes[-1].set_xlabel("time [s]")
     axes[-1].set_xlim(min(r["time"][0] for r in runs), max(r["time"][-1] for r in runs))
-    fig.align_ylabels(axes)
+    _align_ylabels(fig, axes)
     fig.suptitle(_title(runs, classes, swept), fontsize=11, x=0.01, ha="left")
     if mode == "family":
         bar = fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=axes, location="top",
@@ -290,6 +290,35 @@ def _parameters(run) -> dict:
                 holder[last] = float(value)
         run["parameters"] = parameters
     return run["parameters"]
+
+
+def _align_ylabels(fig, axes) -> None:
+    """Each panel's y label the same distance left of its axes: just past the widest tick label of them all.
+
+    matplotlib's ``align_ylabels`` measures every sibling panel's tick labels again as each panel is
+    drawn (n^2 measurements for n panels: a quarter of a six-panel figure's time, which ``hoistsim
+    watch`` pays at every save).  Here each panel's tick texts come from its own locator and
+    formatter and are measured once; half an em more keeps clear of a tick the layout may add.
+    """
+    from matplotlib import rcParams
+    from matplotlib.font_manager import FontProperties
+    from matplotlib.text import Text
+    from matplotlib.transforms import offset_copy
+
+    renderer = fig.canvas.get_renderer()
+    font = FontProperties(size=rcParams["ytick.labelsize"])
+    widest = 0.0
+    for ax in axes:
+        low, high = sorted(ax.get_ylim())
+        ticks = [v for v in ax.yaxis.get_major_locator()() if low <= v <= high]
+        for text in ax.yaxis.get_major_formatter().format_ticks(ticks):
+            if text:
+                widest = max(widest, Text(0, 0, text, fontproperties=font, figure=fig).get_window_extent(renderer).width)
+    tick = axes[0].yaxis.majorTicks[0]
+    gap = (widest * 72.0 / fig.dpi + tick.get_tick_padding() + tick.get_pad() + axes[0].yaxis.labelpad
+           + 0.5 * font.get_size_in_points())
+    for ax in axes:
+        ax.yaxis.set_label_coords(0.0, 0.5, transform=offset_copy(ax.transAxes, fig=fig, x=-gap, units="points"))
 
 
 def _title(runs, classes, swept) -> str:
