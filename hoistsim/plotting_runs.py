@@ -313,7 +313,8 @@ def _align_ylabels(fig, axes) -> None:
         ticks = [v for v in ax.yaxis.get_major_locator()() if low <= v <= high]
         for text in ax.yaxis.get_major_formatter().format_ticks(ticks):
             if text:
-                widest = max(widest, Text(0, 0, text, fontproperties=font, figure=fig).get_window_extent(renderer).width)
+                label = Text(0, 0, text, fontproperties=font, figure=fig)
+                widest = max(widest, label.get_window_extent(renderer).width)
     tick = axes[0].yaxis.majorTicks[0]
     gap = (widest * 72.0 / fig.dpi + tick.get_tick_padding() + tick.get_pad() + axes[0].yaxis.labelpad
            + 0.5 * font.get_size_in_points())
