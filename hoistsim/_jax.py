@@ -98,6 +98,11 @@ def enable_compilation_cache() -> None:
     jax.config.update("jax_persistent_cache_min_entry_size_bytes", 0)
 
 
+def stores_programs() -> bool:
+    """Whether compiled programs are kept on disk for later processes (the cache is on)."""
+    return _executables is not None
+
+
 @functools.lru_cache(maxsize=None)
 def source_digest(package: str | None = None) -> str:
     """SHA-256 of every Python source of the package: a stored program is only as good as the code behind it.

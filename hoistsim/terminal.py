@@ -18,9 +18,9 @@ def compiling(name: str):
     """Say on stderr that a scene's solver is compiling: one line, and on a terminal the seconds as they pass."""
     from . import _jax
 
-    stored = _jax._executables is not None
     text = ("hoistsim: compiling the solver for this scene's structure "
-            + ("(once; later runs load it)" if stored else "(the compiled-solver cache is off: each process compiles)"))
+            + ("(once; later runs load it)" if _jax.stores_programs()
+               else "(the compiled-solver cache is off: each process compiles)"))
     if not sys.stderr.isatty():
         click.echo(text, err=True)
         yield
