@@ -20,7 +20,7 @@ from scenes import scene  # noqa: E402
 from test_hybrid import CASES  # noqa: E402
 
 from hoistsim import exact_from_scenario, simulate  # noqa: E402
-from hoistsim.report import table  # noqa: E402
+from hoistsim.results.report import table  # noqa: E402
 
 
 def main() -> None:

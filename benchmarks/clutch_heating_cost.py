@@ -17,7 +17,7 @@ from pathlib import Path
 from elements_cost import per_run
 
 from hoistsim import load_scenario
-from hoistsim.report import table
+from hoistsim.results.report import table
 
 SCENARIO = Path(__file__).resolve().parents[1] / "scenarios" / "clutch_force_window.yaml"
 

@@ -33,7 +33,7 @@ sys.path.insert(0, {root!r})
 from hoistsim import load_scenario, simulate
 scenario = load_scenario({path!r}, overrides={overrides!r})
 if {pawl!r}:
-    from hoistsim.schema import RatchetSpec
+    from hoistsim.scenario.schema import RatchetSpec
     scenario = scenario.model_copy(update={{"ratchet": RatchetSpec()}})
 started = time.perf_counter(); simulate(scenario); first = time.perf_counter() - started
 started = time.perf_counter(); simulate(scenario); warm = time.perf_counter() - started

@@ -83,7 +83,7 @@ def main() -> None:
                 results["after"].append(measure(ROOT))
         finally:
             subprocess.run(["git", "worktree", "remove", "--force", str(old)], cwd=ROOT, capture_output=True)
-    from hoistsim.report import table
+    from hoistsim.results.report import table
 
     rows = []
     for key, label, form in ROWS:

@@ -67,7 +67,7 @@ def main() -> None:
     heat = ja * jb * w1**2 / (2 * (ja + jb))
     rows.append(("motor off: lock-up time vs closed form", "relative", abs(off.lockup_time - lock) / lock))
     rows.append(("motor off: clutch heat vs closed form", "relative", abs(off.slip_energy - heat) / heat))
-    from hoistsim.report import table as text_table
+    from hoistsim.results.report import table as text_table
 
     print(text_table(["check (rtol 1e-10)", "error in", "largest error"], [[a, b, f"{c:.1e}"] for a, b, c in rows]))
 

@@ -20,7 +20,7 @@ import time
 from pathlib import Path
 
 from hoistsim import load_scenario, sweep
-from hoistsim.report import table
+from hoistsim.results.report import table
 
 SCENARIO = Path(__file__).resolve().parents[1] / "scenarios" / "engage_at_speed_with_brake.yaml"
 ALL_ELEMENTS = ["brake.static_torque=3000 N*m", "brake.kinetic_torque=2000 N*m",
@@ -33,7 +33,7 @@ def scene(extra: list[str], runs: int):
                        for i in range(runs))
     scenario = load_scenario(SCENARIO, overrides=extra, sweeps=[f"clutch.engagement_force=[{forces}]"])
     if extra:  # a pawl too: `ratchet: {}` is a section, not a key to set
-        from hoistsim.schema import RatchetSpec
+        from hoistsim.scenario.schema import RatchetSpec
         scenario = scenario.model_copy(update={"ratchet": RatchetSpec()})
     return scenario
 

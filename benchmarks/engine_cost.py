@@ -48,14 +48,14 @@ if "--one-core" in sys.argv:  # before XLA starts its threads: every thread of t
     os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})
 
 import jax  # noqa: E402
+import numba_peer  # noqa: E402
 import numpy as np  # noqa: E402
 
 import hoistsim  # noqa: E402
 import hoistsim._jax  # noqa: E402
-from hoistsim.blocks import chunk_for  # noqa: E402
-import numba_peer  # noqa: E402
 from hoistsim import load_scenario  # noqa: E402
-from hoistsim.report import table  # noqa: E402
+from hoistsim.results.report import table  # noqa: E402
+from hoistsim.running.blocks import chunk_for  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 STEPPED = ROOT / "scenarios" / "engage_at_speed_with_brake.yaml"

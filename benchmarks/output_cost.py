@@ -2,7 +2,7 @@
 
 The engagement-force sweep of scenarios/force_sweep_engage_at_speed.yaml (2 s, rtol 1e-8, every series
 on its 1 ms grid: 2 001 rows) as one chunk of N runs (default 256), through the loop a sweep compiles
-(`hoistsim.blocks.compiled_batch`, one device): summary-only (the lean loop: no rows, an event log of
+(`hoistsim.running.blocks.compiled_batch`, one device): summary-only (the lean loop: no rows, an event log of
 one row) against full output (the rows written from each step's interpolant, the event rows, every
 output column at every row).  Each program compiled first (compile time shown), then 7 rounds with the
 two calls interleaved; medians and minima.  Host work (plans, reading the results back, the file) is
@@ -33,9 +33,9 @@ import numpy as np
 import hoistsim._jax  # noqa: F401
 import jax
 from hoistsim import load_scenario
-from hoistsim.assemble import build_plan, loop_sizes
-from hoistsim.blocks import compiled_batch
-from hoistsim.sweep_runs import sweep_values
+from hoistsim.machine.assemble import build_plan, loop_sizes
+from hoistsim.running.blocks import compiled_batch
+from hoistsim.scenario.sweep_runs import sweep_values
 
 runs = [s for _, s in sweep_values(load_scenario(os.path.join({root!r}, {scenario!r}),
                                                  sweeps=["clutch.engagement_force=3 kN:12 kN:{runs}"]))]

@@ -33,9 +33,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from hoistsim import simulate
-from hoistsim.periodic.flywheel import size_flywheel
-from hoistsim.report import table
-from hoistsim.scenario import load_scenario
+from hoistsim.results.report import table
+from hoistsim.scenario.loading import load_scenario
+from hoistsim.studies.flywheel import size_flywheel
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = ROOT / "scenarios" / "motor_ripple_tredgold.yaml"

@@ -20,7 +20,7 @@ from pathlib import Path
 from elements_cost import per_run
 
 from hoistsim import load_scenario, sweep
-from hoistsim.report import table
+from hoistsim.results.report import table
 
 SCENARIO = Path(__file__).resolve().parents[1] / "scenarios" / "lift_off_force_sweep.yaml"
 RIGID = "rigid rope, on the ground"

@@ -13,7 +13,7 @@ tolerances.
    process start, imports and loading the compiled program.  Summary-only, and
    full time series on a 2-row output grid (output_interval = duration: the
    rows are the start, the end and every event instant).
-   The peer: hoistsim.scipy_reference.solve_scenario_with_scipy (a Python loop of
+   The peer: hoistsim.references.scipy_reference.solve_scenario_with_scipy (a Python loop of
    solve_ivp RK45 with terminal events and restarts at every switch and table
    knot, no dense output), on SCIPY_SAMPLE evenly spaced scenarios of the
    same files; its cost per scenario is their mean.  The lock-up times of the
@@ -46,10 +46,11 @@ from pathlib import Path
 
 import numpy as np
 
-from hoistsim import blocks, load_scenario
-from hoistsim.report import table
-from hoistsim.sweep_runs import sweep_values
-from hoistsim.scipy_reference import solve_scenario_with_scipy
+from hoistsim import load_scenario
+from hoistsim.references.scipy_reference import solve_scenario_with_scipy
+from hoistsim.results.report import table
+from hoistsim.running import blocks
+from hoistsim.scenario.sweep_runs import sweep_values
 
 ROOT = Path(__file__).resolve().parents[1]
 BASE = ROOT / "scenarios" / "engage_at_speed_with_brake.yaml"

@@ -24,9 +24,9 @@ import time
 from pathlib import Path
 
 from hoistsim import load_scenario, sweep
-from hoistsim.assemble import build_plan
-from hoistsim.report import table
-from hoistsim.sweep_runs import sweep_values
+from hoistsim.machine.assemble import build_plan
+from hoistsim.results.report import table
+from hoistsim.scenario.sweep_runs import sweep_values
 
 SCENARIO = Path(__file__).resolve().parents[1] / "scenarios" / "force_sweep_engage_at_speed.yaml"
 FULL_MAX = 1000

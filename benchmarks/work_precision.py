@@ -1,4 +1,4 @@
-"""What accuracy costs in time: the work-precision study (see hoistsim/study.py).
+"""What accuracy costs in time: the work-precision study (see hoistsim/studies/work_precision.py).
 
     python benchmarks/work_precision.py           # full study -> benchmarks/results/work_precision.{csv,png}
     python benchmarks/work_precision.py --smoke   # a few tolerances on one scene, seconds
@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from hoistsim.study import main, read_csv, write_figure
+from hoistsim.studies.work_precision import main, read_csv, write_figure
 
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])

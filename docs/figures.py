@@ -58,7 +58,7 @@ def _flywheel(scenario: str, irregularity: str, name: str):
 
 
 def _work_precision(output: Path, work: Path) -> list[Path]:
-    from hoistsim.study import read_csv, write_figure
+    from hoistsim.studies.work_precision import read_csv, write_figure
 
     results = ROOT / "benchmarks" / "results"
     target = output / "work_precision.png" if output != ROOT / "docs" else results / "work_precision.png"

@@ -3,7 +3,7 @@
 Public names are imported on first use, so the command line pays only for
 what a command needs (a run never loads the closed-form solver's scipy parts,
 checking a scenario never loads JAX).  Every module that uses JAX imports
-:mod:`hoistsim._jax` first (directly, or through ``hoistsim.core`` or
+:mod:`hoistsim._jax` first (directly, or through ``hoistsim.machine.core`` or
 ``hoistsim._pytree``), so float64 is set before any array exists.
 """
 
@@ -12,18 +12,18 @@ from importlib import import_module
 __version__ = "0.1.0"
 
 _PUBLIC = {
-    "load_scenario": "scenario",
-    "scenario_from_dict": "scenario",
-    "scenario_from_text": "scenario",
+    "load_scenario": "scenario.loading",
+    "scenario_from_dict": "scenario.loading",
+    "scenario_from_text": "scenario.loading",
     "ScenarioError": "errors",
-    "simulate": "simulation",
-    "SimulationError": "simulation",
-    "RunResult": "results",
-    "sweep": "sweeps",
-    "SweepResult": "sweeps",
-    "exact_from_scenario": "exact",
-    "solve_exact": "exact",
-    "open_results": "reading",
+    "simulate": "running.simulation",
+    "SimulationError": "running.simulation",
+    "RunResult": "results.run_result",
+    "sweep": "running.sweeps",
+    "SweepResult": "running.sweeps",
+    "exact_from_scenario": "references.exact",
+    "solve_exact": "references.exact",
+    "open_results": "results.reading",
 }
 __all__ = sorted(_PUBLIC)
 

@@ -28,7 +28,7 @@ def cpu_devices_wanted() -> int:
     XLA runs a program on one device at a time and a vectorised loop of small
     operations gains next to nothing from its threads within a device: measured
     on 2 cores, a sweep's chunk split over two devices (each running its half)
-    costs 12 us a run where one device takes 20.  :mod:`hoistsim.blocks` splits
+    costs 12 us a run where one device takes 20.  :mod:`hoistsim.running.blocks` splits
     every chunk over the devices there are.
     """
     value = os.environ.get(CPU_DEVICES_VARIABLE, "").strip()

@@ -15,7 +15,7 @@ import pytest
 # the user's home.  Tests of the caches give their subprocesses a folder of their own.
 os.environ["HOISTSIM_CACHE_DIR"] = ""
 # Two CPU devices in every test process whatever the machine's cores: a sweep's chunks are split over
-# them (hoistsim.blocks) everywhere the suite runs, and its numbers are the same bits on every machine.
+# them (hoistsim.running.blocks) everywhere the suite runs, and its numbers are the same bits on every machine.
 os.environ["HOISTSIM_CPU_DEVICES"] = "2"
 
 # One JAX compilation cache for the whole session, in a fresh folder: a program one process compiled

@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 from conftest import SCENARIOS
 
-from hoistsim import block_plans as bp
 from hoistsim import load_scenario, sweep
-from hoistsim.assemble import build_plan
-from hoistsim.sweep_runs import SweepRuns
+from hoistsim.machine.assemble import build_plan
+from hoistsim.running import block_plans as bp
+from hoistsim.scenario.sweep_runs import SweepRuns
 
 FORCES = SCENARIOS / "force_sweep_engage_at_speed.yaml"
 BRAKE = SCENARIOS / "engage_at_speed_with_brake.yaml"
@@ -72,7 +72,7 @@ def test_the_summaries_are_those_of_plans_built_run_by_run(monkeypatch):
     s = load_scenario(BRAKE, sweeps=["clutch.engagement_force=[[[0 s, 0 N], [0.5 s, 0 N], [0.6 s, 5 kN]], "
                                      "3 kN, 7 kN, [[0 s, 0 N], [0.3 s, 2 kN], [0.4 s, 2 kN], [0.6 s, 7 kN]]]"])
     fast = sweep(s, summary_only=True, chunk_size=4).summary
-    monkeypatch.setattr("hoistsim.blocks.block_plans", lambda runs, indices: None)
+    monkeypatch.setattr("hoistsim.running.blocks.block_plans", lambda runs, indices: None)
     slow = sweep(s, summary_only=True, chunk_size=4).summary
     for key, values in fast.items():
         for a, b in zip(values, slow[key]):

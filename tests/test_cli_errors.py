@@ -14,9 +14,9 @@ import pytest
 from click.testing import CliRunner
 from conftest import core
 
-from hoistsim import simulation
-from hoistsim.periodic import flywheel  # imported before any test patches the simulation away
 from hoistsim.cli import main
+from hoistsim.running import simulation
+from hoistsim.studies import flywheel  # imported before any test patches the simulation away
 
 ROOT = Path(__file__).resolve().parents[1]
 SHIPPED = (ROOT / "scenarios" / "exercise6_direct_start.yaml").read_text(encoding="utf-8")

@@ -34,7 +34,7 @@ def cluster():
 @pytest.fixture
 def small_blocks(monkeypatch):
     """Blocks of one chunk: a short sweep makes several, spread over both workers."""
-    from hoistsim import sweeps
+    from hoistsim.running import sweeps
 
     monkeypatch.setattr(sweeps, "BLOCK_CHUNKS", 1)
 
@@ -139,7 +139,7 @@ class _Cancelling:
 
 
 def test_a_block_the_cluster_cancels_is_submitted_again_and_taken_once(monkeypatch):
-    from hoistsim import cluster
+    from hoistsim.running import cluster
 
     monkeypatch.setattr(cluster, "_remote_block", lambda runs, start, stop, summary_only, chunk, devices: (start, stop))
     client = _Cancelling(cancel_start=4)
@@ -150,7 +150,7 @@ def test_a_block_the_cluster_cancels_is_submitted_again_and_taken_once(monkeypat
 
 
 def test_a_block_cancelled_again_and_again_stops_the_sweep_in_one_line(monkeypatch):
-    from hoistsim import cluster
+    from hoistsim.running import cluster
 
     class Always(_Cancelling):
         def submit(self, func, *args, key, pure):
@@ -169,7 +169,7 @@ def test_a_block_cancelled_again_and_again_stops_the_sweep_in_one_line(monkeypat
 def test_a_worker_with_fewer_devices_than_the_split_says_so_in_one_line():
     """A worker keeps the client's split of a chunk over devices (another split: other bits); one that lacks
     the devices stops the sweep, saying how to start it."""
-    from hoistsim import cluster
+    from hoistsim.running import cluster
 
     with pytest.raises(cluster.ClusterError, match="start the workers with HOISTSIM_CPU_DEVICES=3$"):
         cluster._remote_block(_short(4), 0, 4, True, 3, 3)

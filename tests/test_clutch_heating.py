@@ -14,10 +14,10 @@ from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
 from hoistsim import scenario_from_dict, simulate
-from hoistsim.core.layout import Layout
-from hoistsim.elements import elements_for
-from hoistsim.exact import exact_from_scenario
-from hoistsim.model import Machine
+from hoistsim.machine.core.layout import Layout
+from hoistsim.machine.elements import elements_for
+from hoistsim.references.exact import exact_from_scenario
+from hoistsim.references.model import Machine
 
 ZERO_CELSIUS = 273.15
 # One structure for the constant-friction checks and one for the fading ones (three knots, a limit given),
@@ -187,7 +187,7 @@ def test_an_absent_section_adds_nothing():
     data["clutch_heating"] = unlimited
     layout = Layout(elements_for(scenario_from_dict(data, name="warm")))
     assert "clutch_temperature" in layout.state_names and "overheat_time" not in layout.summaries
-    from hoistsim.core.switching import guards
+    from hoistsim.machine.core.switching import guards
     assert not [name for _, name, _ in guards(layout) if name.endswith("overheat")]
 
 
@@ -323,8 +323,9 @@ def test_the_closed_form_refuses_friction_that_fades():
 def test_the_duty_cycle_warms_the_clutch_start_by_start():
     """The shipped duty cycle: six starts 3 s apart, the pawl holding the load between.  Each start finds the
     clutch warmer, its friction lower and its lock-up later; the sixth passes the limit; the load only rises."""
-    from hoistsim import load_scenario
     from conftest import SCENARIOS
+
+    from hoistsim import load_scenario
 
     run = simulate(load_scenario(SCENARIOS / "clutch_duty_cycle.yaml"))
     rows = run.instants

@@ -6,7 +6,7 @@ import pytest
 from scenes import scene
 
 from hoistsim import simulate
-from hoistsim.core import loop
+from hoistsim.machine.core import loop
 
 
 @pytest.mark.slow

@@ -10,7 +10,7 @@ from scenes import scene
 
 from hoistsim import load_scenario
 from hoistsim.components import ConeClutch
-from hoistsim.model import Machine
+from hoistsim.references.model import Machine
 
 
 def test_exercise6_reduced_model():

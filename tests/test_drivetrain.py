@@ -141,7 +141,7 @@ def test_a_brake_holding_a_shaft_at_rest_breaks_away_at_the_first_peak_over_its_
     capacity (between the peaks at 0.417 s, under it, and 0.75 s, over it), found here independently."""
     from scipy.optimize import brentq
 
-    from hoistsim.core.element import STICK_TOLERANCE, TORQUE_RESOLUTION
+    from hoistsim.machine.core.element import STICK_TOLERANCE, TORQUE_RESOLUTION
 
     scene = _drivetrain({"wheel": {"inertia": "1 kg*m^2"}},
                         {"brake": {"between": ["wheel", "ground"], "static_friction": 1.0, "kinetic_friction": 0.8,

@@ -20,8 +20,8 @@ from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from hoistsim import load_scenario, scenario_from_dict, simulate, sweep
-from hoistsim.model import STICK_TOLERANCE
-from hoistsim.sweep_runs import sweep_values
+from hoistsim.references.model import STICK_TOLERANCE
+from hoistsim.scenario.sweep_runs import sweep_values
 
 # The same chains every run (a check that passes or fails by the code alone); HOISTSIM_PROPERTY_SEARCH=1
 # draws new ones, to search.

@@ -8,9 +8,9 @@ import pytest
 from scenes import scene
 
 from hoistsim import simulate
-from hoistsim.assemble import build_plan, loop_sizes
-from hoistsim.core import loop
-from hoistsim.elements import HoldingBrake, elements_for
+from hoistsim.machine.assemble import build_plan, loop_sizes
+from hoistsim.machine.core import loop
+from hoistsim.machine.elements import HoldingBrake, elements_for
 
 
 def _jaxpr_size(s) -> int:

@@ -21,10 +21,10 @@ import pytest
 from scenes import EXERCISE6
 
 from hoistsim import scenario_from_dict, simulate
-from hoistsim.assemble import build_plan, loop_sizes
-from hoistsim.core.element import AbstractCoupling
-from hoistsim.core.loop import OK, compiled_run
-from hoistsim.elements import REGISTRY, elements_for
+from hoistsim.machine.assemble import build_plan, loop_sizes
+from hoistsim.machine.core.element import AbstractCoupling
+from hoistsim.machine.core.loop import OK, compiled_run
+from hoistsim.machine.elements import REGISTRY, elements_for
 
 TIGHT = {"rtol": 1e-10, "atol": 1e-12}
 # A start that slips, locks, and lifts: every mode of the clutch and a moving drum.
@@ -93,7 +93,7 @@ def test_torque_speed_table_on_the_line_is_the_linear_motor():
 
 
 def test_table_is_continued_linearly_beyond_its_ends():
-    from hoistsim.elements import TableMotor
+    from hoistsim.machine.elements import TableMotor
 
     motor = TableMotor(inertia=1.0, initial_speed=0.0, table_speeds=np.array([10.0, 20.0, 30.0]),
                        table_torques=np.array([100.0, 80.0, 20.0]))
@@ -173,7 +173,7 @@ def test_the_core_names_no_part_of_the_machine():
 
 
 def test_every_element_is_one_file_named_after_it():
-    folder = Path(__file__).resolve().parents[1] / "hoistsim" / "elements"
+    folder = Path(__file__).resolve().parents[1] / "hoistsim" / "machine" / "elements"
     classes = [c for entry in REGISTRY.values() for c in (entry.values() if isinstance(entry, dict) else [entry])]
     for cls in classes:
         module = cls.__module__.rsplit(".", 1)[-1]

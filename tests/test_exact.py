@@ -8,16 +8,10 @@ import math
 import numpy as np
 import pytest
 
-from hoistsim import exact as exact_module
-from hoistsim.exact import ExactEvent, ExpPoly, first_crossing, solve_exact
-from hoistsim.model import (
-    LOCKED,
-    OPEN,
-    SLIP_FORWARD,
-    Drivetrain,
-    Machine,
-)
-from hoistsim.scipy_reference import solve_with_scipy
+from hoistsim.references import exact as exact_module
+from hoistsim.references.exact import ExactEvent, ExpPoly, first_crossing, solve_exact
+from hoistsim.references.model import LOCKED, OPEN, SLIP_FORWARD, Drivetrain, Machine
+from hoistsim.references.scipy_reference import solve_with_scipy
 
 G = 9.81
 W0 = 300.0 * 2.0 * math.pi / 60.0  # 300 rpm

@@ -16,10 +16,10 @@ from conftest import ROOT, SCENARIOS  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 
 from hoistsim.cli import main  # noqa: E402
-from hoistsim.reading import read_runs  # noqa: E402
-from hoistsim.plotting import runs_columns  # noqa: E402
-from hoistsim.plotting_runs import THIN_TO, runs_figure  # noqa: E402
-from hoistsim.plotting_summary import summary_figure  # noqa: E402
+from hoistsim.figures.files import runs_columns  # noqa: E402
+from hoistsim.figures.runs import THIN_TO, runs_figure  # noqa: E402
+from hoistsim.figures.summary import summary_figure  # noqa: E402
+from hoistsim.results.reading import read_runs  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -253,12 +253,12 @@ def test_the_clutch_temperature_against_its_limit_run_by_run_and_across_the_swee
     overheats = [c for c in panel.collections if c.get_label() == "overheat"]
     assert len(overheats) == 1 and len(overheats[0].get_offsets()) == 2  # the 4 and 4.4 kN runs
     plt.close(fig)
-    from hoistsim.plotting import plot_file
+    from hoistsim.figures.files import plot_file
 
     written = plot_file(path, tmp_path / "window.png")
     assert [p.rsplit("/", 1)[-1] for p in written] == ["window.png", "window_summary.png"]
-    from hoistsim.plotting import scenario_parameters, swept_axis
-    from hoistsim.reading import read_summary
+    from hoistsim.figures.files import scenario_parameters, swept_axis
+    from hoistsim.results.reading import read_summary
 
     rows = read_summary(path)
     fig = summary_figure(rows, swept_axis(path, rows), plt, "window", scenario_parameters(path))

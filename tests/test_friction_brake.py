@@ -15,7 +15,7 @@ import pytest
 from conftest import SCENARIOS
 
 from hoistsim import load_scenario, scenario_from_dict, scenario_from_text, simulate
-from hoistsim.model import Machine
+from hoistsim.references.model import Machine
 
 TIGHT = ["simulation.rtol=1e-10", "simulation.atol=1e-12"]
 

@@ -104,8 +104,8 @@ def test_default_tolerance_balances_energy():
 
 def _exact_series(run, exact, t):
     """Slip, load position and clutch torque of the exact solution at times t."""
-    from hoistsim.exact import clutch_torque
-    from hoistsim.model import ForceSchedule
+    from hoistsim.references.exact import clutch_torque
+    from hoistsim.references.model import ForceSchedule
 
     ref = exact.evaluate(t)
     held = np.zeros(t.shape, bool) if run.scenario.brake is None else t < run.scenario.brake.release_time

@@ -18,8 +18,8 @@ import pytest
 from conftest import SCENARIOS
 
 from hoistsim import scenario_from_text, simulate
-from hoistsim.exact import solve_exact
-from hoistsim.model import ForceSchedule, Machine, initial_speeds
+from hoistsim.references.exact import solve_exact
+from hoistsim.references.model import ForceSchedule, Machine, initial_speeds
 
 TIGHT = ["simulation.rtol=1e-10", "simulation.atol=1e-12"]
 
@@ -206,8 +206,8 @@ def test_a_drum_stopped_by_the_brake_locks_brake_pawl_and_mesh_at_one_instant():
 
 
 def test_the_closed_form_and_the_scipy_peer_refuse_a_lossy_mesh():
-    from hoistsim.exact import exact_from_scenario
-    from hoistsim.scipy_reference import solve_scenario_with_scipy
+    from hoistsim.references.exact import exact_from_scenario
+    from hoistsim.references.scipy_reference import solve_scenario_with_scipy
 
     scenario = _scene("engage_at_speed_with_brake.yaml", "gears.efficiency=0.9")
     for solve in (exact_from_scenario, solve_scenario_with_scipy):

@@ -17,7 +17,7 @@ from conftest import SCENARIOS
 from scenes import scene
 
 from hoistsim import load_scenario, simulate
-from hoistsim.output import write_runs
+from hoistsim.results.output import write_runs
 
 CONTRACT_SERIES = ["motor_speed", "drum_speed", "slip_speed", "clutch_torque", "clutch_locked",
                    "engagement_force", "load_position", "load_velocity", "clutch_energy"]
@@ -102,7 +102,7 @@ def test_opens_in_xarray_as_one_dataset(written):
 
 def test_reading_back_gives_the_run_as_simulated(written, braked_run):
     """The grid rows and the instants merge back into the run's own rows, value for value."""
-    from hoistsim.reading import read_runs
+    from hoistsim.results.reading import read_runs
 
     (back,) = read_runs(written)
     np.testing.assert_array_equal(back["time"], braked_run.time)
@@ -125,7 +125,7 @@ def test_sweep_of_runs_and_summary(tmp_path):
 def test_failed_write_leaves_existing_file_and_no_debris(tmp_path, braked_run, monkeypatch):
     path = tmp_path / "keep.h5"
     path.write_bytes(b"precious results")
-    from hoistsim import output
+    from hoistsim.results import output
 
     def broken(*args, **kwargs):
         raise RuntimeError("disk fell off")
@@ -167,7 +167,7 @@ def test_run_to_xarray_has_time_coordinate_and_units(braked_run):
 @pytest.mark.parametrize("umask", [0o022, 0o077, 0o002])
 def test_a_written_file_has_the_mode_the_umask_allows(tmp_path, umask):
     """Results are written to a temporary file and renamed: the rename must not keep mkstemp's 0600."""
-    from hoistsim.output import atomic_path
+    from hoistsim.results.output import atomic_path
 
     old = os.umask(umask)
     try:

@@ -22,7 +22,7 @@ from scipy.integrate import quad
 from scipy.optimize import minimize_scalar
 
 from hoistsim import scenario_from_dict, simulate
-from hoistsim.periodic.period import machine_period_turns
+from hoistsim.scenario.period import machine_period_turns
 
 TAU = 90 / 17  # pinion turns per drum turn
 R, G = 0.2, 9.81
@@ -175,9 +175,9 @@ def test_the_machine_period_is_a_common_multiple_through_the_gear_teeth():
 
 def _diagram_of(scenario, speed):
     """Tredgold's diagram of a scene's machine over its period, from its start (no run needed)."""
-    from hoistsim.assemble import build_plan
-    from hoistsim.periodic.period import machine_period
-    from hoistsim.periodic.tredgold import diagram
+    from hoistsim.machine.assemble import build_plan
+    from hoistsim.results.periodic.tredgold import diagram
+    from hoistsim.scenario.period import machine_period
 
     plan, _ = build_plan(scenario)
     return diagram(plan.elements, plan.initial_state, 0.0, speed, machine_period(scenario))
@@ -228,7 +228,7 @@ def test_tredgold_of_a_harmonic_turning_moment_is_its_amplitude():
 
 @pytest.fixture(scope="module")
 def linear_motor_ripple():
-    from hoistsim.scenario import load_scenario
+    from hoistsim.scenario.loading import load_scenario
 
     return simulate(load_scenario("scenarios/motor_ripple_tredgold.yaml"))
 
@@ -270,7 +270,7 @@ def test_a_clutch_slipping_every_period_is_periodic_stick_slip_not_chattering():
 
 
 def _stick_slip(duration):
-    from hoistsim.scenario import load_scenario
+    from hoistsim.scenario.loading import load_scenario
 
     base = load_scenario("scenarios/motor_ripple_tredgold.yaml").raw
     base["clutch"]["engagement_force"] = "5 kN"
@@ -285,7 +285,7 @@ def _stick_slip(duration):
 
 
 def test_a_rim_has_the_inertia_it_was_sized_for():
-    from hoistsim.periodic.flywheel import rim
+    from hoistsim.studies.flywheel import rim
 
     for sized in (rim(12.0, 7200.0, width=0.08, inner_diameter=0.4),
                   rim(12.0, 7200.0, outer_diameter=0.7, inner_diameter=0.4)):
@@ -337,8 +337,8 @@ def test_plot_draws_the_turning_moment_diagram_and_the_speed_over_a_period(linea
 
     import matplotlib.pyplot as plt
 
-    from hoistsim.reading import read_runs
-    from hoistsim.plotting_periodic import periodic_figure
+    from hoistsim.figures.periodic import periodic_figure
+    from hoistsim.results.reading import read_runs
 
     fig = periodic_figure(read_runs(tmp_path / "ripple.h5")[0], plt)
     legend = [t.get_text() for t in fig.legends[0].get_texts()]

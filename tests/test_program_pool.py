@@ -70,7 +70,7 @@ def test_programs_are_let_go_before_the_process_reaches_its_memory_maps_limit(po
 def test_a_watch_that_meets_more_structures_than_it_may_hold_answers_each_as_the_first_time(tmp_path, monkeypatch):
     from test_watch import SHORT, _force
 
-    from hoistsim.watching import Watch
+    from hoistsim.cli.watching import Watch
 
     monkeypatch.setenv(program_pool.MAX_PROGRAMS_VARIABLE, "1")
     monkeypatch.setattr(_jax, "programs", ProgramPool())

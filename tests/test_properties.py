@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 from scenes import EXERCISE6
 
 from hoistsim import exact_from_scenario, scenario_from_dict, simulate
-from hoistsim.model import STICK_TOLERANCE, Machine
+from hoistsim.references.model import STICK_TOLERANCE, Machine
 
 # 100 random scenes a property in CI; HOISTSIM_PROPERTY_EXAMPLES=400 for a deeper search by hand.
 SETTINGS = settings(max_examples=int(os.environ.get("HOISTSIM_PROPERTY_EXAMPLES", "100")), deadline=None,

@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 from scenes import EXERCISE6
 
 from hoistsim import scenario_from_dict, simulate
-from hoistsim.model import STICK_TOLERANCE
+from hoistsim.references.model import STICK_TOLERANCE
 
 SETTINGS = settings(max_examples=int(os.environ.get("HOISTSIM_PROPERTY_EXAMPLES", "40")), deadline=None,
                     suppress_health_check=[HealthCheck.too_slow])

@@ -16,7 +16,7 @@ from scenes import EXERCISE6
 
 from hoistsim import scenario_from_dict, scenario_from_text, simulate
 from hoistsim.errors import ScenarioError
-from hoistsim.model import Machine
+from hoistsim.references.model import Machine
 
 TIGHT = ["simulation.rtol=1e-10", "simulation.atol=1e-12"]
 

@@ -16,8 +16,8 @@ import pytest
 from scenes import EXERCISE6
 
 from hoistsim import scenario_from_dict, simulate
-from hoistsim.assemble import build_plan
-from hoistsim.elements import MotorRipple
+from hoistsim.machine.assemble import build_plan
+from hoistsim.machine.elements import MotorRipple
 
 TAU = 90 / 17  # pinion turns per drum turn
 R, G = 0.2, 9.81

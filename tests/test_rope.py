@@ -1,6 +1,6 @@
 """The elastic rope and the ground against independent answers.
 
-- The exact piecewise solution (hoistsim.rope_exact: matrix exponentials, switches as roots of exact
+- The exact piecewise solution (hoistsim.references.rope_exact: matrix exponentials, switches as roots of exact
   trajectories): lift-off with the clutch locked, a start with the clutch slipping through lift-off, a
   damped rope, and a snatch from initial slack.
 - The textbook pick-up: a drive that keeps its rope speed v lifts the load off at M g / (k v) with a
@@ -20,7 +20,7 @@ import pytest
 from scenes import EXERCISE6
 
 from hoistsim import scenario_from_dict, simulate
-from hoistsim.rope_exact import RopeHoist, solve
+from hoistsim.references.rope_exact import RopeHoist, solve
 
 STIFFNESS = 2.5e5  # N/m
 MASS, G = 500.0, 9.81
@@ -215,8 +215,8 @@ def test_a_sweep_over_the_rope_is_one_compiled_program_and_each_run_is_its_singl
     """Stiffness, damping and slack are traced numbers: a sweep over all three compiles one program, a
     sweep over other values of them none, and each run's peak and lift-off are those of the run alone."""
     from hoistsim import sweep
-    from hoistsim.core import loop
-    from hoistsim.sweep_runs import sweep_values
+    from hoistsim.machine.core import loop
+    from hoistsim.scenario.sweep_runs import sweep_values
 
     def swept(stiffness, damping, slack):
         scenario = _scene(duration="0.8 s")
@@ -285,7 +285,7 @@ def test_a_load_on_a_rigid_rope_rests_until_the_clutch_lifts_it_and_lands_in_a_p
     """Slipping, the clutch passes f c F(t); the load lifts off where that reaches M g R / tau (the ramp's
     closed form).  Opened at 1 s, the drum side coasts up, decelerating at T_L / J_b, and comes down:
     it lands where the height returns to zero, and the landing takes the drum side's kinetic energy."""
-    from hoistsim.model import Machine
+    from hoistsim.references.model import Machine
 
     scenario = _rigid_on_the_ground()
     run = simulate(scenario)

@@ -11,15 +11,10 @@ from conftest import core
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from hoistsim import units as u
-from hoistsim.scenario import (
-    ScenarioError,
-    load_scenario,
-    parse_override,
-    scenario_from_dict,
-    scenario_from_text,
-)
-from hoistsim.sweep_runs import sweep_values
+from hoistsim.scenario import units as u
+from hoistsim.scenario.keys import parse_override
+from hoistsim.scenario.loading import ScenarioError, load_scenario, scenario_from_dict, scenario_from_text
+from hoistsim.scenario.sweep_runs import sweep_values
 
 ROOT = Path(__file__).resolve().parents[1]
 BASE_PATH = ROOT / "scenarios" / "exercise6_direct_start.yaml"
@@ -447,7 +442,7 @@ def test_a_number_with_a_unit_reads_as_pint_reads_it(dimension, units):
     pint's value, bit for bit, and pint's message for a unit of another dimension."""
     import random
 
-    from hoistsim import units as u
+    from hoistsim.scenario import units as u
 
     rnd = random.Random(7)
     dim = getattr(u, dimension)
@@ -461,7 +456,7 @@ def test_a_number_with_a_unit_reads_as_pint_reads_it(dimension, units):
 
 def test_a_large_listed_sweep_reads_without_the_round_trip_tree_and_errors_still_name_lines():
     """The data of a file is read by the C parser; the round-trip tree (lines) only for a message."""
-    from hoistsim import yamlsource
+    from hoistsim.scenario import yamlsource
 
     tables = "".join(f"\n    - [[0 s, 0 N], [0.05 s, {3000 + i} N]]" for i in range(50))
     good = scenario_from_text(BASE + "sweep:\n  clutch.engagement_force:" + tables + "\n")

@@ -14,7 +14,7 @@ ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "hoistsim"
 SCENARIO = ROOT / "scenarios" / "exercise6_direct_start.yaml"
 # Subpackages whose __init__ imports hoistsim._jax (elements import the core first).
-GUARDED_PACKAGES = ("core", "elements", "periodic")
+GUARDED_PACKAGES = ("machine/core", "machine/elements", "results/periodic")
 
 PROBE = """
 import json, sys
@@ -50,22 +50,22 @@ def _imports_jax(path: Path) -> bool:
 
 def _imports_float64_set_up(path: Path) -> bool:
     text = path.read_text(encoding="utf-8")
-    return any(mark in text for mark in ("import _jax", "from ._pytree import", "from .core", "from ..core"))
+    return any(mark in text for mark in ("import _jax", "._pytree import", "from .core", "from ..core", "machine.core"))
 
 
 def test_every_module_that_uses_jax_sets_float64_first():
     """hoistsim/__init__ no longer imports JAX (a `check` needs none): each module that does sees to float64."""
     for package in GUARDED_PACKAGES:
-        assert _imports_float64_set_up(PACKAGE / package / "__init__.py") or package == "elements"
-    assert "from ..core" in (PACKAGE / "elements" / "__init__.py").read_text(encoding="utf-8")
+        assert _imports_float64_set_up(PACKAGE / package / "__init__.py") or package == "machine/elements"
+    assert "from ..core" in (PACKAGE / "machine" / "elements" / "__init__.py").read_text(encoding="utf-8")
     unguarded = [str(p.relative_to(PACKAGE)) for p in sorted(PACKAGE.rglob("*.py"))
-                 if _imports_jax(p) and p.relative_to(PACKAGE).parts[0] not in GUARDED_PACKAGES
+                 if _imports_jax(p) and str(p.relative_to(PACKAGE).parent.as_posix()) not in GUARDED_PACKAGES
                  and p.name != "_jax.py" and not _imports_float64_set_up(p)]
     assert unguarded == []
 
 
 def test_importing_a_module_of_the_core_alone_gives_float64():
-    program = ("import hoistsim.core.bodies, jax, jax.numpy as jnp; "
+    program = ("import hoistsim.machine.core.bodies, jax, jax.numpy as jnp; "
                "print(jnp.zeros(1).dtype, 'jax' in __import__('sys').modules)")
     done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True, cwd=ROOT, check=True)
     assert done.stdout.split() == ["float64", "True"]

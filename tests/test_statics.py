@@ -14,8 +14,8 @@ from scenes import scene
 from hoistsim import load_scenario, simulate
 from hoistsim.cli import main
 from hoistsim.components import DrumShaft
-from hoistsim.model import LOCKED, Machine
-from hoistsim.statics import as_dict, least_force_for_start
+from hoistsim.references.model import LOCKED, Machine
+from hoistsim.studies.statics import as_dict, least_force_for_start
 
 EXERCISE_FILE = SCENARIOS / "exercise6_constant_speed.yaml"
 BEARINGS = {"gear_offset": "20 cm", "rope_offset": "40 cm", "span": "80 cm"}
@@ -128,7 +128,7 @@ def test_bearing_columns_only_with_the_bearings_section():
 def test_statics_warns_of_a_load_the_motor_or_the_clutch_cannot_hold():
     """1400 kg puts 518.8 N*m on the motor shaft, more than C0 = 500 N*m: the least start force is still
     computed (3217.9 N), but a run at 3300 N runs back; the command says so, on stderr."""
-    from hoistsim.statics import warnings
+    from hoistsim.studies.statics import warnings
 
     heavy = load_scenario(SCENARIOS / "exercise6_direct_start.yaml", overrides=["load.mass=1400 kg"])
     said = warnings(heavy)

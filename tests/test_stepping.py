@@ -9,7 +9,7 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from hoistsim.core.stepping import integrate_pass
+from hoistsim.machine.core.stepping import integrate_pass
 
 
 def oscillator(t, y, args):

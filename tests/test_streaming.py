@@ -14,8 +14,7 @@ from samefiles import SWEEP_FILE, datasets, same, short_sweep
 
 from hoistsim import sweep
 from hoistsim.cli import main
-from hoistsim.streaming import ResumeError, StreamedFile, partial_path
-
+from hoistsim.running.streaming import ResumeError, StreamedFile, partial_path
 
 
 def _short(count=10):
@@ -30,7 +29,7 @@ class _Stop(Exception):
 def a_file_a_chunk(monkeypatch):
     """Every chunk a block, every block in a file of its own (a sweep of a few short runs would otherwise
     fill one block and one file)."""
-    from hoistsim import streaming, sweeps
+    from hoistsim.running import streaming, sweeps
 
     monkeypatch.setattr(streaming, "FILE_RUNS", 1)
     monkeypatch.setattr(sweeps, "BLOCK_CHUNKS", 1)
@@ -104,7 +103,7 @@ def test_a_sweep_keeps_its_finished_blocks_every_few_seconds_and_a_resume_redoes
     """Files by time as well as by size: blocks that each take 4 s (a clock that says so) under a 10 s
     limit go to a file every third block; stopped after five blocks (as a kill would stop it), the
     sweep keeps three, loses the two of the last 8 s, and --resume ends with the file of a whole run."""
-    from hoistsim import streaming
+    from hoistsim.running import streaming
 
     monkeypatch.setattr(streaming, "FILE_RUNS", 10**6)  # never by count here
     now = [0.0]
@@ -179,7 +178,7 @@ def test_starting_afresh_over_an_interrupted_sweep_says_so(tmp_path, monkeypatch
 def test_a_streamed_sweep_reads_its_summaries_back_as_they_were(tmp_path):
     """A streamed sweep keeps nothing per run in memory: its summaries are read back from the file when
     asked for, the same values and types as a sweep kept in memory (yes/no values as bools)."""
-    from hoistsim.reading import FileSummaries
+    from hoistsim.results.reading import FileSummaries
 
     scenario = _short()
     kept = sweep(scenario, summary_only=True, chunk_size=4)

@@ -11,7 +11,7 @@ import math
 
 import pytest
 
-from hoistsim.study import study
+from hoistsim.studies.work_precision import study
 
 
 @pytest.fixture(scope="module")

@@ -14,9 +14,9 @@ from conftest import SCENARIOS
 from scenes import scene
 
 from hoistsim import exact_from_scenario, load_scenario, simulate, sweep
-from hoistsim.core import loop
 from hoistsim.cli import main
-from hoistsim.sweep_runs import SweepRuns, sweep_values
+from hoistsim.machine.core import loop
+from hoistsim.scenario.sweep_runs import SweepRuns, sweep_values
 
 SWEEP_FILE = SCENARIOS / "force_sweep_engage_at_speed.yaml"
 
@@ -212,9 +212,9 @@ def test_an_observation_never_fires_again_at_its_own_restart():
     """
     import jax
 
-    from hoistsim.assemble import build_plan, loop_sizes
-    from hoistsim.core.readout import PASSES
-    from hoistsim.blocks import compiled_batch
+    from hoistsim.machine.assemble import build_plan, loop_sizes
+    from hoistsim.machine.core.readout import PASSES
+    from hoistsim.running.blocks import compiled_batch
 
     s = load_scenario(SWEEP_FILE, sweeps=["clutch.engagement_force=3510.2639296187685 N"])
     ((_, one),) = sweep_values(s)
@@ -231,7 +231,7 @@ def test_a_chunk_split_over_devices_gives_each_run_its_answer(monkeypatch):
     chunk on one device (to round-off: XLA compiles the split program on its own), in sweep order."""
     import jax
 
-    from hoistsim import blocks
+    from hoistsim.running import blocks
 
     assert jax.device_count() == 2  # conftest asks for two
     assert [blocks.devices_for(chunk) for chunk in (1, 2, 8)] == [1, 2, 2]
@@ -250,8 +250,8 @@ def test_a_chunk_split_over_devices_gives_each_run_its_answer(monkeypatch):
 def test_loading_a_sweep_costs_in_proportion_to_its_values(monkeypatch):
     """Each swept value is validated alone, once, on the validated base: the scenario's plain data is not
     copied per value (it was, with the whole sweep in it: 1 000 force tables took 18 s to load)."""
-    from hoistsim import scenario as scenario_module
-    from hoistsim import sweep_spec, yamlsource
+    from hoistsim.scenario import loading as scenario_module
+    from hoistsim.scenario import sweep_spec, yamlsource
 
     calls = {"copies": 0, "values": 0}
     original_copy, original_value = yamlsource.copy_plain, sweep_spec.with_swept_value

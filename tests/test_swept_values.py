@@ -7,8 +7,8 @@ import pickle
 from samefiles import SWEEP_FILE
 
 from hoistsim import load_scenario
-from hoistsim.sweep_spec import swept_field, with_swept_value
-from hoistsim.swept_values import BATCH, SweptValues, collect
+from hoistsim.scenario.sweep_spec import swept_field, with_swept_value
+from hoistsim.scenario.swept_values import BATCH, SweptValues, collect
 
 
 def test_a_force_range_is_kept_as_columns_and_gives_back_each_value_as_validated():

@@ -14,8 +14,8 @@ import h5py
 import pytest
 
 from hoistsim import _jax
+from hoistsim.cli.watching import Watch, watch
 from hoistsim.program_pool import ProgramPool
-from hoistsim.watching import Watch, watch
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = (ROOT / "scenarios" / "exercise6_direct_start.yaml").read_text(encoding="utf-8")

@@ -1,0 +1,5 @@
+"""``python -m hoistsim.cli``."""
+
+from . import main
+
+main()

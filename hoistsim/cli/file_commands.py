@@ -1,0 +1,78 @@
+"""`hoistsim compare` and `plot`: what a results file holds, as a table or as figures."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import click
+
+from .group import debug_option, fail, main, one_line_errors
+
+
+@main.command()
+@click.argument("results", type=click.Path(dir_okay=False))
+@click.option("--csv", "as_csv", is_flag=True,
+              help="Every summary column as CSV on stdout: a header row, a units row, then the runs (SI).")
+@click.option("--columns", metavar="NAME,NAME,...", help="The summary columns to show, in this order.")
+@debug_option
+@one_line_errors
+def compare(results, as_csv, columns):
+    """Compare the runs of RESULTS (an HDF5 file): one row per run, the summary as columns.
+
+    By default as many columns as fit 120 characters, the questions first (lock-up, heat, torque,
+    where the load went); units under the names.
+    """
+    from ..results.reading import read_summary, read_summary_units
+    from ..results.report import compare_table
+
+    rows = _read(read_summary, results)
+    units = _read(read_summary_units, results)
+    if as_csv:
+        import csv
+
+        writer = csv.writer(sys.stdout, lineterminator="\n")
+        writer.writerow(list(rows[0]))
+        writer.writerow([units.get(name, "") for name in rows[0]])
+        writer.writerows([list(row.values()) for row in rows])
+        return
+    chosen = [c.strip() for c in columns.split(",") if c.strip()] if columns else None
+    try:
+        click.echo(compare_table(rows, units, chosen))
+    except ValueError as exc:
+        fail(f"--columns: {exc}")
+
+
+def _read(reader, path):
+    if not Path(path).is_file():
+        fail(f"{path}: no such results file")
+    try:
+        return reader(path)
+    except (OSError, KeyError) as exc:
+        fail(f"{path}: not a hoistsim results file ({exc})")
+
+
+@main.command()
+@click.argument("results", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", "output", required=True, type=click.Path(dir_okay=False),
+              help="Figure file: .png, .svg or .pdf.")
+@debug_option
+@one_line_errors
+def plot(results, output):
+    """Plot speed and clutch-slip histories of every run in RESULTS (an HDF5 file).
+
+    A machine with a periodic regime also gets OUTPUT's name + "_periodic": the
+    turning-moment diagram and the speed over a period (of the first run).
+    A sweep also gets a second figure, OUTPUT's name + "_summary": lock-up time,
+    clutch heat, peak torque and lowest load position against the swept value.
+    A summary-only file gets that figure alone, as OUTPUT.
+    """
+    suffix = Path(output).suffix.lower()
+    if suffix not in (".png", ".svg", ".pdf"):
+        fail(f"{output}: the figure must be .png, .svg or .pdf")
+    if not Path(output).parent.exists() and str(Path(output).parent):
+        fail(f"{output}: the folder {Path(output).parent} does not exist")
+    from ..figures.files import plot_file
+
+    for written in _read(lambda path: plot_file(path, output), results):
+        click.echo(f"wrote {written}")

@@ -1,0 +1,127 @@
+"""`hoistsim watch`: the edit-run-look loop, in one warm process.
+
+Each save of the scenario runs it again, rewrites the results and the figure
+(each atomically) and prints the run's headline.  The process keeps every
+program it compiled: a new value runs at once, a new structure compiles once
+(and says so, through the compile notice).  A bad edit prints its one-line
+error and the last good results stay as they were.  Files are watched with
+``watchfiles`` (the operating system's notifications, not polling); an
+editor's save by rename counts like a write.
+"""
+
+from __future__ import annotations
+
+import tempfile
+import time
+from collections.abc import Callable, Iterable
+from pathlib import Path
+
+from ..errors import ScenarioError
+
+# watchfiles gathers the events of one save for this long after the last (ms): an editor's save is
+# a few events (write, rename, attributes) within a millisecond or two.
+QUIET_MS = 20
+
+
+class Watch:
+    """One scenario file, its results file and figure: :meth:`run` runs it again and says what came out."""
+
+    def __init__(self, scenario: Path, *, output: Path | None = None, figure: Path | None = None,
+                 overrides: Iterable[str] = (), echo: Callable[[str], None] = print):
+        self.scenario = Path(scenario)
+        self.overrides = list(overrides)
+        self.figure = Path(figure) if figure is not None else None
+        self._scratch = None
+        if output is None and figure is not None:  # the figure is drawn from a results file: keep one aside
+            self._scratch = tempfile.TemporaryDirectory(prefix="hoistsim-watch-")
+            output = Path(self._scratch.name) / "results.h5"
+        self.output = Path(output) if output is not None else None
+        self.echo = echo
+        self.runs = 0  # runs that wrote results
+        self._read: bytes | None = None  # the scenario file as the last run read it
+
+    def files(self) -> list[Path]:
+        """The files whose saves run the scenario again (a scenario names no other file today)."""
+        return [self.scenario.resolve()]
+
+    def concerns(self, _change, path: str) -> bool:
+        """Whether a file event is a save of a watched file (watchfiles' filter)."""
+        return Path(path).resolve() in self.files()
+
+    def _contents(self) -> bytes | None:
+        try:
+            return self.scenario.read_bytes()
+        except OSError:
+            return None
+
+    def saved_since_run(self) -> bool:
+        """Whether the scenario file changed after the last run read it."""
+        return self._contents() != self._read
+
+    def run(self) -> bool:
+        """Load, simulate, write, draw; print the headline, or the error and that the last results stay.
+
+        True where new results were written.
+        """
+        from ..running.simulation import SimulationError, simulate
+
+        started = time.perf_counter()
+        self._read = self._contents()  # before loading: a save from here on is a change the run did not see
+        try:
+            scenario = self._load()
+            result = simulate(scenario)
+        except (ScenarioError, SimulationError) as exc:
+            kept = " (the last good results are kept)" if self.runs else ""
+            self.echo(f"hoistsim: error: {exc}{kept}")
+            return False
+        if self.output is not None:
+            from ..results.output import write_runs
+
+            write_runs(self.output, [result], command=f"hoistsim watch {self.scenario}")
+        self.runs += 1
+        # the answer first: matplotlib takes some 0.4 s more to draw the figure
+        self.echo(f"{time.strftime('%H:%M:%S')} {scenario.name}: {'; '.join(_headline(result.summary))} "
+                  f"({time.perf_counter() - started:.2f} s)")
+        if self.figure is not None:
+            from ..figures.files import plot_file
+
+            plot_file(self.output, self.figure)
+        return True
+
+    def _load(self):
+        from ..scenario.loading import load_scenario
+
+        scenario = load_scenario(self.scenario, overrides=self.overrides)
+        if scenario.sweep:
+            raise ScenarioError("sweep", "watch runs one scenario: remove the sweep: section "
+                                "(hoistsim run sweeps it)", source=str(self.scenario))
+        for warning in scenario.warnings:
+            self.echo(f"hoistsim: warning: {warning}")
+        return scenario
+
+    def close(self) -> None:
+        if self._scratch is not None:
+            self._scratch.cleanup()
+
+
+def _headline(summary: dict) -> list[str]:
+    from ..machine.elements import element_classes
+    from ..results.report import headline
+
+    said = headline(summary, element_classes())
+    return said or [f"energy residual {summary.get('energy_relative_residual', float('nan')):.1e}"]
+
+
+def watch(watched: Watch, stop_event=None) -> None:
+    """Run once, then again at each save of a watched file, until ``stop_event`` is set (or Ctrl-C)."""
+    import watchfiles
+
+    watched.run()
+    # The files are watched from here on: a save made during the first run (which compiles for seconds)
+    # would be lost, so the file is compared with what that run read.
+    while watched.saved_since_run():
+        watched.run()
+    folders = sorted({str(path.parent) for path in watched.files()})
+    for _ in watchfiles.watch(*folders, watch_filter=watched.concerns, step=QUIET_MS, debounce=QUIET_MS * 10,
+                              stop_event=stop_event, recursive=False, raise_interrupt=False):
+        watched.run()

@@ -1,0 +1,115 @@
+"""Figures of a results file: the runs against time, the summary against the swept value, the periodic regime.
+
+The panels come from the elements (:mod:`hoistsim.machine.core.panel`): each part the
+file's runs have columns of draws its own, so this module names no part.
+matplotlib is imported here and in the other figure modules only, so the rest
+of hoistsim never pays for it.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..machine.elements import element_classes
+from ..results.atomic import atomic_path
+from ..results.reading import read_runs, read_summary, read_swept_keys
+from .base import DISPLAY_UNITS
+
+
+def plot_file(path, output) -> list[str]:
+    """Write the figures of a results file; returns the paths written.
+
+    OUT.png: the runs against time; OUT_summary.png: the summary against the
+    swept value (a sweep, or a summary-only file, then OUT.png itself);
+    OUT_periodic.png: the first run's periodic regime.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .runs import runs_figure
+    from .summary import summary_figure
+
+    output = Path(output)
+    summaries = read_summary(path)
+    swept = swept_axis(path, summaries)
+    runs = read_runs(path, columns=runs_columns(), attributes=("label", "name", *read_swept_keys(path)))
+    written = []
+
+    def save(fig, target):
+        with atomic_path(target) as partial:  # a figure open in a viewer is replaced whole, never half-drawn
+            fig.savefig(partial, dpi=150, format=target.suffix[1:].lower())
+        plt.close(fig)
+        written.append(str(target))
+
+    if runs:
+        save(runs_figure(runs, plt, swept), output)
+    periodic = [run for run in runs if "turning_moment" in run]
+    if periodic:  # the first run's periodic regime: its turning-moment diagram and speed over a period
+        from .periodic import periodic_figure
+
+        save(periodic_figure(periodic[0], plt), output.with_name(output.stem + "_periodic" + output.suffix))
+    if len(summaries) > 1 or not runs:
+        target = output.with_name(output.stem + "_summary" + output.suffix) if runs else output
+        save(summary_figure(summaries, swept, plt, scenario_name(path), scenario_parameters(path)), target)
+    return written
+
+
+class _Read:
+    """The columns the run figure reads: those the elements' panels, marks and shading name, and those a
+    part named by the user claims (``reads``); the rest of a file is not loaded."""
+
+    def __init__(self):
+        self.classes = element_classes()
+        self.names = {"time", "motor_angle"}
+        for cls in self.classes:
+            for panel in cls.panels:
+                for trace in panel.traces:
+                    self.names.update(trace.columns())
+            self.names.update(phase.column for phase in cls.shading)
+
+    def __contains__(self, name: str) -> bool:
+        return name in self.names or any(cls.reads(name) for cls in self.classes)
+
+
+def runs_columns() -> _Read:
+    return _Read()
+
+
+def scenario_parameters(path) -> dict:
+    """The scenario in SI numbers as the file keeps it (the resolved base of a sweep), {} where it has none."""
+    import json
+
+    import h5py
+
+    with h5py.File(path, "r") as f:
+        text = f["runs"].attrs.get("parameters") if "runs" in f else None
+    return json.loads(text) if text else {}
+
+
+def scenario_name(path) -> str:
+    """The scenario's ``name:`` as the file keeps it (its text under /scenario)."""
+    import re
+
+    import h5py
+
+    with h5py.File(path, "r") as f:
+        text = f["scenario"][()] if "scenario" in f else b""
+    text = text.decode() if isinstance(text, bytes) else str(text)
+    found = re.search(r"^name:[ \t]*['\"]?([^'\"\n#]*)", text, re.MULTILINE)
+    return found.group(1).strip() if found else ""
+
+
+def swept_axis(path, summaries):
+    """(name, values in display units, unit) of the first swept key with numbers, else the run index."""
+    from ..results.reading import read_swept_keys
+
+    for key in read_swept_keys(path):
+        values = np.asarray([row[key] for row in summaries], dtype=float)
+        if np.all(np.isfinite(values)):
+            scale, unit = DISPLAY_UNITS.get(key.rsplit(".", 1)[-1], (1.0, "SI"))
+            return key, values * scale, unit
+    return "run", np.arange(len(summaries), dtype=float), ""

@@ -1,0 +1,345 @@
+"""The runs of a file against time: a panel per question, each contributed by the element that answers it.
+
+One run: each curve in its own colour, the phases (clutch open, brake holding,
+clutch locked) shaded in every panel, the events drawn in every panel and
+named once at the top.  Two to four runs: a colour per run, events drawn in
+the run's colour with a line style per kind.  More: a colour-mapped family by
+the swept value, with no event lines (the lock instants are dots on the slip
+curves), drawn as one collection per curve and thinned to what the figure can
+show, so a thousand runs draw in seconds.  Legends sit outside the panels.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from ..machine.core.layout import SWITCH_KINDS
+from ..machine.elements import element_classes
+from ..results.report import headline
+from .base import colour_scale, swept_label
+
+FEW = 4  # more runs than this are drawn as a colour-mapped family
+MAX_EVENT_LINES = 40  # a run with more events than this (periodic stick-slip) has its events listed, not drawn
+THIN_TO = 600  # in a family, a curve longer than 2 x this many rows is thinned to its extremes per bucket
+
+_TRACE_COLOURS = ("#1f4e79", "#c1440e", "#2a7f62", "#6a3d9a", "#b8860b", "#17becf", "#8c564b", "#e377c2")
+_LIMIT_COLOUR = "0.35"
+_EVENT_STYLE = {"lock": ("#1b7837", "-"), "unlock": ("#b2182b", "--"), "reversal": ("#762a83", ":"),
+                "brake_release": ("#8c510a", "-."), "engage": ("#2166ac", (0, (1, 1))),
+                "disengage": ("#2166ac", (0, (3, 1, 1, 1)))}
+_MARK_NAMES = {"lock": "clutch locks", "load_lowest": "lowest point", "lift_off": "lift-off", "touch_down": "touch-down",
+               "rope_force_peak": "peak"}
+_MARK_SHAPES = {"lift_off": "^", "touch_down": "v", "rope_force_peak": "D"}  # else a circle
+_LIMIT_MARK = "#b2182b"
+_CURVE = "curve"  # the gid of a run's curve (not a zero line, an event line or a legend's sample)
+_LEGEND = dict(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False, borderaxespad=0.0)
+
+
+def runs_figure(runs, plt, swept):
+    classes = element_classes()
+    for run in runs:  # what traces read beside the columns (a limit the scenario gives)
+        _parameters(run)
+    present = set(runs[0])
+    panels = _panels(classes, present, runs[0])
+    shading = list({id(phase): phase for cls in classes for phase in cls.shading if phase.column in present}.values())
+    # events that are not switches or scheduled instants (observations, period marks) get no line
+    quiet = {"slip_peak"} | {k for cls in classes for k in cls.observation_kinds if k not in cls.limits} | {
+        kind for cls in classes for kind in cls.cycles.values()}
+
+    heights = [panel.height for panel in panels]
+    fig, axes = plt.subplots(len(panels), 1, sharex=True, squeeze=False, layout="constrained",
+                             figsize=(11, 0.9 + 1.9 * sum(heights)), height_ratios=heights)
+    axes = list(axes[:, 0])
+    mode = "one" if len(runs) == 1 else "few" if len(runs) <= FEW else "family"
+    run_colours, cmap, norm = colour_scale(swept[1], plt) if mode != "one" else ([None], None, None)
+
+    for ax, panel in zip(axes, panels):
+        _draw_panel(ax, panel, runs, run_colours, mode, plt)
+    if mode == "one":
+        _shade(axes, runs[0], shading)
+    if mode != "family":
+        _draw_events(axes, runs, run_colours, mode, quiet)
+
+    for ax, panel in zip(axes, panels):
+        ax.set_ylabel(panel.ylabel)
+        ax.grid(True, lw=0.4, alpha=0.6)
+        if panel.zero_line:
+            ax.axhline(0.0, color="k", lw=0.6)
+        _no_round_off_zoom(ax)
+        if panel.right_axis is not None:
+            _right_axis(ax, panel.right_axis, runs[0])
+        handles, labels = ax.get_legend_handles_labels()
+        if handles:  # beside the panel, past the right-hand scale where there is one
+            ax.legend(handles, labels, **{**_LEGEND, "bbox_to_anchor": (1.13 if panel.right_axis else 1.01, 1.0)})
+    axes[-1].set_xlabel("time [s]")
+    axes[-1].set_xlim(min(r["time"][0] for r in runs), max(r["time"][-1] for r in runs))
+    _align_ylabels(fig, axes)
+    fig.suptitle(_title(runs, classes, swept), fontsize=11, x=0.01, ha="left")
+    if mode == "family":
+        bar = fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=axes, location="top",
+                           shrink=0.45, aspect=45, pad=0.01)
+        bar.set_label(swept_label(swept), fontsize=9)
+    return fig
+
+
+def _panels(classes, present, run):
+    """The elements' panels merged by name, each with the curves the file has columns for, top first."""
+    merged, seen = {}, set()
+    for cls in classes:
+        for panel in cls.panels_for(run):
+            if id(panel) in seen:  # inherited by the variants of a part (the motor's characteristics)
+                continue
+            seen.add(id(panel))
+            traces = tuple(t for t in panel.traces if all(c in present for c in t.columns()))
+            if panel.name in merged:
+                first = merged[panel.name]
+                merged[panel.name] = replace(first, traces=first.traces + traces,
+                                             right_axis=first.right_axis or panel.right_axis)
+            else:
+                merged[panel.name] = replace(panel, traces=traces)
+    return sorted((p for p in merged.values() if p.traces), key=lambda p: p.order)
+
+
+def _draw_panel(ax, panel, runs, run_colours, mode, plt):
+    curves = [t for t in panel.traces if not t.limit]
+    several = len(panel.traces) > 1
+    for trace in panel.traces:
+        if mode == "family" and trace.limit:
+            continue  # a capacity per run would bury the family
+        if mode == "family":
+            _family(ax, trace, panel.scale, runs, run_colours)
+        else:
+            drawn = False
+            for run, colour in zip(runs, run_colours):
+                values = trace.of(run)
+                if values is None:
+                    continue
+                drawn = True
+                if mode == "one":
+                    colour = _LIMIT_COLOUR if trace.limit else _TRACE_COLOURS[curves.index(trace) % len(_TRACE_COLOURS)]
+                    label = trace.label
+                else:
+                    label = None
+                ax.plot(run["time"], values * panel.scale, color=colour, ls=trace.style,
+                        lw=0.9 if trace.limit else 1.5, alpha=0.75 if trace.limit and mode == "few" else 1.0,
+                        label=label, gid=_CURVE)
+            if mode == "few" and several and drawn:  # the runs' colours are in the top legend; here, which curve is which
+                ax.plot([], [], color="0.3", ls=trace.style, lw=0.9 if trace.limit else 1.5, label=trace.label)
+        _marks(ax, trace, panel.scale, runs, run_colours, mode)
+    if mode == "family" and several:
+        for trace in curves:
+            ax.plot([], [], color="0.3", ls=trace.style, lw=1.2, label=trace.label)
+
+
+def _family(ax, trace, scale, runs, run_colours):
+    """Every run's curve in one collection, in the run's colour, thinned to the figure's resolution."""
+    from matplotlib.collections import LineCollection
+
+    segments, colours = [], []
+    for run, colour in zip(runs, run_colours):
+        values = trace.of(run)
+        if values is None:
+            continue
+        t, y = _thin(run["time"], values * scale)
+        segments.append(np.column_stack([t, y]))
+        colours.append(colour)
+    lines = LineCollection(segments, colors=colours, linestyles=trace.style,
+                           linewidths=0.6 if len(segments) > 100 else 1.0, alpha=0.6 if len(segments) > 100 else 0.9)
+    ax.add_collection(lines)
+    ax.autoscale_view()
+
+
+def _thin(t, y):
+    """At most about 2 x THIN_TO points: each bucket's lowest and highest, in time order (peaks survive)."""
+    if len(t) <= 2 * THIN_TO:
+        return t, y
+    size = -(-len(t) // THIN_TO)
+    padded = np.concatenate([y, np.full(size * THIN_TO - len(y), y[-1])]).reshape(THIN_TO, size)
+    offsets = np.arange(THIN_TO) * size
+    index = np.sort(np.concatenate([[0, len(t) - 1], offsets + padded.argmin(axis=1),
+                                     offsets + padded.argmax(axis=1)]))
+    index = index[np.append(True, index[1:] != index[:-1]) & (index < len(t))]
+    return t[index], y[index]
+
+
+def _marks(ax, trace, scale, runs, run_colours, mode):
+    """Observed instants (a lock, the load's lowest point) as dots on the curve where they happened."""
+    for kind in trace.marks:
+        xs, ys, cs = [], [], []
+        for run, colour in zip(runs, run_colours):
+            values = trace.of(run)
+            times = [float(row["time"]) for row in run["events"] if _kind(row) == kind
+                     and (trace.marks_of is None or _text(row, "element") == trace.marks_of)]
+            if values is None or not times:
+                continue
+            xs += times
+            ys += list(np.interp(times, run["time"], values * scale))
+            cs += ["k" if colour is None else colour] * len(times)
+        if not xs:
+            continue
+        name = _MARK_NAMES.get(kind, kind.replace("_", " "))
+        if kind in {k for cls in element_classes() for k in cls.limits}:  # a limit crossed: a warning, in red
+            ax.scatter(xs, ys, s=40 if mode != "family" else 14, c=_LIMIT_MARK, marker="v", lw=0, zorder=4,
+                       label=name)
+        elif mode == "family":
+            ax.scatter(xs, ys, s=6, c="k", marker=_MARK_SHAPES.get(kind, "o"), lw=0, zorder=3, label=name)
+        else:
+            ax.scatter(xs, ys, s=28, facecolors="white", edgecolors=cs, marker=_MARK_SHAPES.get(kind, "o"), lw=1.3,
+                       zorder=3, label=name)
+
+
+def _shade(axes, run, shading):
+    """Each phase of the run (clutch open, brake holding, clutch locked) shaded across every panel."""
+    for phase in shading:
+        where = np.asarray(run[phase.column]) == phase.value
+        if not where.any():
+            continue
+        for ax in axes:
+            ax.fill_between(run["time"], 0, 1, where=where, transform=ax.get_xaxis_transform(), step="post",
+                            facecolor="none" if phase.hatch else phase.colour, edgecolor=phase.colour,
+                            hatch=phase.hatch, alpha=0.35 if phase.hatch else 0.12, lw=0,
+                            label=phase.label if ax is axes[0] else None)
+
+
+def _event_text(row) -> str:
+    """What a line's label says: a coupling's switch names the coupling ("mesh unlock"), a scheduled event
+    names itself ("brake release")."""
+    kind = _kind(row)
+    text = f"{_text(row, 'element')} {kind}" if kind in SWITCH_KINDS else kind
+    return text.replace("_", " ")
+
+
+def _draw_events(axes, runs, run_colours, mode, quiet):
+    """Switches and scheduled instants as lines in every panel; named at the top (one run) or by style."""
+    seen = set()
+    for run, colour in zip(runs, run_colours):
+        rows = [(float(row["time"]), _kind(row), _event_text(row)) for row in run["events"] if _kind(row) not in quiet]
+        if len(rows) > MAX_EVENT_LINES:
+            axes[0].annotate(f"{len(rows)} switches: listed in the file's events, not drawn",
+                             (0.01, 0.02), xycoords="axes fraction", fontsize=8, color="0.3")
+            continue
+        named: dict = {}  # time -> the kinds named there: events at one instant share one label
+        for time, kind, text in rows:
+            kind_colour, style = _EVENT_STYLE.get(kind, ("#888888", ":"))
+            for ax in axes:
+                ax.axvline(time, color=kind_colour if mode == "one" else colour, ls=style, lw=0.9, alpha=0.75)
+            if mode == "one":
+                if time in named:
+                    named[time][1].append(text)
+                    named[time][0].set_text(", ".join(named[time][1]))
+                    continue
+                label = axes[0].annotate(text, (time, 1.0), xycoords=("data", "axes fraction"),
+                                         xytext=(2, -3), textcoords="offset points", fontsize=7, rotation=90,
+                                         va="top", color=kind_colour)
+                named[time] = (label, [text])
+            elif kind not in seen:
+                axes[0].plot([], [], color="0.3", ls=style, lw=0.9, label=f"event: {kind.replace('_', ' ')}")
+            seen.add(kind)
+    if mode == "few":
+        for run, colour in zip(runs, run_colours):
+            axes[0].plot([], [], color=colour, lw=3, label=_run_name(run))
+
+
+def _no_round_off_zoom(ax):
+    """A quantity constant to round-off (a steady lift's speed, a locked clutch's slip) is shown flat.
+
+    Not as 1e-14 rpm wiggles on an offset scale: a range below a millionth of
+    the values, or values all below 1e-9 in the panel's units, is round-off.
+    """
+    from matplotlib.collections import LineCollection
+
+    drawn = [line.get_ydata() for line in ax.get_lines() if line.get_gid() == _CURVE]
+    drawn += [c.get_datalim(ax.transData).intervaly for c in ax.collections if isinstance(c, LineCollection)]
+    values = np.concatenate([np.asarray(v, dtype=float).ravel() for v in drawn]) if drawn else np.zeros(1)
+    values = values[np.isfinite(values)]
+    if values.size == 0:
+        return
+    low, high = float(values.min()), float(values.max())
+    centre = 0.5 * (low + high)
+    if max(abs(low), abs(high)) < 1e-9:
+        ax.set_ylim(-1.0, 1.0)
+    elif high - low < 1e-6 * max(abs(low), abs(high)):
+        pad = 0.05 * abs(centre)
+        ax.set_ylim(centre - pad, centre + pad)
+    ax.ticklabel_format(axis="y", useOffset=False)
+
+
+def _right_axis(ax, right_axis, run):
+    label, factor_of = right_axis
+    try:
+        factor = float(factor_of(_parameters(run)))
+    except (KeyError, TypeError, ValueError):
+        return  # the scene has not the part that gives this scale
+    secondary = ax.secondary_yaxis("right", functions=(lambda x: x * factor, lambda x: x / factor))
+    secondary.set_ylabel(label)
+
+
+def _parameters(run) -> dict:
+    """The run's scenario in SI numbers: the file's base, with this run's swept values put in."""
+    import json
+
+    if "parameters" not in run:
+        parameters = json.loads(run["attrs"]["parameters"])
+        for key, value in run["attrs"].items():  # a swept scalar: "clutch_heating.max_temperature"
+            *sections, last = key.split(".")
+            holder = parameters
+            for section in sections:
+                holder = holder.get(section) if isinstance(holder, dict) else None
+            if sections and isinstance(holder, dict) and np.ndim(value) == 0 and np.isfinite(value):
+                holder[last] = float(value)
+        run["parameters"] = parameters
+    return run["parameters"]
+
+
+def _align_ylabels(fig, axes) -> None:
+    """Each panel's y label the same distance left of its axes: just past the widest tick label of them all.
+
+    matplotlib's ``align_ylabels`` measures every sibling panel's tick labels again as each panel is
+    drawn (n^2 measurements for n panels: a quarter of a six-panel figure's time, which ``hoistsim
+    watch`` pays at every save).  Here each panel's tick texts come from its own locator and
+    formatter and are measured once; half an em more keeps clear of a tick the layout may add.
+    """
+    from matplotlib import rcParams
+    from matplotlib.font_manager import FontProperties
+    from matplotlib.text import Text
+    from matplotlib.transforms import offset_copy
+
+    renderer = fig.canvas.get_renderer()
+    font = FontProperties(size=rcParams["ytick.labelsize"])
+    widest = 0.0
+    for ax in axes:
+        low, high = sorted(ax.get_ylim())
+        ticks = [v for v in ax.yaxis.get_major_locator()() if low <= v <= high]
+        for text in ax.yaxis.get_major_formatter().format_ticks(ticks):
+            if text:
+                label = Text(0, 0, text, fontproperties=font, figure=fig)
+                widest = max(widest, label.get_window_extent(renderer).width)
+    tick = axes[0].yaxis.majorTicks[0]
+    gap = (widest * 72.0 / fig.dpi + tick.get_tick_padding() + tick.get_pad() + axes[0].yaxis.labelpad
+           + 0.5 * font.get_size_in_points())
+    for ax in axes:
+        ax.yaxis.set_label_coords(0.0, 0.5, transform=offset_copy(ax.transAxes, fig=fig, x=-gap, units="points"))
+
+
+def _title(runs, classes, swept) -> str:
+    attrs = runs[0]["attrs"]
+    name = str(attrs.get("name", ""))
+    if len(runs) > 1:
+        return f"{name}: {len(runs)} runs, coloured by {swept_label(swept)}"
+    return f"{name}: " + "; ".join(headline(attrs, classes))
+
+
+def _run_name(run) -> str:
+    label = str(run["attrs"].get("label", run["attrs"].get("name", "")))
+    return label.split("=", 1)[-1] if "=" in label else label
+
+
+def _kind(row) -> str:
+    return _text(row, "kind")
+
+
+def _text(row, name: str) -> str:
+    value = row[name] if name in (row.dtype.names or ()) else ""
+    return value.decode() if isinstance(value, bytes) else str(value)

@@ -1,0 +1,144 @@
+"""From a validated scenario to the traced plan of a run: elements, boundaries, initial state, grid."""
+
+from __future__ import annotations
+
+import math
+
+import jax
+import numpy as np
+
+from ..components import Drum, GearPair, HangingLoad
+from ..errors import ScenarioError
+from ..scenario.loading import Scenario
+from .core.element import AbstractCoupling
+from .core.layout import Layout, LayoutError
+from .core.plan import KINK_BUDGET, Plan
+from .core.schedule import scheduled_times
+from .elements import elements_for
+
+
+def output_grid(duration: float, interval: float) -> np.ndarray:
+    """Output times 0, dt, 2 dt, ... and the duration itself."""
+    count = int(np.floor(duration / interval * (1 + 1e-12))) + 1
+    grid = np.arange(count, dtype=float) * interval
+    grid = grid[grid < duration * (1 - 1e-12)]
+    return np.append(grid, duration)
+
+
+def _padded(grid: np.ndarray) -> np.ndarray:
+    # Round the row count up to a power of two so that nearby durations share a compiled loop.
+    size = max(64, 1 << int(np.ceil(np.log2(grid.size))))
+    return np.concatenate([grid, np.full(size - grid.size, grid[-1])])
+
+
+def _steady_lift_speed(scenario: Scenario) -> float:
+    """Speed at which the motor torque equals the load torque: the hoist lifting at constant speed.
+
+    The linear motor's C(omega) = C0 (1 - omega/omega0) against the load's weight brought to the
+    motor shaft, M g R / tau (the parts' own formulas, as the two-shaft model reduces them).
+    """
+    if scenario.motor.characteristic != "linear":
+        raise ScenarioError("initial.steady_lift", "needs a linear motor (stall_torque + no_load_speed)")
+    motor, gears = scenario.motor, scenario.gears
+    ratio = GearPair(gears.pinion_teeth, gears.wheel_teeth, gears.module, gears.pressure_angle).ratio
+    rope_radius = Drum(scenario.drum.diameter, scenario.drum.inertia).rope_radius
+    load_torque = HangingLoad(scenario.load.mass, scenario.gravity).weight * rope_radius / ratio
+    return motor.no_load_speed * (1.0 - load_torque / motor.stall_torque)
+
+
+def _steady(scenario: Scenario) -> Scenario:
+    """With ``initial.steady_lift``, the scenario with its initial speeds set to the steady lifting speed."""
+    if not scenario.initial.steady_lift:
+        return scenario
+    speed = _steady_lift_speed(scenario)
+    ratio = scenario.gears.wheel_teeth / scenario.gears.pinion_teeth
+    return scenario.model_copy(update={"initial": scenario.initial.model_copy(
+        update={"motor_speed": speed, "drum_speed": speed / ratio})})
+
+
+_checked: set = set()  # element structures already found to fit together
+
+
+def machine_elements(scenario: Scenario) -> tuple:
+    """The scene's elements, checked to fit together (a bad fit is a one-line ScenarioError).
+
+    The check depends on the structure alone (which elements, on which shafts),
+    so a sweep pays it once.
+    """
+    elements = elements_for(_steady(scenario))
+    structure = jax.tree.structure(elements)
+    if structure not in _checked:
+        try:
+            Layout(elements)
+        except LayoutError as exc:
+            raise ScenarioError(exc.key, str(exc)) from None
+        _checked.add(structure)
+    return elements
+
+
+def build_plan(scenario: Scenario, summary_only: bool = False) -> tuple[Plan, np.ndarray]:
+    """The traced inputs of a run, and its (unpadded) output grid.
+
+    ``summary_only`` keeps a single output row (the end): the summary comes from
+    the loop's running extremes, so a large sweep need not store time series.
+    """
+    sim = scenario.simulation
+    elements = machine_elements(scenario)
+    grid = np.array([sim.duration]) if summary_only else output_grid(sim.duration, sim.output_interval)
+    return plan_from(elements, sim, grid if summary_only else _padded(grid)), grid
+
+
+def plan_from(elements: tuple, sim, grid: np.ndarray) -> Plan:
+    """The plan of ``elements`` run as ``sim`` says, writing rows at ``grid`` (padded already)."""
+    scheduled = [0.0, sim.duration, *scheduled_times(elements)]
+    speeds = [float(v) for e in elements for v in e.bodies().values()]
+    # the state in Layout's order: the bodies' speeds, every element's states, the angles read
+    angles = {shaft for e in elements for shaft in e.angles()}  # each starts at 0
+    initial = speeds + [float(v) for e in elements for v in e.states().values()] + [0.0] * len(angles)
+    scales = [float(s) for s in (e.speed_scale() for e in elements) if s is not None]
+    return Plan(
+        elements=elements,  # floats and float arrays already (from_spec); jit takes them as they are
+        boundaries=np.clip(np.asarray(scheduled, dtype=np.float64), 0.0, sim.duration),
+        initial_state=np.asarray(initial, dtype=np.float64),
+        speed_scale=np.asarray(max(scales or [abs(v) for v in speeds] + [1.0]), dtype=np.float64),
+        duration=np.asarray(sim.duration, dtype=np.float64),
+        grid=grid,
+        rtol=np.asarray(sim.rtol, dtype=np.float64),
+        atol=np.asarray(sim.atol, dtype=np.float64),
+        max_switches=np.asarray(sim.max_switches),
+    )
+
+
+def loop_sizes(plan: Plan, max_switches: int, log_size: int | None = None) -> tuple[int, int]:
+    """Static sizes of the loop: passes allowed and event rows kept.
+
+    Each pass ends at a boundary, a switch or an observation (as many allowed
+    as switches), a switch may log one row per coupling.  A machine with cycles
+    (a period of its own) has these budgets per cycle, and rows for each cycle:
+    as many cycles are expected as the fastest speed scale turns in the
+    duration, twice over.  ``log_size`` asks for more rows (a run that logged
+    more than it could keep is run again with room for them all).
+    """
+    boundaries = int(plan.boundaries.shape[0])
+    couplings = max(1, sum(isinstance(e, AbstractCoupling) for e in plan.elements))
+    kinks = KINK_BUDGET * max_switches if any(e.kink_names() for e in plan.elements) else 0
+    passes = boundaries + 2 * max_switches + kinks + 2
+    rows = (couplings + 1) * max_switches + 2 * boundaries + 4
+    periods = [float(e.cycle_angle()) for e in plan.elements if e.cycles]
+    if periods:
+        turned = float(plan.duration) * max(float(plan.speed_scale), abs(float(plan.initial_state[0])), 1.0)
+        cycles = _power_of_two(2.0 * turned / min(periods) + 8)
+        passes += cycles * (2 * max_switches + kinks)
+        rows += cycles * ROWS_PER_CYCLE
+    if log_size is not None:
+        rows = max(rows, _power_of_two(log_size))
+    return passes, rows
+
+
+# Rows a cycle is expected to log at first (its end, a few extremes, a few switches); more, and the run
+# is repeated with room for what it logged.
+ROWS_PER_CYCLE = 32
+
+
+def _power_of_two(n: float) -> int:
+    return 1 << max(0, math.ceil(math.log2(max(n, 1.0))))

@@ -1,0 +1,208 @@
+"""The machine at one instant: speeds, accelerations and coupling torques, by name.
+
+What elements read to give their torques, rates and outputs (:class:`Instant`),
+and the vector field the integrator steps; the accelerations and the coupling
+torques come from the bodies' constrained solve (:mod:`hoistsim.machine.core.bodies`).
+"""
+
+from __future__ import annotations
+
+from functools import cached_property
+
+import jax.numpy as jnp
+
+from .bodies import Bodies, Response, dot, response
+from .element import SLIP_BACKWARD, SLIP_FORWARD
+from .layout import Layout, angle_state
+
+
+def slip_sign(mode):
+    """+1 slipping forwards (side a faster), -1 backwards, 0 stuck or open."""
+    return jnp.where(mode == SLIP_FORWARD, 1.0, jnp.where(mode == SLIP_BACKWARD, -1.0, 0.0))
+
+
+class Instant:
+    """The machine at (t, y): what elements read (by name) to give their torques, rates and outputs.
+
+    ``modes`` (one per coupling) and ``table`` (name, t -> value) are given by
+    the caller, and the pass's :class:`Response` where there is one; the
+    accelerations and coupling torques are worked out on demand.
+    """
+
+    def __init__(self, layout: Layout, t, y, modes=None, table=None, reply: Response | None = None,
+                 sliding=None):
+        self.layout = layout
+        # each slipping coupling's sliding torque, where the caller sets it (None: its own law)
+        self._sliding = sliding
+        self.t = t
+        self.y = y
+        self.modes = modes
+        self._table = table
+        self._reply = reply
+        self._solved = None
+        self.body_speeds = [y[i] for i in range(len(layout.bodies))]
+        self.bodies = Bodies(layout, y)
+        self.rows = self.bodies.rows
+
+    # ------------------------------------------------------------------ reading by name
+
+    def state(self, name):
+        return self.y[self.layout.state_index(name)]
+
+    def speed(self, shaft):
+        body, ratio = self.layout.shaft(shaft)
+        return ratio * self.body_speeds[body]
+
+    def angle(self, shaft):
+        """Angle the shaft has turned since the start (rad); only for shafts an element declares in angles()."""
+        return self.state(angle_state(shaft))
+
+    def acceleration(self, shaft):
+        body, ratio = self.layout.shaft(shaft)
+        return ratio * self.accelerations[body]
+
+    def table(self, name):
+        return self._table(name, self.t)
+
+    def mode(self, coupling):
+        return self.modes[self.layout.coupling_index(coupling)]
+
+    def relative_speed(self, coupling):
+        return dot(self.rows[self.layout.coupling_index(coupling)], self.body_speeds)
+
+    def coupling_torque(self, coupling):
+        """Torque the coupling passes from its side a to side b (N*m at its shafts)."""
+        return self.coupling_torques[self.layout.coupling_index(coupling)]
+
+    def relative_acceleration(self, coupling):
+        return dot(self.rows[self.layout.coupling_index(coupling)], self.accelerations)
+
+    # ------------------------------------------------------------------ the bodies' equations
+
+    @property
+    def reply(self) -> Response:
+        if self._reply is None:
+            self._reply = response(self.layout, self.modes, self.y)
+        return self._reply
+
+    @cached_property
+    def shaft_torques(self) -> dict:
+        """External torques by the shaft they act on (N*m at it), each element asked once."""
+        torques: dict = {}
+        for element in self.layout.elements:
+            for shaft, value in element.torques(self):
+                self.layout.shaft(shaft, element)  # a shaft the machine has, or a one-line error
+                torques[shaft] = torques.get(shaft, 0.0) + value
+        return torques
+
+    def body_torques(self):
+        """External torques on the bodies (couplings aside), by equal power."""
+        torque = [0.0] * len(self.layout.bodies)
+        for shaft, value in self.shaft_torques.items():
+            body, ratio = self.layout.shaft(shaft)
+            torque[body] = torque[body] + value * ratio
+        return torque
+
+    def _solve(self):
+        r = self.reply
+        tau = self.body_torques()
+        given = self._sliding or [None] * len(self.layout.coupling_elements)
+        sigma = [0.0 if not e.can_slip else slip_sign(self.modes[k]) * (e.sliding_torque(self) if given[k] is None
+                                                                         else given[k])
+                 for k, e in enumerate(self.layout.coupling_elements)]
+        accel = [dot(p, tau) + dot(q, sigma) for p, q in zip(r.accel_from_torque, r.accel_from_sliding)]
+        torque = [dot(p, tau) + dot(q, sigma) for p, q in zip(r.torque_from_torque, r.torque_from_sliding)]
+        pressed = [k for k, e in enumerate(self.layout.coupling_elements) if e.can_slip and e.pressed_by is not None]
+        if pressed:
+            # what each passes besides moves everything along its column of the response
+            columns = [([q[k] for q in r.accel_from_sliding], [u[k] for u in r.torque_from_sliding]) for k in pressed]
+            for added, column in zip(self._pressed(pressed, (accel, torque), columns), columns):
+                accel = [v + added * c for v, c in zip(accel, column[0])]
+                torque = [v + added * c for v, c in zip(torque, column[1])]
+        self._solved = (accel, torque)
+
+    def _pressed(self, pressed, solved, columns):
+        """What the faces of couplings pressed by a shaft's torque add to their sliding torques (with their
+        slips' signs), solved together (one's pressing torque carries what those beyond it pass to the ground).
+
+        The pressing torque of coupling k, P_k = P0_k + sum_j dP_k/dsigma_j sigma_j, responds to what each
+        passes (``solved``: the machine without them; ``columns``: their responses to a unit of each), and
+        k passes sigma_k = s f |P_k| = F_k P_k: with the side fixed by the sign of P0_k (the same as P_k's,
+        the factors being positive and the machine passive), sigma = (I - F C)^-1 F P0.
+        """
+        couplings = self.layout.coupling_elements
+        signs = [slip_sign(self.modes[k]) for k in pressed]
+        pressing = [self._into(couplings[k].pressed_by, *solved, applied=True) for k in pressed]
+        factor = [s * couplings[k].sliding_per_load(self, jnp.sign(s * p)) * jnp.sign(p)
+                  for k, s, p in zip(pressed, signs, pressing)]
+        change = [[self._into(couplings[k].pressed_by, *column, applied=False) for column in columns] for k in pressed]
+        if len(pressed) == 1:
+            return [factor[0] * pressing[0] / (1.0 - change[0][0] * factor[0])]
+        f = jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in factor])
+        c = jnp.stack([jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in row]) for row in change])
+        p0 = jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in pressing])
+        added = jnp.linalg.solve(jnp.eye(len(pressed)) - f[:, None] * c, f * p0)
+        return [added[i] for i in range(len(pressed))]
+
+    def _into(self, shafts, accel, passed, applied: bool):
+        """The torque the rest of a body passes into some of its shafts (N*m at the first): what their
+        inertia takes, less the torques applied to them, plus what couplings at them pass on, each
+        brought to the first shaft by the speeds' ratio; linear in the accelerations and the coupling
+        torques (``applied`` False: their part alone).  ``shafts``: one shaft's name, or a tuple."""
+        shafts = (shafts,) if isinstance(shafts, str) else shafts
+        into = 0.0
+        for shaft in shafts:
+            body, ratio = self.layout.shaft(shaft)
+            inertia = sum((value for e in self.layout.elements for on, value in e.inertias() if on == shaft), 0.0)
+            taken = inertia * ratio * accel[body]
+            if applied:
+                taken = taken - self.shaft_torques.get(shaft, 0.0)
+            for k, coupling in enumerate(self.layout.coupling_elements):
+                a, b = coupling.joins()
+                taken = taken + (passed[k] if a == shaft else 0.0) - (passed[k] if b == shaft else 0.0)
+            # torque at this shaft, at the first: the power it passes is the same
+            into = taken if shaft == shafts[0] else into + taken * ratio / self.layout.shaft(shafts[0])[1]
+        return into
+
+    def torque_into(self, shaft):
+        """The torque the rest of its body passes into a shaft (N*m at the shaft): what presses a mesh's teeth."""
+        return self._into(shaft, self.accelerations, self.coupling_torques, applied=True)
+
+    @property
+    def accelerations(self):
+        if self._solved is None:
+            self._solve()
+        return self._solved[0]
+
+    @property
+    def coupling_torques(self):
+        if self._solved is None:
+            self._solve()
+        return self._solved[1]
+
+    def kinetic_energy(self):
+        return sum((0.5 * m * v**2 for m, v in zip(self.bodies.inertia, self.body_speeds)), 0.0)
+
+    def kinetic_power(self):
+        """d/dt of the kinetic energy (W): I w w' for each body, and 1/2 I' w^3 where an inertia varies."""
+        power = sum((m * v * a for m, v, a in zip(self.bodies.inertia, self.body_speeds, self.accelerations)), 0.0)
+        for _, shaft, _, slope in self.bodies.varying():
+            power = power + 0.5 * slope * self.speed(shaft) ** 3
+        return power
+
+
+def vector_field(t, y, args):
+    """dy/dt: the bodies' accelerations, then every element's state rates."""
+    return rates_at(Instant(args.layout, t, y, args.modes, args.segment.table, args.reply), y.dtype)
+
+
+def rates_at(x: Instant, dtype):
+    """dy/dt at an instant already worked out."""
+    layout = x.layout
+    rates = list(x.accelerations) + [0.0] * (layout.size - len(layout.bodies))
+    for element in layout.elements:
+        for name, rate in element.rates(x).items():
+            rates[layout.state_index(name)] = rate
+    for shaft in layout.angle_shafts:
+        rates[layout.state_index(angle_state(shaft))] = x.speed(shaft)
+    return jnp.stack([jnp.asarray(r, dtype=dtype) for r in rates])

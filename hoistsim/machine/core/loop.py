@@ -1,0 +1,325 @@
+"""The one restart loop: a stepped pass between switches, inside a single compiled call.
+
+Each pass of the loop integrates the current modes from the current time to
+the next scheduled boundary (a table knot, an element's scheduled time, the
+end), stopping early where a guard reaches zero (:mod:`.stepping`); the event
+time is found by root-finding on the step's own interpolant.  The switch is decided
+where the next pass starts, with a boundary's decision (:mod:`.decisions`: one static
+check a step), and the loop goes on.  The loop names no part of the
+machine: it asks the elements (through :class:`Layout`) for bodies, states,
+couplings, guards, boundaries, observations and summaries.  Every number is a
+traced input of :class:`Plan`: a new value reuses the compiled loop.
+"""
+
+from __future__ import annotations
+
+import functools
+from functools import cached_property
+
+import diffrax
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+
+from ..._pytree import pytree_dataclass
+from ...scenario.schema import SOLVERS as SOLVER_NAMES
+from . import decisions, switching
+from .bodies import Response, response, response_table
+from .columns import row_outputs, summary_values
+from .dynamics import Instant, slip_sign
+from .element import STUCK
+from .eventlog import LOG_FIELDS, unpack
+from .layout import Layout
+from .ledger import ledger_values
+from .plan import CHATTERING, KINK_BUDGET, OK, SOLVER_FAILED, TOO_MANY_SEGMENTS, Plan
+from .readout import RawRun
+from .schedule import Segment, segment_from
+from .stepping import integrate_pass
+
+# The names a scenario accepts (schema.SOLVERS) are diffrax's class names in lower case.
+SOLVERS = {name: getattr(diffrax, name.capitalize()) for name in SOLVER_NAMES}
+
+MAX_STEPS_PER_SEGMENT = 200_000
+_REDUCTIONS = {"max": -jnp.inf, "min": jnp.inf, "first": jnp.nan, "first_value": jnp.nan, "duration": 0.0}
+
+# Incremented each time the loop is traced (i.e. compiled): tests use it to show
+# that new parameter values do not recompile.
+trace_count = 0
+
+
+@pytree_dataclass
+class Args:
+    """What the vector field and the guards read during one pass."""
+
+    elements: tuple
+    segment: Segment
+    modes: jax.Array
+    observing: jax.Array
+    speed_scale: jax.Array
+    reply: Response | None  # the bodies' response while these modes hold (None: worked out at each call)
+    offsets: dict  # observation, valley and kink guards -> what is taken off them this pass (see switching)
+    kinking: jax.Array  # whether kinks still stop the integration (their budget is not spent)
+    anchors: dict  # knot coordinates where the pass started (see switching.guards)
+    orients: dict  # two-way observations -> +1 or -1: the way each leaves where the pass started
+    switches_from: object = None  # s: switch guards held off before this time (None: never; see _step)
+
+    @cached_property
+    def layout(self) -> Layout:
+        return Layout(self.elements)
+
+
+class _Carry(eqx.Module):
+    t: jax.Array
+    y: jax.Array
+    modes: jax.Array
+    at_boundary: jax.Array
+    status: jax.Array
+    switches: jax.Array
+    segments: jax.Array
+    steps: jax.Array
+    rejected: jax.Array
+    grid_state: jax.Array
+    grid_modes: jax.Array
+    log_count: jax.Array
+    kind_counts: jax.Array  # events of each kind so far (Layout.event_kinds)
+    log: jax.Array  # (rows, LOG_FIELDS + states + couplings): one buffer, one write per event (see eventlog.record)
+    observations: jax.Array
+    kinks: jax.Array  # passes ended at a kink
+    cycle_start: jax.Array  # switches, observations and kinks when the last cycle began (see AbstractElement.cycles)
+    step_cap: jax.Array  # s: the largest step allowed (inf but while re-solving a missed crossing)
+    switches_from: jax.Array  # s: switches held off before this time (-inf but while re-solving for a limit)
+    fired: dict  # observation and valley guards -> whether one ended the last pass
+    # a switch located at the end of the last pass, to be decided at the start of the next (see _decide)
+    pending: jax.Array
+    pending_modes: jax.Array  # the couplings' modes as the guards that fired leave them
+    pending_candidates: jax.Array  # which couplings the static check decides
+    extremes: dict  # running reductions of the run, for its summary (exact: every extremum is a row)
+
+
+def _instant(plan: Plan, segment: Segment, t, y, modes, reply=None) -> Instant:
+    return Instant(plan.layout, t, y, modes, segment.table, reply=reply)
+
+
+# the core's own running reduction: the most kinetic energy held at a row or a pass's end (the energy
+# ledger's scale where the works cancel over the run and the machine ends as it started)
+KINETIC_PEAK = "kinetic_energy_peak"
+
+
+def _reductions(plan: Plan, x: Instant) -> dict:
+    out = {KINETIC_PEAK: ("max", x.kinetic_energy())}
+    for element in plan.layout.elements:
+        out.update(element.extremes(x))
+    return out
+
+
+def _note(plan: Plan, segment: Segment, c: _Carry, t, y, modes, reply=None) -> tuple[_Carry, dict]:
+    """Fold the state at (t, y, modes) into the run's running extremes; and whether each duration's
+    condition holds there (it holds over the pass that starts there)."""
+    folded, holding = {}, {}
+    for name, (kind, value) in _reductions(plan, _instant(plan, segment, t, y, modes, reply)).items():
+        if kind == "duration":
+            holding[name] = value
+        old = c.extremes[name]
+        folded[name] = {"max": lambda: jnp.maximum(old, value), "min": lambda: jnp.minimum(old, value),
+                        "first": lambda: jnp.where(jnp.isnan(old) & value, t, old),
+                        "first_value": lambda: jnp.where(jnp.isnan(old) & value[0], value[1], old),
+                        "duration": lambda: old}[kind]()
+    return eqx.tree_at(lambda k: k.extremes, c, folded), holding
+
+
+def _in_cycle(c: _Carry):
+    """Switches, observations and kinks since the current cycle began (the whole run if none)."""
+    spent = jnp.stack([c.switches, c.observations, c.kinks]) - c.cycle_start
+    return spent[0], spent[1], spent[2]
+
+
+def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, reply, columns: bool):
+    _, observations, kinks = _in_cycle(c)
+    observing = observations < plan.max_switches
+    kinking = kinks < KINK_BUDGET * plan.max_switches
+    anchors = switching.kink_anchors(plan.layout, _instant(plan, segment, c.t, c.y, c.modes, reply))
+    unset = {name: jnp.zeros(()) for name in c.fired}
+    orients = switching.orients(plan.layout, c.t, c.y,
+                                Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, unset,
+                                     kinking, anchors, {}))
+    args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, unset, kinking, anchors, orients)
+    # a guard that ended the last pass starts this one at or below zero (see switching)
+    offsets = {name: jnp.where(c.fired[name], jnp.maximum(g(c.t, c.y, args), 0.0), 0.0)
+               for _, name, g in guards if name in c.fired}
+    # the pass ends at the segment's end, or where a pass solved again for a limit must stop (see _step)
+    end = jnp.where(jnp.isneginf(c.switches_from), segment.end, jnp.minimum(segment.end, c.switches_from))
+    pass_args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, offsets, kinking, anchors,
+                     args.orients, c.switches_from)
+    # The guards other than switches where the pass starts (those above zero are armed).
+    armed = {name: g(c.t, c.y, pass_args) for role, name, g in guards if role != "switch"}
+    return pass_args, armed, integrate_pass(
+        solver, pass_args, lambda t, y, a: jnp.stack([g(t, y, a) for _, _, g in guards]), c.t, c.y, end,
+        rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap, grid=plan.grid, grid_state=c.grid_state,
+        write_rows=columns, max_steps=MAX_STEPS_PER_SEGMENT)
+
+
+def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
+    layout = plan.layout
+    guards = switching.guards(layout)
+    segment = segment_from(plan.elements, plan.boundaries, plan.duration, c.t)
+    c = decisions.decide(plan, segment, c, columns)
+    # one response per pass while the modes hold; none where an inertia varies (worked out at each use)
+    reply = None if layout.inertia_varies else response(layout, c.modes)
+    c, durations = _note(plan, segment, c, c.t, c.y, c.modes, reply)
+    start_t, start_y = c.t, c.y
+    pass_args, armed, sol = _solve_segment(plan, segment, c, solver, guards, reply, columns)
+
+    t_end, y_end, hit, failed = sol.t, sol.y, sol.hit, sol.failed
+    masks = {name: sol.mask[i] for i, (_, name, _) in enumerate(guards)}
+    # A slip valley of the wrong sign: the crossing fell inside one step and was
+    # missed.  Throw this pass away and solve again from its start with steps
+    # capped well below the dip's length, so that a step ends inside it.
+    # Likewise a stuck coupling over its capacity at its margin's valley: it broke away within the step.
+    end = Instant(layout, t_end, y_end)
+    missed = jnp.zeros((), bool)
+    by_name = {name: g for _, name, g in guards}
+    margin_valley, over = jnp.zeros((), bool), jnp.zeros((), bool)
+    for k, coupling in enumerate(layout.coupling_elements):
+        if coupling.can_slip:
+            name = coupling.section
+            gap = coupling.gap(end)  # a contact's sides passed through each other
+            wrong = slip_sign(c.modes[k]) * end.relative_speed(name) < 0 if gap is None else gap < 0
+            missed = missed | (masks[f"{name}.slip_valley"] & wrong)
+            # (one valley is located where several couplings' margins dip at once: any of them may be over)
+            margin_valley = margin_valley | masks[f"{name}.margin_valley"]
+            over = over | (by_name[f"{name}.breakaway+"](t_end, y_end, pass_args) < 0.0) | (
+                by_name[f"{name}.breakaway-"](t_end, y_end, pass_args) < 0.0)
+    missed = missed | (margin_valley & over)
+    overtaken, limit_overtaken, coinciding = switching.crossed_together(guards, pass_args, t_end, y_end, armed,
+                                                                        masks)
+    # An observation or a limit below zero at the switch located, yet not the crossing found (it crossed and
+    # came back within the step, so that only part of the step showed it): the pass is solved again once, only
+    # up to that switch's instant and with the switches held off, so that its own root is found; the next
+    # pass meets the switch again.  (Should it
+    # not cross on the way after all, the pass ends there as at a boundary, where the modes are decided anew.)
+    located_switch = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in guards if r == "switch"],
+                                      jnp.zeros((), bool))
+    found_first = hit & located_switch & (overtaken | limit_overtaken) & ~missed & jnp.isneginf(c.switches_from)
+    cap = jnp.minimum(c.step_cap, t_end - start_t) / 8.0
+    # else the pass is solved again with shorter steps (at most three times), so that each crossing has a step
+    shrink = missed | (hit & overtaken & ~found_first & (cap * 8.0**3 >= t_end - start_t))
+    missed = shrink | found_first
+    kept = ~missed
+    masks = {name: m & kept for name, m in masks.items()}
+    rows = (plan.grid >= c.t) & (plan.grid < t_end) & kept
+    grid_state = jnp.where(kept, sol.grid_state, c.grid_state)
+    grid_modes = jnp.where(rows[:, None], c.modes, c.grid_modes)
+    y_end = jnp.where(missed, start_y, y_end)
+    t_reached = jnp.where(missed, start_t, t_end)
+    c, _ = _note(plan, segment, c, t_reached, y_end, c.modes, reply)
+    spent = jnp.where(~failed & kept, t_end - start_t, 0.0)
+    extremes = dict(c.extremes, **{name: c.extremes[name] + jnp.where(on, spent, 0.0)
+                                   for name, on in durations.items()})
+    coinciding = {name: reached & kept for name, reached in coinciding.items()}
+    # a limit recorded where another guard was located has ended this pass as if it had fired; a pass thrown
+    # away leaves what ended the one before it as it was (its guard starts the pass solved again lowered)
+    fired = {name: jnp.where(kept, masks[name] | coinciding.get(name, False), c.fired[name]) for name in c.fired}
+    c = eqx.tree_at(
+        lambda k: (k.extremes, k.grid_state, k.grid_modes, k.steps, k.rejected, k.segments, k.fired),
+        c,
+        (extremes, grid_state, grid_modes, c.steps + sol.steps, c.rejected + sol.rejected, c.segments + 1, fired),
+    )
+    c = decisions.apply_event(plan, segment, eqx.tree_at(lambda k: k.y, c, y_end), t_end, y_end, masks, hit & kept,
+                     coinciding, pass_args.orients)
+    switches, _, _ = _in_cycle(c)
+    status = jnp.where(failed, SOLVER_FAILED, jnp.where(switches > plan.max_switches, CHATTERING, c.status))
+    return eqx.tree_at(
+        lambda k: (k.t, k.at_boundary, k.status, k.step_cap, k.switches_from),
+        c,
+        (t_reached, kept & (~hit | (t_end >= segment.end)), status,
+         jnp.where(shrink, cap, jnp.inf), jnp.where(found_first, t_end, -jnp.inf)),
+    )
+
+
+def _run(plan: Plan, solver, max_segments: int, log_size: int, columns: bool = True) -> RawRun:
+    """One run; ``columns`` False leaves out the output columns (a summary-only sweep needs none)."""
+    global trace_count
+    trace_count += 1
+    layout = plan.layout
+    layout.responses = response_table(layout)  # once per run, outside the loop
+    rows, size, couplings = plan.grid.shape[0], layout.size, len(layout.couplings)
+    nan = jnp.nan
+    c = _Carry(
+        t=jnp.zeros(()),
+        y=plan.initial_state,
+        modes=jnp.full((couplings,), STUCK),
+        at_boundary=jnp.array(True),
+        status=jnp.array(OK),
+        switches=jnp.array(0),
+        segments=jnp.array(0),
+        steps=jnp.array(0),
+        rejected=jnp.array(0),
+        grid_state=jnp.full((rows, size), nan),
+        grid_modes=jnp.full((rows, couplings), -1),
+        log_count=jnp.array(0),
+        kind_counts=jnp.zeros((len(layout.event_kinds),), int),
+        log=jnp.full((log_size, LOG_FIELDS + (size if columns else 0) + couplings), nan),
+        observations=jnp.array(0),
+        kinks=jnp.array(0),
+        cycle_start=jnp.zeros((3,), int),
+        step_cap=jnp.full((), jnp.inf),
+        switches_from=jnp.full((), -jnp.inf),
+        fired={name: jnp.array(False) for role, name, _ in switching.guards(layout) if role in ("observe", "limit", "valley")},
+        pending=jnp.array(False),
+        pending_modes=jnp.full((couplings,), STUCK),
+        pending_candidates=jnp.zeros((couplings,), bool),
+        extremes=_initial_extremes(plan),
+    )
+
+    def going(c: _Carry):
+        # a switch located at the very end is still decided (a pass of no length follows it)
+        return ((c.t < plan.duration) | c.pending) & (c.status == OK) & (c.segments < max_segments)
+
+    c = jax.lax.while_loop(going, functools.partial(_step, plan, solver, columns), c)
+    status = jnp.where((c.status == OK) & (c.t < plan.duration), TOO_MANY_SEGMENTS, c.status)
+    # The end of the run: rows at the duration (and the grid's padding) take the final state.
+    last = plan.grid >= c.t
+    grid_state = jnp.where(last[:, None] & (status == OK), c.y, c.grid_state)
+    grid_modes = jnp.where(last[:, None] & (status == OK), c.modes, c.grid_modes)
+    scalars = [c.t, *summary_values(plan, c.extremes, c.y, c.modes), *ledger_values(layout, plan.initial_state),
+               *ledger_values(layout, c.y), c.extremes[KINETIC_PEAK]]
+    log_time, log_margin, codes, log_state, log_modes = unpack(c.log, c.log_count, couplings, columns)
+    # the grid's rows and the events' through one evaluation (one copy of it in the program)
+    outputs = row_outputs(plan, jnp.concatenate([plan.grid, log_time]), jnp.concatenate([grid_state, log_state]),
+                          jnp.concatenate([grid_modes, log_modes])) if columns else jnp.zeros((0, rows + log_size))
+    return RawRun(
+        grid_state=grid_state,
+        grid_modes=grid_modes,
+        grid_columns=outputs[:, :rows],
+        event_columns=outputs[:, rows:],
+        event_times=jnp.stack([log_time, log_margin], axis=1),
+        event_codes=codes,
+        event_state=log_state,
+        event_modes=log_modes,
+        final_state=c.y,
+        scalars=jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in scalars]),
+        counters=jnp.stack([c.log_count, c.switches, status, c.steps, c.rejected, c.segments]),
+        kind_counts=c.kind_counts,
+    )
+
+
+def _initial_extremes(plan: Plan) -> dict:
+    """Each running reduction's starting value (its identity: -inf for a max, NaN for a first time...)."""
+    kinds = {}
+
+    def probe(state):  # traced apart (eval_shape): the kinds are wanted, not the values
+        x = Instant(plan.layout, jnp.zeros(()), state, jnp.full((len(plan.layout.couplings),), STUCK),
+                    lambda name, t: jnp.zeros(()))
+        kinds.update({name: kind for name, (kind, _) in _reductions(plan, x).items()})
+        return jnp.zeros(())
+
+    jax.eval_shape(probe, plan.initial_state)
+    return {name: jnp.asarray(_REDUCTIONS[kind], dtype=jnp.float64) for name, kind in kinds.items()}
+
+
+@functools.lru_cache(maxsize=None)
+def compiled_run(solver_name: str, max_segments: int, log_size: int, columns: bool = True):
+    """The jitted loop for a solver and buffer sizes; shapes of the plan select the rest."""
+    solver = SOLVERS[solver_name]()
+    return jax.jit(functools.partial(_run, solver=solver, max_segments=max_segments, log_size=log_size,
+                                     columns=columns))

@@ -1,0 +1,100 @@
+"""The parts of the machine, one file each, and the registry that builds a scene's elements.
+
+A scenario section that is present builds its element; a section that is
+absent builds nothing, so the scene has none of its bodies, states, terms,
+guards or columns.  Variants of a section (the motor's characteristics) are
+alternatives picked by the keys given, each in its own file.
+"""
+
+from __future__ import annotations
+
+from ..core.element import AbstractCoupling as AbstractCoupling
+from ..core.element import AbstractElement as AbstractElement
+from ._motor_variants import MOTOR_VARIANTS
+from .bearings import DrumShaftLoads as DrumShaftLoads
+from .clutch_heating import ClutchHeating as ClutchHeating
+from .cone_clutch import ConeClutch as ConeClutch
+from .constant_torque_motor import ConstantTorqueMotor as ConstantTorqueMotor
+from .drivetrain import Drivetrain as Drivetrain
+from .drum import Drum as Drum
+from .elastic_load import ElasticLoad as ElasticLoad
+from .flywheel import Flywheel as Flywheel
+from .friction_brake import FrictionBrake as FrictionBrake
+from .gear_pair import GearPair as GearPair
+from .ground import Ground as Ground
+from .holding_brake import HoldingBrake as HoldingBrake
+from .linear_motor import LinearMotor as LinearMotor
+from .mesh_friction import MeshFriction as MeshFriction
+from .motor_ripple import MotorRipple as MotorRipple
+from .motor_table import TableMotor as TableMotor
+from .periodic_regime import PeriodicRegime as PeriodicRegime
+from .ratchet import Ratchet as Ratchet
+from .resisting_ripple import ResistingRipple as ResistingRipple
+from .rigid_load import RigidLoad as RigidLoad
+from .rope import Rope as Rope
+from .slider_crank import SliderCrank as SliderCrank
+from .wire_rope import WireRope as WireRope
+
+# Scenario section (dotted within another) -> its element, or the variant's name -> element for a
+# section with variants.
+# The order is the order of bodies, states and output columns.
+REGISTRY: dict[str, object] = {
+    "motor": MOTOR_VARIANTS,
+    "motor.ripple": MotorRipple,
+    "gears": GearPair,
+    "gears.mesh": MeshFriction,  # a lossy mesh's friction: scenario.gears.mesh, given with an efficiency
+    "clutch": ConeClutch,
+    "clutch_heating": ClutchHeating,
+    "drum": Drum,
+    "drum.resisting_ripple": ResistingRipple,
+    "load": {"rigid": RigidLoad, "elastic": ElasticLoad},  # on a rigid rope, or a body of its own on rope:
+    "rope": {"stiffness": Rope, "modulus": WireRope},
+    "ground": Ground,
+    "flywheel": Flywheel,
+    "reciprocating": SliderCrank,
+    "brake": {"holding": HoldingBrake, "friction": FrictionBrake},
+    "ratchet": Ratchet,
+    "bearings": DrumShaftLoads,
+    "periodic_regime": PeriodicRegime,  # scenario.periodic_regime: given, or implied by a ripple
+    "drivetrain": Drivetrain,  # a machine drawn as shafts and clutches: its elements, in its order
+}
+
+
+def _variant(section: str, spec, scenario) -> str:
+    """The variant of a section with variants: its spec's ``characteristic``, or for the load, whether
+    the scene gives it a rope of its own."""
+    if section == "load":
+        return "rigid" if scenario.rope is None else "elastic"
+    return spec.characteristic
+
+
+def element_sections(scenario) -> list[tuple[str, object, type]]:
+    """(section, its spec, the element class it builds) for each section the scenario has, in registry order."""
+    out = []
+    for section, entry in REGISTRY.items():
+        spec = scenario
+        for part in section.split("."):  # a section within a section: motor.ripple
+            spec = getattr(spec, part, None)
+        if spec is None:
+            continue
+        out.append((section, spec, entry[_variant(section, spec, scenario)] if isinstance(entry, dict) else entry))
+    return out
+
+
+def elements_for(scenario) -> tuple[AbstractElement, ...]:
+    """The elements a scenario names, built from their sections, in registry order."""
+    out: list = []
+    for _, spec, cls in element_sections(scenario):
+        built = cls.from_spec(spec, scenario)
+        out += built if isinstance(built, tuple) else [built]  # a drivetrain: an element per part
+    return tuple(out)
+
+
+def element_classes() -> list:
+    """Every kind of element there is, in registry order (what may have columns in a file)."""
+    classes = []
+    for entry in REGISTRY.values():
+        for cls in (entry.values() if isinstance(entry, dict) else getattr(entry, "parts", (entry,))):
+            if cls not in classes:
+                classes.append(cls)
+    return classes

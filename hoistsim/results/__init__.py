@@ -1,0 +1,9 @@
+"""The results layer: what a run's records become, the file format written and read, and the tables.
+
+A run's result and its summary (:mod:`.run_result`, :mod:`.summaries`), the periodic regime and
+Tredgold's diagram read off a run's rows (:mod:`.periodic`), the HDF5 file written atomically
+(:mod:`.output`, :mod:`.output_periodic`, :mod:`.atomic`) and read back (:mod:`.reading`), and
+the tables a terminal shows (:mod:`.report`).
+
+May import: the foundation, components, the scenario, the machine and the references.
+"""

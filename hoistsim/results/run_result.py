@@ -1,0 +1,144 @@
+"""A finished run: its time series, events, summary and energy balance."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from ..machine.core.ledger import balance, balance_columns
+from ..scenario.loading import Scenario
+from .summaries import Summaries as Summaries  # noqa: F401  (part of this module's interface)
+
+
+@dataclass
+class RunResult:
+    """One simulated start-up.
+
+    ``time`` and every array in ``series`` have one entry per output row (the
+    output grid plus the event times); ``units`` and ``descriptions`` give each
+    one's unit and meaning.  ``values`` are the elements' summary values
+    (lockup_time, slip_energy, ...), ``ledger`` every energy term they declare
+    at the start and the end of the run.
+    """
+
+    scenario: Scenario
+    label: str
+    time: np.ndarray
+    series: dict[str, np.ndarray]
+    units: dict[str, str]
+    events: dict[str, np.ndarray]
+    values: dict = field(default_factory=dict)  # the elements' summary values (exact extremes, end values)
+    ledger: dict = field(default_factory=dict)
+    descriptions: dict[str, str] = field(default_factory=dict)
+    stats: dict = field(default_factory=dict)
+    periodic: object = None  # hoistsim.results.periodic.analysis.Periodic, for a machine with a periodic regime
+    grid: np.ndarray | None = None  # the output grid's times (rows of ``time`` that are not event instants)
+    # every exact instant, events and observations alike (time, kind, element, torque_margin, mode_after,
+    # category: "switch", "scheduled", "observation" or "cycle"); ``events`` keeps the switches and schedule
+    instants: dict | None = None
+
+    def grid_rows(self) -> np.ndarray:
+        """Indices of the output grid's rows in ``time`` (a grid time that is also an event time: its row)."""
+        return np.searchsorted(self.time, self.grid)
+
+    def instant_rows(self) -> np.ndarray:
+        """Indices in ``time`` of the rows of ``instants`` (the state just after each)."""
+        return np.searchsorted(self.time, self.instants["time"])
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self.time if name == "time" else self.series[name]
+
+    @property
+    def name(self) -> str:
+        return self.scenario.name
+
+    @cached_property
+    def drivetrain(self):
+        """The two-shaft reduced model of the scenario (:mod:`hoistsim.references.model`): the oracles' numbers."""
+        from ..references.model import Machine
+
+        return Machine.from_scenario(self.scenario).reduced()
+
+    # ------------------------------------------------------------------ summary
+
+    @property
+    def lockup_time(self) -> float:
+        """First time the clutch is locked (s): 0 if it never slips, NaN if it never locks."""
+        return self.values["lockup_time"]
+
+    @property
+    def slip_energy(self) -> float:
+        """Energy dissipated in the clutch over the run (J)."""
+        return float(self.series["clutch_energy"][-1])
+
+    @property
+    def warnings(self) -> list[str]:
+        """What the user should know about this run that is not a failure (a regime that has not settled)."""
+        if self.periodic is not None and not self.periodic.regime.settled:
+            return [f"{self.label or self.name}: {self.periodic.regime.message}"]
+        return []
+
+    @property
+    def energy_balance(self) -> dict[str, float]:
+        """Work done on the machine against kinetic + potential energy + every loss (J)."""
+        return balance(self.ledger)
+
+    @property
+    def summary(self) -> dict:
+        """The numbers a designer compares runs by (see :func:`summarize`)."""
+        kinds = list(self.events["kind"])
+        return summarize(self.label or self.name, self.values, self.ledger, kinds.count("lock"),
+                         kinds.count("unlock"))
+
+    def to_hdf5(self, path) -> None:
+        """Write this run alone to an HDF5 file (atomically)."""
+        from .output import write_runs
+
+        write_runs(path, [self])
+
+    def to_xarray(self):
+        """The time series as an xarray.Dataset with ``time`` as coordinate (needs xarray)."""
+        import xarray as xr
+
+        data = {name: ("time", values, {"units": self.units[name]}) for name, values in self.series.items()}
+        return xr.Dataset(data, coords={"time": ("time", self.time, {"units": "s"})},
+                          attrs={"name": self.name, "label": self.label})
+
+
+def summarize(label: str, values: dict, ledger: dict, locks: int, unlocks: int) -> dict:
+    """The numbers a designer compares runs by, from the elements' summary values and the ledger.
+
+    Peaks and the lowest load position are exact: the run stops at every slip
+    peak and load turnaround (and at every switch) to record them.
+    """
+    energy = balance(ledger)
+    return {
+        "label": label,
+        **values,
+        "lock_events": int(locks),
+        "unlock_events": int(unlocks),
+        "energy_residual": energy["residual"],
+        "energy_relative_residual": energy["relative_residual"],
+        **_heat_residual(energy),
+    }
+
+
+def summary_columns(labels: list[str], values: dict, ledger: dict, locks, unlocks) -> dict[str, np.ndarray]:
+    """:func:`summarize` for many runs at once: each value an array over the runs, the same numbers."""
+    energy = balance_columns(ledger)
+    return {
+        "label": np.asarray(labels, dtype=object),
+        **values,
+        "lock_events": np.asarray(locks, dtype=np.int64),
+        "unlock_events": np.asarray(unlocks, dtype=np.int64),
+        "energy_residual": energy["residual"],
+        "energy_relative_residual": energy["relative_residual"],
+        **_heat_residual(energy),
+    }
+
+
+def _heat_residual(energy: dict) -> dict:
+    """Where a part's heat is followed (stored, passed to ambient), how well it accounts for the loss."""
+    return {"heat_relative_residual": energy["heat_relative_residual"]} if "heat_relative_residual" in energy else {}

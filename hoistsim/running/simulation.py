@@ -1,0 +1,126 @@
+"""From a validated scenario to a run: build the plan, call the compiled loop, read the answer."""
+
+from __future__ import annotations
+
+import functools
+import time as _time
+
+import jax
+import numpy as np
+
+from .. import _jax
+from ..errors import ScenarioError
+from ..machine.assemble import build_plan, loop_sizes
+from ..machine.core.element import MODE_NAMES
+from ..machine.core.layout import SWITCH_KINDS
+from ..machine.core.plan import CHATTERING, OK, SOLVER_FAILED, STATUS_TEXT
+from ..machine.core.readout import Readout
+from ..results.run_result import RunResult
+from ..scenario.loading import Scenario
+
+
+class SimulationError(RuntimeError):
+    """A run that could not be completed (chattering, solver failure)."""
+
+
+def simulate(scenario: Scenario, label: str = "") -> RunResult:
+    """Run one scenario (its sweep, if any, is ignored here: see :func:`hoistsim.sweep`)."""
+    plan, grid = build_plan(scenario)
+    sim = scenario.simulation
+    sizes = loop_sizes(plan, sim.max_switches)
+    while True:
+        run = _jax.executable(functools.partial(_loop, sim.solver, *sizes), plan, name=f"run-{sim.solver}-{sizes}")
+        started = _time.perf_counter()
+        raw = Readout(plan.layout, jax.device_get(run(plan)))
+        elapsed = _time.perf_counter() - started
+        if not raw.log_overflowed:
+            break
+        sizes = loop_sizes(plan, sim.max_switches, log_size=raw.event_count + 1)  # room for every row
+    scenario_errors(scenario, raw)
+    if raw.status != OK:
+        raise SimulationError(failure_message(scenario, raw))
+    return run_result(scenario, label, grid, raw, elapsed)
+
+
+def _loop(solver: str, *sizes):
+    """The compiled loop, imported (with the solver library) only where no stored program serves."""
+    from ..machine.core.loop import compiled_run
+
+    return compiled_run(solver, *sizes)
+
+
+def scenario_errors(scenario: Scenario, raw: Readout) -> None:
+    """A one-line ScenarioError where a run crossed a limit that says its scenario is wrong (an element's
+    ``errors``: a rope wound onto the drum entirely), at the first such crossing."""
+    times, kinds, _, _ = raw.events()
+    for element in raw.layout.elements:
+        for kind, (key, message) in element.errors.items():
+            crossed = times[kinds == kind]
+            if crossed.size:
+                raise ScenarioError(key, message.format(time=float(crossed.min())), source=scenario.source)
+
+
+def failure_message(scenario: Scenario, raw: Readout) -> str:
+    name = scenario.name
+    t = raw.end_time
+    if raw.status == CHATTERING:
+        _, kinds, elements, _ = raw.events()
+        switching = np.isin(kinds, SWITCH_KINDS)
+        switches = [f"{e} {k}" for k, e in zip(kinds[switching], elements[switching])]
+        culprit = max(set(elements[switching]), key=list(elements[switching]).count, default="a coupling")
+        return (f"{name}: the {culprit} chatters: more than {scenario.simulation.max_switches} mode switches "
+                f"by t = {t:.6g} s (last: {', '.join(switches[-4:])}); raise simulation.max_switches "
+                "if this is real")
+    if raw.status == SOLVER_FAILED:
+        return (f"{name}: the {scenario.simulation.solver} solver failed at t = {t:.6g} s "
+                f"(step size or step count limit); try a looser rtol or another solver")
+    return f"{name}: the run stopped at t = {t:.6g} s: {STATUS_TEXT[raw.status]}"
+
+
+def run_result(scenario: Scenario, label: str, grid: np.ndarray, raw: Readout, elapsed: float) -> RunResult:
+    layout = raw.layout
+    series = raw.columns(grid.size)
+    event_time, kinds, elements, margins = raw.events()
+    times = np.concatenate([grid, event_time])
+    # Rows in time order; where an event falls on a grid time (or several events at one
+    # time) keep the last row, which holds the state after the switch.
+    order = np.argsort(times, kind="stable")
+    times = times[order]
+    keep = np.append(times[1:] != times[:-1], True)
+    series = {name: values[order][keep] for name, values in series.items()}
+    # observations and the ends of cycles are rows, not events
+    switches = ~np.isin(kinds, layout.observation_kinds + [kind for _, _, kind in layout.cycles])
+    modes = np.asarray(raw.raw.event_modes[: raw.event_count])
+    mode_after = [MODE_NAMES[int(modes[i, layout.coupling_index(e)])] if e in layout.coupling_names else ""
+                  for i, e in enumerate(elements)]
+    columns = layout.columns()
+    periodic = None
+    if scenario.periodic_regime is not None:  # its analysis (and scipy's root finder) only where there is one
+        from ..results.periodic.analysis import periodic_regime
+
+        periodic = periodic_regime(scenario, raw)
+    cycles = [kind for _, _, kind in layout.cycles]
+    category = np.asarray(["observation" if k in layout.observation_kinds else "cycle" if k in cycles
+                           else "switch" if k in SWITCH_KINDS else "scheduled" for k in kinds], dtype=object)
+    return RunResult(
+        scenario=scenario,
+        label=label,
+        time=times[keep],
+        series=series,
+        units={name: units for name, (units, _) in columns.items()},
+        descriptions={name: text for name, (_, text) in columns.items()},
+        events={
+            "time": event_time[switches],
+            "kind": kinds[switches],
+            "element": elements[switches],
+            "torque_margin": margins[switches],
+            "mode_after": np.asarray(mode_after, dtype=object)[switches],
+        },
+        values={**raw.summary(), **(periodic.values() if periodic is not None else {})},
+        periodic=periodic,
+        grid=np.asarray(grid),
+        instants={"time": event_time, "kind": kinds, "element": elements, "torque_margin": margins,
+                  "mode_after": np.asarray(mode_after, dtype=object), "category": category},
+        ledger=raw.ledger(),
+        stats={**raw.stats, "wall_time": elapsed},
+    )

@@ -1,0 +1,141 @@
+"""Scenario files: YAML -> a validated scenario in SI units.
+
+Every problem with a scenario is raised as :class:`ScenarioError`, which names
+the dotted key, the file and (where the YAML parser knows it) the line:
+``FILE:LINE: dotted.key: message``.  The command line prints that one line and
+exits with status 2.  Values are parsed and converted to SI in :mod:`.units`.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+from pathlib import Path
+from typing import Any
+
+from pydantic import BaseModel, ValidationError
+from ruamel.yaml import YAML
+
+from ..errors import ScenarioError as ScenarioError
+from . import tables
+from . import units as u
+from .keys import Where, assign, check_key, check_tree, error_from, model_of, parse_override
+from .schema import SOLVERS as SOLVERS  # noqa: F401  (part of this module's interface)
+from .schema import Scenario as Scenario
+from .tables import ForceTable as ForceTable  # noqa: F401  (part of this module's interface)
+from .yamlsource import line_of as _line_of
+from .yamlsource import read_yaml as _read_yaml
+from .yamlsource import to_plain as _to_plain
+
+
+def bare_angles(data: dict, model: type[BaseModel], path: tuple, tree: Any, source: str) -> list[str]:
+    """Warnings for angles, angular speeds and temperatures given as bare numbers (read as rad, rad/s, K).
+
+    A bare 300 on no_load_speed is 300 rad/s, 2865 rpm: accepted (SI is the
+    rule), but said, with the key and where it is.
+    """
+    notes = []
+    for key, value in data.items():
+        field = model.model_fields.get(key)
+        sub = model_of(model, key)
+        if field is None:
+            continue
+        if sub is not None and isinstance(value, dict):
+            notes += bare_angles(value, sub, (*path, key), tree, source)
+            continue
+        dimension = u.dimension_of(field)
+        note = u.bare_number_note(value, dimension) if dimension is not None else None
+        column = tables.first_column_of(field)
+        if column is not None and isinstance(value, list):  # a table's first column: the first bare entry
+            firsts = [row[0] for row in value if isinstance(row, list) and row]
+            note = next((f"row {i + 1}: {n}" for i, n in enumerate(u.bare_number_note(x, column) for x in firsts)
+                         if n), None)
+        if note:
+            line = _line_of(tree, (*path, key))
+            notes.append(str(ScenarioError(".".join((*path, key)), note, source=source, line=line)))
+    return notes
+
+
+# --------------------------------------------------------------------------------------
+# loading
+
+
+def load_scenario(source: str | Path, overrides: list[str] | dict[str, Any] | None = None,
+                  sweeps: list[str] | None = None) -> Scenario:
+    """Read and validate a scenario file, with optional ``dotted.key=value`` overrides."""
+    path = Path(source)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ScenarioError("", "no such scenario file", source=str(source)) from None
+    except IsADirectoryError:
+        raise ScenarioError("", "is a folder, not a scenario file", source=str(source)) from None
+    except UnicodeDecodeError:
+        raise ScenarioError("", "not a text (UTF-8) file", source=str(source)) from None
+    except OSError as exc:
+        raise ScenarioError("", f"cannot read the scenario: {exc.strerror or exc}", source=str(source)) from None
+    return scenario_from_text(text, source=str(source), overrides=overrides, sweeps=sweeps)
+
+
+def scenario_from_text(text: str, source: str = "<scenario>",
+                       overrides: list[str] | dict[str, Any] | None = None,
+                       sweeps: list[str] | None = None) -> Scenario:
+    """Validate scenario text; ``overrides`` set keys, ``sweeps`` (KEY=SPEC) replace the file's sweep."""
+    tree = _read_yaml(text, source)
+    try:
+        raw = _to_plain(tree.data)
+    except ScenarioError as exc:
+        exc.source = source
+        raise
+    from .sweep_runs import check_combinations
+    from .sweep_spec import _check_sweep, _expand_range, parse_sweep
+
+    if sweeps:
+        raw["sweep"] = dict(parse_sweep(item) for item in sweeps)
+        text = text.rstrip("\n") + "\n# sweep from the command line (replaces any sweep: above):\n" + "".join(
+            f"#   --sweep {item}\n" for item in sweeps)
+    pairs = list(overrides.items()) if isinstance(overrides, dict) else [
+        parse_override(item) for item in (overrides or [])
+    ]
+    for key, value in pairs:
+        check_key(key, "--set", raw)
+        assign(raw, key, value)
+    if pairs:
+        text = text.rstrip("\n") + "\n# overrides from the command line:\n" + "".join(
+            f"#   --set {k}={json.dumps(v, default=str)}\n" for k, v in pairs)
+    check_tree(raw, Scenario, (), tree, source)
+    scenario = _validate(raw, tree, source, overridden={k for k, _ in pairs})
+    scenario._overridden = {k for k, _ in pairs}
+    for key, values in (scenario.sweep or {}).items():
+        if key in scenario._overridden:
+            raise ScenarioError(key, "is swept in the file (sweep:); --set cannot also set it", source="--set")
+        # a sweep given on the command line has no line in the file
+        where, lines = ("--sweep", None) if sweeps else (source, tree)
+        values, labels = _expand_range(key, values, Where(f"sweep.{key}", where, lines, ("sweep", key)))
+        scenario._sweep_numbers[key], scenario._sweep_validated[key] = _check_sweep(scenario, raw, key, values,
+                                                                                  lines, where)
+        scenario._sweep_values[key] = values
+        scenario._sweep_labels[key] = labels
+    scenario._raw = raw
+    scenario._text = text
+    scenario._source = source
+    scenario._warnings = bare_angles(raw, Scenario, (), tree, source)
+    if len(scenario.sweep or ()) > 1:
+        check_combinations(scenario)
+    return scenario
+
+
+def scenario_from_dict(data: dict, name: str = "<dict>") -> Scenario:
+    """Validate a scenario given as Python data (tests, notebooks)."""
+    buffer = io.StringIO()
+    YAML().dump(data, buffer)
+    return scenario_from_text(buffer.getvalue(), source=name)
+
+
+def _validate(raw: dict, tree: Any, source: str, overridden: set[str] = frozenset()) -> Scenario:
+    try:
+        return Scenario.model_validate(raw)
+    except ValidationError as exc:
+        raise error_from(exc.errors()[0], tree, source, overridden) from None
+
+

@@ -1,0 +1,383 @@
+"""The scenario schema: one pydantic model per YAML section, values in SI.
+
+Checks that involve one section live on its model; loading, overrides, sweeps
+and the error messages are in :mod:`.loading`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from typing import Any, Literal
+
+import numpy as np
+from pydantic import PrivateAttr, model_validator
+
+from ..errors import ScenarioError
+from . import tables
+from . import units as u
+from .schema_base import Section
+from .schema_drivetrain import DrivetrainSpec
+from .schema_motor import MotorSpec, RippleSpec
+from .schema_rope import GroundSpec, RopeSpec
+from .tables import EngagementForce
+from .units import FreeText, Text
+from .yamlsource import copy_plain
+
+SOLVERS = ("tsit5", "dopri5", "dopri8", "bosh3", "heun", "kvaerno3", "kvaerno5")
+
+
+# --------------------------------------------------------------------------------------
+# the schema: one model per section
+
+
+class ClutchSpec(Section):
+    inner_radius: u.quantity(u.LENGTH, gt=0.0)
+    outer_radius: u.quantity(u.LENGTH, gt=0.0)
+    half_angle: u.quantity(u.ANGLE, " (the cone half-angle beta = 90 deg - delta)", gt=0.0, lt=math.pi / 2)
+    static_friction: u.quantity(u.DIMENSIONLESS, gt=0.0)
+    kinetic_friction: u.quantity(u.DIMENSIONLESS, ge=0.0)
+    surfaces: u.whole("friction surfaces") = 1
+    engagement_force: EngagementForce
+    mean_radius: Literal["uniform_wear", "uniform_pressure"] = "uniform_wear"
+    driving_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0  # clutch half on the motor shaft
+    driven_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0  # clutch half on the pinion shaft
+
+    @model_validator(mode="after")
+    def _consistent(self):
+        if self.kinetic_friction > self.static_friction:
+            raise ScenarioError("clutch.kinetic_friction", f"must not exceed static_friction "
+                                f"({self.static_friction:g}), got {self.kinetic_friction:g}")
+        if self.inner_radius >= self.outer_radius:
+            raise ScenarioError("clutch.inner_radius", f"must be less than outer_radius "
+                                f"({self.outer_radius:g} m), got {self.inner_radius:g} m")
+        return self
+
+
+class GearSpec(Section):
+    pinion_teeth: u.whole("teeth")
+    wheel_teeth: u.whole("teeth")
+    module: u.quantity(u.LENGTH, gt=0.0)
+    pressure_angle: u.quantity(u.ANGLE, gt=0.0, lt=math.pi / 2) = math.radians(20.0)
+    pinion_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0
+    wheel_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0
+    # the mesh's efficiency when the pinion drives the wheel, and when the wheel drives the pinion
+    # (default: the same); either given, the mesh is lossy (absent: ideal, as in exercise 6)
+    efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
+    backdrive_efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
+
+    @property
+    def characteristic(self) -> str:
+        """Which variant: ``ideal`` (power passes unchanged) or ``lossy`` (an efficiency either way)."""
+        return "ideal" if self.efficiency is None and self.backdrive_efficiency is None else "lossy"
+
+    @property
+    def efficiencies(self) -> tuple[float, float]:
+        """(pinion driving, wheel driving): 1 and 1 for the ideal mesh; the second defaults to the first."""
+        forward = 1.0 if self.efficiency is None else self.efficiency
+        return forward, forward if self.backdrive_efficiency is None else self.backdrive_efficiency
+
+    @property
+    def mesh(self) -> "GearSpec | None":
+        """The lossy mesh's friction (the same keys), or None for an ideal mesh."""
+        return self if self.characteristic == "lossy" else None
+
+
+class DrumSpec(Section):
+    diameter: u.quantity(u.LENGTH, gt=0.0)
+    inertia: u.quantity(u.INERTIA, gt=0.0)
+    resisting_ripple: RippleSpec | None = None  # a torque resisting the lift, periodic in the drum angle
+
+
+class LoadSpec(Section):
+    mass: u.quantity(u.MASS, ge=0.0)
+
+
+class InitialSpec(Section):
+    motor_speed: u.quantity(u.ANGULAR_SPEED) = 0.0
+    drum_speed: u.quantity(u.ANGULAR_SPEED) = 0.0
+    # Start already lifting at the steady locked speed, where the motor torque
+    # equals the load torque: the constant-speed condition of the exercise.
+    steady_lift: bool = False
+
+    @model_validator(mode="after")
+    def _one_way_to_start(self):
+        if self.steady_lift and "motor_speed" in self.model_fields_set:
+            raise ScenarioError("initial.motor_speed", "give either steady_lift: true or the speeds, not both")
+        if self.steady_lift and "drum_speed" in self.model_fields_set:
+            raise ScenarioError("initial.drum_speed", "give either steady_lift: true or the speeds, not both")
+        return self
+
+
+class FlywheelSpec(Section):
+    shaft: Literal["motor", "drum"] = "motor"
+    inertia: u.quantity(u.INERTIA, ge=0.0) | None = None
+    # or a rim: I = pi * density * width * (R_outer^4 - R_inner^4) / 2
+    density: u.quantity(u.DENSITY, gt=0.0) | None = None
+    outer_diameter: u.quantity(u.LENGTH, gt=0.0) | None = None
+    inner_diameter: u.quantity(u.LENGTH, ge=0.0) | None = None
+    width: u.quantity(u.LENGTH, gt=0.0) | None = None
+
+    @model_validator(mode="after")
+    def _inertia_or_rim(self):
+        rim = self._one_value_or_group(
+            "flywheel", "inertia", ("density", "outer_diameter", "inner_diameter", "width"),
+            both="inertia or a rim (density, outer_diameter, inner_diameter, width)",
+            required="the flywheel's inertia, or a rim's density, outer_diameter, inner_diameter and width")
+        if rim and self.inner_diameter >= self.outer_diameter:
+            raise ScenarioError("flywheel.inner_diameter", f"must be less than outer_diameter "
+                                f"({self.outer_diameter:g} m), got {self.inner_diameter:g} m")
+        return self
+
+    @property
+    def moment_of_inertia(self) -> float:
+        """kg*m^2: as given, or the rim's pi rho s (R_o^4 - R_i^4) / 2."""
+        if self.inertia is not None:
+            return self.inertia
+        outer, inner = 0.5 * self.outer_diameter, 0.5 * self.inner_diameter
+        return math.pi * self.density * self.width * (outer**4 - inner**4) / 2.0
+
+
+class ReciprocatingSpec(Section):
+    """A slider-crank on the motor shaft: its reciprocating mass has an inertia that varies with angle."""
+
+    mass: u.quantity(u.MASS, gt=0.0)
+    crank_radius: u.quantity(u.LENGTH, gt=0.0)
+    rod_length: u.quantity(u.LENGTH, gt=0.0)
+
+    @model_validator(mode="after")
+    def _rod_longer_than_crank(self):
+        if self.rod_length <= self.crank_radius:
+            raise ScenarioError(".rod_length", f"must be longer than the crank ({self.crank_radius:g} m), "
+                                f"got {self.rod_length:g} m: the rod could not follow the crank")
+        return self
+
+
+class PeriodicSpec(Section):
+    periods: u.whole("periods") = 5  # analysed once the regime has settled
+
+
+class BrakeSpec(Section):
+    release_time: u.quantity(u.TIME, ge=0.0)  # the brake frees the drum at this time
+    static_torque: u.quantity(u.TORQUE, gt=0.0) | None = None  # the most it holds, at the drum (absent: any)
+    kinetic_torque: u.quantity(u.TORQUE, ge=0.0) | None = None  # what it passes slipping (default: static)
+    apply_time: u.quantity(u.TIME, ge=0.0) | None = None  # it closes again at this time
+
+    @model_validator(mode="after")
+    def _consistent(self):
+        if self.kinetic_torque is not None and self.static_torque is None:
+            raise ScenarioError("brake.kinetic_torque", "needs static_torque (a brake without it holds any torque "
+                                "and never slips)")
+        if self.kinetic_torque is not None and self.kinetic_torque > self.static_torque:
+            raise ScenarioError("brake.kinetic_torque", f"must not exceed static_torque ({self.static_torque:g} "
+                                f"N*m), got {self.kinetic_torque:g} N*m")
+        if self.apply_time is not None and self.apply_time <= self.release_time:
+            raise ScenarioError("brake.apply_time", f"must be after release_time ({self.release_time:g} s), "
+                                f"got {self.apply_time:g} s")
+        if self.apply_time is not None and self.static_torque is None:
+            raise ScenarioError("brake.apply_time", "needs static_torque: a brake that holds any torque would "
+                                "stop a turning drum dead")
+        return self
+
+    @property
+    def characteristic(self) -> str:
+        """Which variant: ``holding`` (any torque, never slips) or ``friction`` (slips above static_torque)."""
+        return "holding" if self.static_torque is None else "friction"
+
+
+class RatchetSpec(Section):
+    release_time: u.quantity(u.TIME, ge=0.0) | None = None  # the pawl is lifted at this time (absent: never)
+
+
+class ClutchHeatingSpec(Section):
+    """The clutch's friction surfaces as one lump of heat: C dT/dt = slip power - G (T - T_ambient)."""
+
+    heat_capacity: u.quantity(u.HEAT_CAPACITY, gt=0.0)
+    cooling: u.quantity(u.CONDUCTANCE, " (the conductance to ambient)", ge=0.0)
+    ambient_temperature: u.quantity(u.TEMPERATURE, gt=0.0)
+    initial_temperature: u.quantity(u.TEMPERATURE, gt=0.0) | None = None  # ambient
+    # friction against temperature, replacing clutch.static_friction / kinetic_friction where given
+    static_friction: tables.StaticFrictionTable | None = None
+    kinetic_friction: tables.KineticFrictionTable | None = None
+    max_temperature: u.quantity(u.TEMPERATURE, gt=0.0) | None = None  # overheat event
+
+    @property
+    def start_temperature(self) -> float:
+        return self.ambient_temperature if self.initial_temperature is None else self.initial_temperature
+
+    @property
+    def fades(self) -> bool:
+        """Whether friction depends on temperature (a table is given)."""
+        return self.static_friction is not None or self.kinetic_friction is not None
+
+    @model_validator(mode="after")
+    def _limit_above_start(self):
+        if self.max_temperature is not None and self.max_temperature <= self.start_temperature:
+            raise ScenarioError("clutch_heating.max_temperature", f"must be above the initial temperature "
+                                f"({u.show(self.start_temperature, u.TEMPERATURE)}), got "
+                                f"{u.show(self.max_temperature, u.TEMPERATURE)}")
+        return self
+
+
+class BearingsSpec(Section):
+    gear_offset: u.quantity(u.LENGTH, gt=0.0)  # a: bearing A to the gear, away from B
+    rope_offset: u.quantity(u.LENGTH, gt=0.0)  # bearing A to the rope, towards B
+    span: u.quantity(u.LENGTH, gt=0.0)  # bearing A to bearing B
+
+
+class SimulationSpec(Section):
+    duration: u.quantity(u.TIME, gt=0.0)
+    output_interval: u.quantity(u.TIME, gt=0.0)
+    rtol: u.quantity(u.DIMENSIONLESS, gt=0.0, lt=1.0) = 1e-8
+    atol: u.quantity(u.DIMENSIONLESS, gt=0.0) = 1e-10
+    solver: Literal[SOLVERS] = "tsit5"  # type: ignore[valid-type]
+    max_switches: u.whole("mode switches") = 200  # before a run is declared chattering
+
+    @model_validator(mode="after")
+    def _grid(self):
+        if self.output_interval > self.duration:
+            raise ScenarioError("simulation.output_interval", f"must not exceed the duration "
+                                f"({self.duration:g} s), got {self.output_interval:g} s")
+        if self.duration / self.output_interval > 2_000_000:
+            raise ScenarioError("simulation.output_interval", f"gives {self.duration / self.output_interval:.3g} "
+                                "output rows; at most 2e6 are allowed")
+        return self
+
+
+class Scenario(Section):
+    name: Text
+    description: FreeText = ""
+    # the hoist's sections, or (instead of them, never with them) a drivetrain drawn as shafts and clutches
+    motor: MotorSpec | None = None
+    clutch: ClutchSpec | None = None
+    gears: GearSpec | None = None
+    drum: DrumSpec | None = None
+    load: LoadSpec | None = None
+    drivetrain: DrivetrainSpec | None = None
+    gravity: u.quantity(u.ACCELERATION, ge=0.0) = 9.81
+    initial: InitialSpec = InitialSpec()
+    flywheel: FlywheelSpec | None = None
+    reciprocating: ReciprocatingSpec | None = None
+    periodic: PeriodicSpec | None = None
+    brake: BrakeSpec | None = None
+    ratchet: RatchetSpec | None = None
+    clutch_heating: ClutchHeatingSpec | None = None
+    bearings: BearingsSpec | None = None
+    rope: RopeSpec | None = None
+    ground: GroundSpec | None = None
+    simulation: SimulationSpec
+    sweep: dict[str, Any] | None = None  # checked by _check_sweep
+
+    _raw: dict = PrivateAttr(default_factory=dict)
+    _text: str = PrivateAttr(default="")
+    _source: str = PrivateAttr(default="<scenario>")
+    _overridden: set = PrivateAttr(default_factory=set)
+    _sweep_values: dict = PrivateAttr(default_factory=dict)  # key -> values, ranges expanded
+    _sweep_labels: dict = PrivateAttr(default_factory=dict)  # key -> each value as the user reads it
+    _sweep_numbers: dict = PrivateAttr(default_factory=dict)  # key -> each value's SI number (NaN: a table)
+    _sweep_validated: dict = PrivateAttr(default_factory=dict)  # key -> each value as validated (the key's type)
+    _warnings: list = PrivateAttr(default_factory=list)  # what was accepted but may not be meant
+
+    @property
+    def warnings(self) -> list[str]:
+        """One line each: values accepted that may not say what was meant (a bare number on a speed)."""
+        return list(self._warnings)
+
+    @model_validator(mode="after")
+    def _a_hoist_or_a_drivetrain(self):
+        hoist = ("motor", "clutch", "gears", "drum", "load")
+        if self.drivetrain is None:
+            for name in hoist:
+                if getattr(self, name) is None:
+                    raise ScenarioError(name, "required section is missing")
+            return self
+        for name in (*hoist, "flywheel", "reciprocating", "periodic", "brake", "ratchet", "clutch_heating",
+                     "bearings", "rope", "ground"):
+            if getattr(self, name) is not None:
+                raise ScenarioError(name, "cannot be given with drivetrain: (a scenario draws the hoist by its "
+                                    "sections or a machine as a drivetrain, not both)")
+        return self
+
+    @model_validator(mode="after")
+    def _brake_holds_still_drum(self):
+        holding = self.brake is not None and self.brake.characteristic == "holding"
+        if holding and self.initial.drum_speed != 0.0:
+            raise ScenarioError("initial.drum_speed", "must be 0 when a holding brake (brake: without "
+                                "static_torque) keeps the drum still at the start")
+        if holding and self.initial.steady_lift:
+            raise ScenarioError("initial.steady_lift", "a steady lift cannot start with the brake holding the drum")
+        return self
+
+    @model_validator(mode="after")
+    def _pawl_on_a_lowering_drum(self):
+        if self.ratchet is not None and self.initial.drum_speed < 0.0:
+            raise ScenarioError("initial.drum_speed", "must not be negative with a ratchet: the pawl would stop "
+                                "a lowering drum dead")
+        return self
+
+    @model_validator(mode="after")
+    def _load_on_the_rope(self):
+        if self.rope is not None and self.load.mass <= 0.0:
+            raise ScenarioError("load.mass", "must be positive with an elastic rope (rope:): the load is a body "
+                                "of its own on it")
+        if self.ground is not None and self.rope is None and (self.initial.drum_speed != 0.0
+                                                               or self.initial.steady_lift):
+            key = "initial.steady_lift" if self.initial.steady_lift else "initial.drum_speed"
+            raise ScenarioError(key, "the load rests on the ground (ground:) on a rigid rope, so the drum must "
+                                "start at rest (an elastic rope, rope:, may start slack or unloaded on a turning drum)")
+        return self
+
+    @model_validator(mode="after")
+    def _kinetic_within_static_when_hot(self):
+        heating = self.clutch_heating
+        if heating is None or not heating.fades:
+            return self
+        static = heating.static_friction or ((0.0, self.clutch.static_friction),)
+        kinetic = heating.kinetic_friction or ((0.0, self.clutch.kinetic_friction),)
+        # both piecewise linear, flat beyond their ends: compared at every knot of either, compared everywhere
+        given = (heating.static_friction or ()) + (heating.kinetic_friction or ())
+        for temperature in sorted({row[0] for row in given}):
+            mu_s, mu_k = (float(np.interp(temperature, *zip(*table))) for table in (static, kinetic))
+            if mu_k > mu_s:
+                # the table that says it: the kinetic one, or the static one that falls below the constant
+                key = f"clutch_heating.{'kinetic' if heating.kinetic_friction else 'static'}_friction"
+                raise ScenarioError(key, f"the kinetic friction {mu_k:g} is above the static friction {mu_s:g} at "
+                                    f"{u.show(temperature, u.TEMPERATURE)}; it must not exceed it at any temperature")
+        return self
+
+    @model_validator(mode="after")
+    def _periodic_parts_repeat(self):
+        if self.periodic_regime is not None:
+            from .period import machine_period_turns
+
+            machine_period_turns(self)  # periods must be exact fractions of a turn (a one-line error if not)
+        return self
+
+    @property
+    def periodic_regime(self) -> PeriodicSpec | None:
+        """How to report the periodic regime: ``periodic:`` as given, its defaults where an element
+        makes the machine periodic (a ripple, a slider-crank), None for a machine that is not."""
+        if self.periodic is not None:
+            return self.periodic
+        if self.drivetrain is not None:
+            return None
+        periodic = (self.motor.ripple, self.drum.resisting_ripple, self.reciprocating)
+        return PeriodicSpec() if any(part is not None for part in periodic) else None
+
+    @property
+    def text(self) -> str:
+        """The scenario as read, with command-line overrides noted."""
+        return self._text
+
+    @property
+    def source(self) -> str:
+        return self._source
+
+    @property
+    def raw(self) -> dict:
+        """The scenario as plain data (before unit conversion), overrides applied."""
+        return copy_plain(self._raw)
+
+    def resolved(self) -> dict:
+        """The scenario in SI numbers, as JSON-friendly data."""
+        return json.loads(self.model_dump_json(exclude={"sweep"}))

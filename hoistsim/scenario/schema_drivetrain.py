@@ -1,0 +1,272 @@
+"""The schema of a drivetrain drawn as shafts and couplings (``drivetrain:``), values in SI.
+
+Shafts with their inertias and initial speeds, external torques on shafts, friction clutches between
+two shafts or a shaft and ``ground`` (a brake), each torque and force a time signal (:mod:`.signals`);
+gear stages that tie one shaft's speed to another's; motors on shafts (the hoist's characteristics) and
+a load hanging from a shaft on a rope.
+The names a user gives shafts and clutches name their outputs (``<shaft>_speed``, ``<clutch>_torque``), so
+they must be plain words and must not collide.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import Literal
+
+from pydantic import model_validator
+
+from ..components import ConeClutch
+from ..errors import ScenarioError
+from . import units as u
+from .schema_base import Section
+from .schema_motor import MotorSpec
+from .signals import signal
+from .units import Text
+
+GROUND = "ground"  # the other side of a clutch that is a brake
+_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+
+
+class ShaftSpec(Section):
+    inertia: u.quantity(u.INERTIA, ge=0.0)  # zero: only with something of inertia tied to it
+    speed: u.quantity(u.ANGULAR_SPEED) = 0.0  # at t = 0
+
+
+class TorqueSpec(Section):
+    shaft: Text
+    torque: signal(u.TORQUE)  # positive in the shaft's positive sense
+
+
+class ConeSpec(Section):
+    """A cone's faces: the hoist's cone clutch geometry, whose wedge sets the effective radius."""
+
+    inner_radius: u.quantity(u.LENGTH, gt=0.0)
+    outer_radius: u.quantity(u.LENGTH, gt=0.0)
+    half_angle: u.quantity(u.ANGLE, " (the cone half-angle beta = 90 deg - delta)", gt=0.0, lt=math.pi / 2)
+    mean_radius: Literal["uniform_wear", "uniform_pressure"] = "uniform_wear"
+
+
+class FrictionClutchSpec(Section):
+    between: tuple[Text, Text]  # [shaft a, shaft b or ground]: its torque passes from a to b
+    static_friction: u.quantity(u.DIMENSIONLESS, gt=0.0)
+    kinetic_friction: u.quantity(u.DIMENSIONLESS, ge=0.0)
+    effective_radius: u.quantity(u.LENGTH, gt=0.0) | None = None  # or a cone's, from its geometry
+    cone: ConeSpec | None = None
+    surfaces: u.whole("friction surfaces") = 1
+    force: signal(u.FORCE)  # N pressing the faces; at or below zero the clutch is open
+
+    @property
+    def torque_per_newton(self) -> float:
+        """m: the torque each newton of force gives, per unit friction coefficient (a cone's wedge in it)."""
+        if self.cone is None:
+            return self.effective_radius * self.surfaces
+        cone = self.cone
+        return ConeClutch(cone.inner_radius, cone.outer_radius, cone.half_angle, self.static_friction,
+                          self.kinetic_friction, self.surfaces, cone.mean_radius).torque_per_newton
+
+
+class GearStageSpec(Section):
+    between: tuple[Text, Text]  # [input shaft, output shaft]
+    ratio: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = None  # the input's speed over the output's
+    teeth: tuple[u.whole("teeth"), u.whole("teeth")] | None = None  # [z_in, z_out]: ratio z_out / z_in
+    # the mesh's efficiency when the input drives the output, and when the output drives the input
+    # (default: the same); either given, the stage is lossy (absent: ideal)
+    efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
+    backdrive_efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
+
+    @property
+    def lossy(self) -> bool:
+        return self.efficiency is not None or self.backdrive_efficiency is not None
+
+    @property
+    def efficiencies(self) -> tuple[float, float]:
+        """(input driving, output driving): 1 and 1 for an ideal stage; the second defaults to the first."""
+        forward = 1.0 if self.efficiency is None else self.efficiency
+        return forward, forward if self.backdrive_efficiency is None else self.backdrive_efficiency
+
+    @model_validator(mode="after")
+    def _one_ratio(self):
+        if (self.ratio is None) == (self.teeth is None):
+            raise ScenarioError(".ratio", "give either ratio (the input's speed over the output's) or teeth "
+                                "[input, output], one of them")
+        if self.teeth is not None:
+            object.__setattr__(self, "ratio", self.teeth[1] / self.teeth[0])  # read as ratio from here on
+        return self
+
+
+class ShaftMotorSpec(MotorSpec):
+    """A motor on a shaft: the hoist motor's characteristics and inertia (the rotor turns with the shaft)."""
+
+    shaft: Text
+
+
+class LoadOnShaftSpec(Section):
+    shaft: Text  # the drum's shaft
+    rope_radius: u.quantity(u.LENGTH, gt=0.0)  # half the drum's diameter
+    mass: u.quantity(u.MASS, ge=0.0)
+
+
+class DrivetrainSpec(Section):
+    shafts: dict[str, ShaftSpec]
+    torques: list[TorqueSpec] = []
+    clutches: dict[str, FrictionClutchSpec] = {}
+    gears: dict[str, GearStageSpec] = {}
+    motors: dict[str, ShaftMotorSpec] = {}
+    load: LoadOnShaftSpec | None = None
+
+    @model_validator(mode="after")
+    def _named_and_joined(self):
+        if not self.shafts:
+            raise ScenarioError("drivetrain.shafts", "give at least one shaft: {name: {inertia, speed}}")
+        for kind, names in (("shafts", self.shafts), ("clutches", self.clutches)):
+            for name in names:
+                if not _NAME.match(name) or name == GROUND:
+                    raise ScenarioError(f"drivetrain.{kind}.{name}", "a name is a word of letters, digits and "
+                                        f"underscores starting with a letter, and not {GROUND!r}")
+        for name in self.clutches:
+            if name in self.shafts:
+                raise ScenarioError(f"drivetrain.clutches.{name}", "is also the name of a shaft: names must "
+                                    "differ (they name the outputs)")
+        known = ", ".join(self.shafts)
+        for i, torque in enumerate(self.torques):
+            if torque.shaft not in self.shafts:
+                raise ScenarioError(f"drivetrain.torques.{i}.shaft", f"there is no shaft {torque.shaft!r} "
+                                    f"(shafts: {known})")
+        for name, clutch in self.clutches.items():
+            a, b = clutch.between
+            for side in (a, b):
+                if side not in self.shafts and not (side == GROUND and side == b):
+                    raise ScenarioError(f"drivetrain.clutches.{name}.between", f"there is no shaft {side!r} "
+                                        f"(shafts: {known}; `ground` as the second for a brake)")
+            if a == b:
+                raise ScenarioError(f"drivetrain.clutches.{name}.between", f"joins shaft {a!r} to itself")
+            if clutch.kinetic_friction > clutch.static_friction:
+                raise ScenarioError(f"drivetrain.clutches.{name}.kinetic_friction", "must not exceed "
+                                    f"static_friction ({clutch.static_friction:g}), got {clutch.kinetic_friction:g}")
+            if (clutch.effective_radius is None) == (clutch.cone is None):
+                raise ScenarioError(f"drivetrain.clutches.{name}.effective_radius", "give either effective_radius "
+                                    "or cone (inner_radius, outer_radius, half_angle), one of them")
+            if clutch.cone is not None and clutch.cone.inner_radius >= clutch.cone.outer_radius:
+                raise ScenarioError(f"drivetrain.clutches.{name}.cone.inner_radius", "must be less than "
+                                    f"outer_radius ({clutch.cone.outer_radius:g} m)")
+        self._parts_named()
+        groups = gear_groups(self)
+        for name, stage in self.gears.items():
+            if stage.lossy:
+                beyond_stage(self, name)  # a lossy stage in a loop of stages is refused there
+        self._speeds_agree(groups)
+        self._every_body_has_inertia(groups)
+        return self
+
+    def _parts_named(self):
+        seen = {name: "shafts" for name in self.shafts} | {name: "clutches" for name in self.clutches}
+        known = ", ".join(self.shafts)
+        for kind, parts in (("gears", self.gears), ("motors", self.motors)):
+            for name, part in parts.items():
+                # a motor may be named after its own shaft (motor on motor: motor_speed, motor_torque)
+                clash = name in seen and not (kind == "motors" and name == part.shaft and seen[name] == "shafts")
+                if not _NAME.match(name) or name == GROUND or clash:
+                    raise ScenarioError(f"drivetrain.{kind}.{name}", "a name is a word of letters, digits and "
+                                        f"underscores starting with a letter, not {GROUND!r} and not the name of "
+                                        "another part (they name the outputs)")
+                seen[name] = kind
+                shafts = part.between if kind == "gears" else (part.shaft,)
+                for shaft in shafts:
+                    if shaft not in self.shafts:
+                        where = "between" if kind == "gears" else "shaft"
+                        raise ScenarioError(f"drivetrain.{kind}.{name}.{where}", f"there is no shaft {shaft!r} "
+                                            f"(shafts: {known})")
+                if kind == "gears" and shafts[0] == shafts[1]:
+                    raise ScenarioError(f"drivetrain.gears.{name}.between", f"gears shaft {shafts[0]!r} to itself")
+                if kind == "motors" and part.ripple is not None:
+                    raise ScenarioError(f"drivetrain.motors.{name}.ripple", "a drawn drivetrain's motor has no "
+                                        "ripple (the hoist's motor section has)")
+        if self.load is not None and self.load.shaft not in self.shafts:
+            raise ScenarioError("drivetrain.load.shaft", f"there is no shaft {self.load.shaft!r} (shafts: {known})")
+
+    def _speeds_agree(self, groups):
+        for name, (root, ratio) in groups.items():
+            expected = self.shafts[root].speed * ratio
+            given = self.shafts[name].speed
+            if name != root and "speed" in self.shafts[name].model_fields_set and not math.isclose(
+                    given, expected, rel_tol=1e-9, abs_tol=1e-12):
+                raise ScenarioError(f"drivetrain.shafts.{name}.speed", f"is geared to shaft {root!r}: its speed "
+                                    f"must be {expected:.12g} rad/s (or left out), got {given:.12g} rad/s")
+
+    def _every_body_has_inertia(self, groups):
+        inertia = {root: 0.0 for root, _ in groups.values()}
+        for name, (root, ratio) in groups.items():
+            inertia[root] += self.shafts[name].inertia * ratio**2
+        for motor in self.motors.values():
+            root, ratio = groups[motor.shaft]
+            inertia[root] += motor.moment_of_inertia * ratio**2
+        if self.load is not None:
+            root, ratio = groups[self.load.shaft]
+            inertia[root] += self.load.mass * self.load.rope_radius**2 * ratio**2
+        for root, total in inertia.items():
+            if total <= 0.0:
+                tied = [name for name, (r, _) in groups.items() if r == root]
+                raise ScenarioError(f"drivetrain.shafts.{tied[0]}.inertia", "has no inertia and nothing of "
+                                    f"inertia rigidly tied to it ({', '.join(tied)}): it could not be accelerated")
+
+
+def gear_groups(spec: DrivetrainSpec) -> dict:
+    """Each shaft's (root, speed over the root's): shafts geared together turn as one body, the first
+    of them in ``shafts`` its root.  Gear stages that close a loop with ratios that disagree are refused,
+    naming both (the machine could not turn)."""
+    stages = {name: stage for name, stage in spec.gears.items()}
+    groups: dict = {}
+    via: dict = {}  # shaft -> the stage that reached it
+    for start in spec.shafts:
+        if start in groups:
+            continue
+        groups[start] = (start, 1.0)
+        reached = [start]
+        while reached:
+            shaft = reached.pop()
+            _, ratio = groups[shaft]
+            for name, stage in stages.items():
+                a, b = stage.between
+                if shaft not in (a, b):
+                    continue
+                other, other_ratio = (b, ratio / stage.ratio) if shaft == a else (a, ratio * stage.ratio)
+                if other not in groups:
+                    groups[other] = (start, other_ratio)
+                    via[other] = name
+                    reached.append(other)
+                elif not math.isclose(groups[other][1], other_ratio, rel_tol=1e-12) and via.get(other) != name:
+                    raise ScenarioError(f"drivetrain.gears.{name}.ratio", f"closes a loop with gears "
+                                        f"{via.get(other, via.get(shaft))!r} whose ratios disagree: shaft "
+                                        f"{other!r} would turn {groups[other][1]:.6g} and {other_ratio:.6g} times "
+                                        f"as fast as {start!r} (the machine could not turn)")
+    return groups
+
+
+def beyond_stage(spec: DrivetrainSpec, name: str) -> tuple:
+    """The shafts on a gear stage's output side: its output shaft first, then every shaft geared to it
+    by other stages.  The tooth load is what these take; a stage in a loop of stages has no such side
+    (its tooth load is not determined by the machine's motion): refused for a lossy one."""
+    first, out = spec.gears[name].between
+    reached, beyond = [out], [out]
+    while reached:
+        shaft = reached.pop()
+        for other, stage in spec.gears.items():
+            if other == name or shaft not in stage.between:
+                continue
+            far = stage.between[1] if shaft == stage.between[0] else stage.between[0]
+            if far == first:
+                raise ScenarioError(f"drivetrain.gears.{name}.efficiency", f"the stage is in a loop of gear "
+                                    f"stages (through {other!r}): the torque its teeth pass is not determined, "
+                                    "give it no efficiency")
+            if far not in beyond:
+                beyond.append(far)
+                reached.append(far)
+    return tuple(beyond)
+
+
+def hoist_only(scenario, command: str) -> None:
+    """A command that answers the hoist's questions refuses a drawn drivetrain in one line."""
+    if scenario.drivetrain is not None:
+        raise ScenarioError("drivetrain", f"{command} answers the hoist's questions (motor, cone clutch, gears, "
+                            "drum, load); this scenario draws a drivetrain", source=scenario.source)

@@ -1,0 +1,355 @@
+"""Physical quantities in scenario files: "200 daN", "300 rpm", "25 deg" -> SI floats.
+
+A bare number is already SI (angles in radians, speeds in rad/s, temperatures in
+kelvin).  Strings are
+parsed by pint and converted once, at load time, to the SI unit of the quantity
+the key expects; a string of the wrong dimension is an error that says what was
+expected and what was given.  NaN and infinities are never accepted.
+
+pint treats the radian as dimensionless, so "25 deg" would pass for a friction
+coefficient and "5 Hz" for an angular speed.  Here the radian counts as a
+dimension of its own whenever a unit is written: an angle needs an angle unit,
+an angular speed needs an angle per time ("rpm", "rad/s"), a pure number none.
+
+Also here: whole-number counts and text, the other values a scenario holds, and
+the pydantic field types built on them that the schema uses (tables of
+quantities are :mod:`.tables`').  Every problem is a :class:`UnitError` (a
+``ValueError``), which pydantic reports at the key's location.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import sys
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import TYPE_CHECKING, Annotated, Any, get_args
+
+from pydantic import BeforeValidator
+
+from ..cache_folders import cache_folder
+
+if TYPE_CHECKING:
+    import pint
+
+
+def _pint():
+    """pint, imported where a unit is first read (a scenario of bare SI numbers never needs it).
+
+    pint imports Dask at its own import when Dask is installed, to recognise
+    Dask arrays of quantities, which hoistsim never makes: 80 ms of every
+    command's start.  Dask is hidden while pint is imported, unless it is
+    already there.
+    """
+    if "pint" in sys.modules:
+        return sys.modules["pint"]
+    hidden = "dask" not in sys.modules
+    if hidden:
+        sys.modules["dask"] = None  # importlib's "not installed" mark
+    try:
+        import pint
+    finally:
+        if hidden:
+            del sys.modules["dask"]
+    return pint
+
+
+@lru_cache(maxsize=1)
+def registry() -> pint.UnitRegistry:
+    # pint's registry is costly to build (0.12 s): one per process, its parsed definitions kept on disk (0.04 s).
+    pint = _pint()
+    try:
+        ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=cache_folder("pint"))
+    except Exception:  # pint writes its cache in place: another process's half-written file
+        ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    ureg.define("@alias revolution = rev")  # "3 rev/s"
+    return ureg
+
+
+@dataclass(frozen=True)
+class Dimension:
+    """What a scenario key measures: a readable name, its SI unit, an example."""
+
+    name: str
+    si_unit: str
+    example: str
+    radians: int = 0  # power of the angle in the unit ("rpm" is rad/s: 1)
+    shown_in: str = ""  # unit for limits in messages, when not the SI one
+
+
+TORQUE = Dimension("torque", "N*m", "'500 N*m'")
+ANGULAR_SPEED = Dimension("angular speed", "rad/s", "'300 rpm'", radians=1, shown_in="rpm")
+INERTIA = Dimension("moment of inertia", "kg*m^2", "'40 kg*m^2'")
+MASS = Dimension("mass", "kg", "'500 kg'")
+LENGTH = Dimension("length", "m", "'20 cm'")
+ANGLE = Dimension("angle", "rad", "'25 deg'", radians=1, shown_in="deg")
+FORCE = Dimension("force", "N", "'200 daN'")
+TIME = Dimension("time", "s", "'0.5 s'")
+ACCELERATION = Dimension("acceleration", "m/s^2", "'9.81 m/s^2'")
+DIMENSIONLESS = Dimension("pure number", "", "0.3")
+DENSITY = Dimension("density", "kg/m^3", "'7200 kg/m^3'")
+TEMPERATURE = Dimension("temperature", "K", "'25 degC'", shown_in="degC")  # absolute: degC and degF are offsets
+HEAT_CAPACITY = Dimension("heat capacity", "J/K", "'2.4 kJ/K'")
+CONDUCTANCE = Dimension("thermal conductance", "W/K", "'20 W/K'")
+STIFFNESS = Dimension("stiffness", "N/m", "'2.5e5 N/m'")
+PRESSURE = Dimension("modulus (a pressure)", "Pa", "'100 GPa'")
+AREA = Dimension("area", "m^2", "'95 mm^2'")
+FREQUENCY = Dimension("frequency", "Hz", "'5 Hz'")
+
+# dimensionality (as pint prints it, radian power) -> what an engineer calls it
+_KNOWN = {
+    ("[mass] * [length] ** 2 / [time] ** 2", 0): "torque (or energy)",
+    ("[mass] * [length] / [time] ** 2", 0): "force",
+    ("[mass] * [length] ** 2", 0): "moment of inertia",
+    ("[mass]", 0): "mass",
+    ("[length]", 0): "length",
+    ("[length] ** 2", 0): "area",
+    ("[length] ** 3", 0): "volume",
+    ("[time]", 0): "time",
+    ("1 / [time]", 0): "frequency",
+    ("1 / [time]", 1): "angular speed",
+    ("[length] / [time]", 0): "speed",
+    ("[length] / [time] ** 2", 0): "acceleration",
+    ("[mass] / [length] / [time] ** 2", 0): "pressure",
+    ("[mass] / [time] ** 2", 0): "stiffness",
+    ("[mass] * [length] ** 2 / [time] ** 3", 0): "power",
+    ("[temperature]", 0): "temperature",
+    ("[mass] * [length] ** 2 / [temperature] / [time] ** 2", 0): "heat capacity",
+    ("[mass] * [length] ** 2 / [temperature] / [time] ** 3", 0): "thermal conductance",
+    ("dimensionless", 0): "pure number",
+    ("dimensionless", 1): "angle",
+}
+
+
+class UnitError(ValueError):
+    """A value that is not a quantity of the expected kind, or not an allowed one."""
+
+
+def _a(noun: str) -> str:
+    return f"an {noun}" if noun[:1] in "aeiou" else f"a {noun}"
+
+
+def _shown(value: object) -> str:
+    """The value as the user wrote it."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return f"{value:g}"
+    return repr(value)
+
+
+def to_si(value: object, dimension: Dimension) -> float:
+    """Convert a scenario value to a finite float in the SI unit of ``dimension``.
+
+    Accepts ints, floats and strings with units.  Booleans, lists and other
+    types are rejected: they are never a physical quantity.
+    """
+    try:
+        if isinstance(value, str):  # sweeps validate the same strings thousands of times
+            return _string_to_si(value, dimension)
+        return _to_si(value, dimension)
+    except OverflowError:  # an integer too large for a float
+        raise UnitError(f"must be a finite number, got {_shown(value)[:40]}") from None
+
+
+@lru_cache(maxsize=4096)
+def _string_to_si(value: str, dimension: Dimension) -> float:
+    # "6543.21 N": the number times the unit's SI value, that unit judged once (a sweep lists thousands
+    # of forces in a few units; pint reads each in ~60 us); anything else is pint's to read
+    match = _NUMBER_UNIT.fullmatch(value)
+    if match:
+        factor = _unit_factor(match.group(2), dimension)
+        if factor is not None:
+            return _finite(float(match.group(1)) * factor, value)
+    return _to_si(value, dimension)
+
+
+_NUMBER_UNIT = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A-Za-z_][A-Za-z_*/^\d]*)\s*")
+
+
+@lru_cache(maxsize=None)
+def _unit_factor(unit: str, dimension: Dimension) -> float | None:
+    """What one ``unit`` is in the SI unit of ``dimension``; None where pint must read the whole text
+    (a unit of another dimension, an unknown one, one with an offset)."""
+    try:
+        one = _to_si(f"1 {unit}", dimension)
+        multiplicative = registry().Quantity(1, unit)._is_multiplicative
+    except Exception:  # pint's errors, our UnitError: the full reading says what is wrong
+        return None
+    return one if multiplicative else None
+
+
+def _to_si(value: object, dimension: Dimension) -> float:
+    expected = f"expected {_a(dimension.name)} (like {dimension.example})"
+    if value is None:
+        raise UnitError(f"no value given; {expected}")
+    if isinstance(value, bool):
+        raise UnitError(f"{expected}, got the yes/no value {_shown(value)}")
+    if isinstance(value, (int, float)):
+        return _finite(float(value), value)
+    if not isinstance(value, str):
+        kind = {list: "a list", dict: "a mapping"}.get(type(value), f"a {type(value).__name__}")
+        shown = repr(value) if isinstance(value, (list, dict)) else str(value)
+        raise UnitError(f"{expected}, got {kind}: {shown}")
+    text = value.strip()
+    if not re.search(r"\d|nan|inf", text, re.IGNORECASE):
+        raise UnitError(f"{expected}, got {value!r} (no number in it)")
+    if re.search(r"[\d)]\s*(\*\*|\^)", text):  # pint would compute 10**10**10 in full
+        raise UnitError(f"{expected}, got {value!r}: write powers of ten as 1e6, not with ^ or **")
+    ureg = registry()
+    try:
+        quantity = ureg.Quantity(text)
+    except _pint().UndefinedUnitError as exc:
+        names = ", ".join(repr(n) for n in exc.args) or "a name"
+        raise UnitError(f"{expected}, got {value!r}: unknown unit {names}") from None
+    except Exception:  # pint raises several unrelated types for bad text
+        raise UnitError(f"{expected}, cannot read {value!r}") from None
+    if str(quantity.units) == "dimensionless":  # a plain number in a string: SI
+        return _finite(float(quantity.magnitude), value)
+    radians = int(ureg.get_root_units(quantity.units)[1]._units.get("radian", 0))
+    target = ureg.Unit(dimension.si_unit) if dimension.si_unit else ureg.dimensionless
+    if quantity.dimensionality != target.dimensionality or radians != dimension.radians:
+        hint = ""
+        if quantity.dimensionality == target.dimensionality and dimension.radians:
+            hint = f"; write it with an angle unit, like {dimension.example}"
+        raise UnitError(f"{expected}, got {value!r} which is {_a(_describe(quantity.dimensionality, radians))}{hint}")
+    return _finite(float(quantity.to(target).magnitude), value)
+
+
+def _finite(x: float, value: object) -> float:
+    if not math.isfinite(x):
+        raise UnitError(f"must be a finite number, got {_shown(value)}")
+    return x
+
+
+def _describe(dimensionality, radians: int) -> str:
+    text = str(dimensionality) or "dimensionless"
+    return _KNOWN.get((text, radians), text + (" * [angle]" if radians else ""))
+
+
+def show(x: float, dimension: Dimension) -> str:
+    """An SI value in words for messages: ``1.5708`` (angle) -> ``'90 deg'``."""
+    unit = dimension.shown_in or dimension.si_unit
+    if unit and unit != dimension.si_unit:
+        x = registry().Quantity(x, dimension.si_unit).to(unit).magnitude
+    return f"{x:.6g} {unit}".strip()
+
+
+def check_range(x: float, value: object, dimension: Dimension, *, gt: float | None = None,
+                ge: float | None = None, lt: float | None = None, le: float | None = None,
+                hint: str = "") -> float:
+    """Check an SI value against its physical limits; the message names them in the user's terms."""
+    problem = None
+    if gt is not None and not x > gt:
+        positive = "must be above absolute zero (0 K)" if dimension is TEMPERATURE else "must be positive"
+        problem = positive if gt == 0 else f"must be more than {show(gt, dimension)}"
+    elif ge is not None and not x >= ge:
+        problem = "must not be negative" if ge == 0 else f"must be at least {show(ge, dimension)}"
+    elif lt is not None and not x < lt:
+        problem = f"must be less than {show(lt, dimension)}"
+    elif le is not None and not x <= le:
+        problem = f"must be at most {show(le, dimension)}"
+    if problem is None:
+        return x
+    if isinstance(value, str):
+        got = _shown(value)
+    else:  # a bare number is SI; say so, and in the usual unit where that differs
+        got = f"{x:.6g} {dimension.si_unit}".strip()
+        got += f" (= {show(x, dimension)})" if dimension.shown_in else ""
+    raise UnitError(f"{problem}{hint}, got {got}")
+
+
+def count(value: object, what: str, minimum: int = 1) -> int:
+    """A whole number (teeth, friction surfaces): ``17`` or ``17.0``, never ``17.5`` or ``true``."""
+    whole = None
+    if isinstance(value, int) and not isinstance(value, bool):
+        whole = value
+    elif isinstance(value, float) and value.is_integer():
+        whole = int(value)
+    if whole is None:
+        raise UnitError(f"must be a whole number of {what}, got {_shown(value)}")
+    if whole < minimum:
+        raise UnitError(f"must be at least {minimum}, got {whole}")
+    return whole
+
+
+# --------------------------------------------------------------------------------------
+# the value types of the scenario schema (pydantic fields)
+
+
+def quantity(dimension: Dimension, hint: str = "", **limits: float):
+    """A float field given as a number (SI) or text with units, checked against ``limits`` (gt, ge, lt, le)."""
+
+    def convert(value: Any) -> float:
+        return check_range(to_si(value, dimension), value, dimension, hint=hint, **limits)
+
+    # the dimension rides along as metadata, for checks that read the schema (bare angles, speeds)
+    return Annotated[float, BeforeValidator(convert), dimension]
+
+
+def dimension_of(field) -> Dimension | None:
+    """The dimension of a quantity field of the schema (a pydantic FieldInfo), or None.
+
+    An optional quantity (``quantity(...) | None``) keeps it inside the union's first member.
+    """
+    found = next((m for m in field.metadata if isinstance(m, Dimension)), None)
+    for member in get_args(field.annotation):
+        found = found or next((m for m in getattr(member, "__metadata__", ()) if isinstance(m, Dimension)), None)
+    return found
+
+
+def bare_number_note(value: float, dimension: Dimension) -> str | None:
+    """What a bare number means for an angle, an angular speed or a temperature, where the unit is easily
+    forgotten (25 read as 25 K)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or value == 0:
+        return None
+    if dimension is TEMPERATURE:
+        return (f"the bare number {value:g} is read as {value:g} K ({show(value, dimension)}); "
+                f"write the unit, like {dimension.example}, to say which you mean")
+    if not dimension.radians:
+        return None
+    shown = value * (30 / math.pi if dimension.shown_in == "rpm" else 180 / math.pi)
+    return (f"the bare number {value:g} is read as {value:g} {dimension.si_unit} ({shown:.4g} {dimension.shown_in}); "
+            f"write the unit, like {dimension.example}, to say which you mean")
+
+
+def whole(what: str, minimum: int = 1):
+    """An int field that counts ``what`` ("teeth")."""
+    return Annotated[int, BeforeValidator(lambda value: count(value, what, minimum))]
+
+
+def _text(value: Any, required: bool = True) -> str:
+    if not isinstance(value, str) and not (value is None and not required):
+        raise UnitError(f"must be text, got {value!r} (put it in quotes)")
+    if required and not value.strip():
+        raise UnitError("must not be empty")
+    return value or ""
+
+
+Text = Annotated[str, BeforeValidator(_text)]
+FreeText = Annotated[str, BeforeValidator(lambda value: _text(value, required=False))]
+
+
+def range_ends(start: object, stop: object) -> tuple[float, float, str]:
+    """The ends of a sweep range as magnitudes in the unit of ``start`` ('' for bare numbers)."""
+    if isinstance(start, (int, float)) and not isinstance(start, bool) and \
+            isinstance(stop, (int, float)) and not isinstance(stop, bool):
+        return float(start), float(stop), ""
+    ureg = registry()
+    try:
+        first, last = ureg.Quantity(str(start)), ureg.Quantity(str(stop))
+        last = last.to(first.units)
+    except Exception as exc:  # pint's parse and dimensionality errors
+        raise UnitError(f"cannot make a range from {start!r} to {stop!r} ({str(exc).splitlines()[0]})") from None
+    if not (math.isfinite(first.magnitude) and math.isfinite(last.magnitude)):
+        raise UnitError(f"the range ends must be finite, got {start!r} and {stop!r}")
+    return float(first.magnitude), float(last.magnitude), f"{first.units:~}"
+
+
+def si_line(unit: str) -> tuple[float, float]:
+    """(factor, offset): a magnitude in ``unit`` is factor * magnitude + offset in SI base units (the offset
+    is zero but for temperatures: 20 degC is 293.15 K, not 20 * 274.15 K)."""
+    ureg = registry()
+    zero = float(ureg.Quantity(0.0, unit).to_base_units().magnitude)
+    return float(ureg.Quantity(1.0, unit).to_base_units().magnitude) - zero, zero

@@ -1,0 +1,120 @@
+"""The package's layers: no import circle, and no module imports from a layer above its own.
+
+Every import counts, those inside functions too (a lazy import is still a dependency).  The
+order is written here once, lowest first; a module may import from its own layer and any below.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import hoistsim
+
+PACKAGE = Path(hoistsim.__file__).parent
+
+# lowest first; each entry is a module or a folder of hoistsim
+LAYERS = (
+    ("foundation", ("errors", "cache_folders", "program_pool", "_jax", "_pytree", "__init__")),
+    ("components", ("components",)),
+    ("scenario", ("scenario",)),
+    ("machine", ("machine",)),
+    ("references", ("references",)),
+    ("results", ("results",)),
+    ("running", ("running",)),
+    ("figures", ("figures",)),
+    ("studies", ("studies",)),
+    ("command line", ("cli",)),
+)
+
+
+def _modules() -> dict[str, tuple[Path, bool]]:
+    """hoistsim's modules by dotted name: (file, is a package)."""
+    found = {}
+    for path in PACKAGE.rglob("*.py"):
+        parts = ("hoistsim",) + path.relative_to(PACKAGE).with_suffix("").parts
+        is_package = parts[-1] == "__init__"
+        found[".".join(parts[:-1] if is_package else parts)] = (path, is_package)
+    return found
+
+
+def _imports(name: str, path: Path, is_package: bool, modules) -> set[str]:
+    """The hoistsim modules ``name`` imports, anywhere in its file."""
+    package = name if is_package else name.rsplit(".", 1)[0]
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.Import):
+            found.update(alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                parts = package.split(".")
+                base = ".".join(parts[: len(parts) - node.level + 1] + ([base] if base else []))
+            for alias in node.names:  # `from . import tables` imports the module hoistsim.scenario.tables
+                found.add(f"{base}.{alias.name}" if f"{base}.{alias.name}" in modules else base)
+    return {m for m in found if m in modules and m != name}
+
+
+def _graph() -> dict[str, set[str]]:
+    modules = _modules()
+    return {name: _imports(name, path, is_package, modules) for name, (path, is_package) in modules.items()}
+
+
+def layer_of(module: str) -> int:
+    first = module.split(".")[1] if "." in module else "__init__"
+    for rank, (_, members) in enumerate(LAYERS):
+        if first in members:
+            return rank
+    raise AssertionError(f"{module} belongs to no layer: add its folder to LAYERS in {__file__}")
+
+
+def circles(graph) -> list[list[str]]:
+    """The import graph's strongly connected groups of more than one module (Tarjan's algorithm)."""
+    index, low, stack, on_stack, groups = {}, {}, [], set(), []
+
+    def visit(v):
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in graph[v]:
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            group = []
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                group.append(w)
+                if w == v:
+                    break
+            if len(group) > 1:
+                groups.append(sorted(group))
+
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return groups
+
+
+def test_every_module_has_a_layer():
+    for module in _graph():
+        layer_of(module)
+
+
+def test_no_import_runs_up_a_layer():
+    upward = [f"{a} ({LAYERS[layer_of(a)][0]}) imports {b} ({LAYERS[layer_of(b)][0]})"
+              for a, targets in sorted(_graph().items()) for b in sorted(targets)
+              if layer_of(b) > layer_of(a) and a != "hoistsim"]
+    assert not upward, "\n".join(upward)
+
+
+def test_no_import_circles():
+    assert not circles(_graph())
+
+
+def test_no_module_above_400_lines():
+    long = {name: n for name, (path, _) in _modules().items() if (n := len(path.read_text().splitlines())) > 400}
+    assert not long, long
