@@ -155,7 +155,7 @@ def test_a_changed_source_is_never_served_a_stored_program(tmp_path):
             return float(f["runs/slip_energy"][0])
 
     original = heat("original")
-    clutch = package / "elements" / "cone_clutch.py"
+    clutch = package / "machine" / "elements" / "cone_clutch.py"
     text = clutch.read_text(encoding="utf-8")
     edited = text.replace("return self.friction(x)[1] * self.clutch_constant", "return 0.5 * self.friction(x)[1] * "
                           "self.clutch_constant")

@@ -165,7 +165,7 @@ def test_two_couplings_holding_the_same_motion_share_it_by_order():
 
 
 def test_the_core_names_no_part_of_the_machine():
-    core = Path(__file__).resolve().parents[1] / "hoistsim" / "core"
+    core = Path(__file__).resolve().parents[1] / "hoistsim" / "machine" / "core"
     for path in core.glob("*.py"):
         text = path.read_text(encoding="utf-8")
         found = re.findall(r"\b(clutch|brake|load|motor|drum|pinion|gear)\w*", text, flags=re.IGNORECASE)

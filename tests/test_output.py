@@ -144,7 +144,8 @@ def test_killed_writer_leaves_existing_file_intact(tmp_path):
     path.write_bytes(b"the previous results")
     script = textwrap.dedent(f"""
         import os, signal
-        from hoistsim import load_scenario, simulate, output
+        from hoistsim import load_scenario, simulate
+        from hoistsim.results import output
         run = simulate(load_scenario({str(SCENARIOS / 'runback_slipping_clutch.yaml')!r}))
         def die(*args, **kwargs):
             os.kill(os.getpid(), signal.SIGKILL)   # half-way through the file

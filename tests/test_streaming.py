@@ -145,7 +145,7 @@ def test_a_sweep_killed_while_writing_a_chunk_resumes_from_the_last_whole_one(tm
     script = textwrap.dedent(f"""
         import os, signal
         from hoistsim import load_scenario, sweep
-        from hoistsim import streaming, sweeps
+        from hoistsim.running import streaming, sweeps
         streaming.FILE_RUNS = 1
         sweeps.BLOCK_CHUNKS = 1
         calls = {{"n": 0}}
