@@ -118,3 +118,16 @@ def test_no_import_circles():
 def test_no_module_above_400_lines():
     long = {name: n for name, (path, _) in _modules().items() if (n := len(path.read_text().splitlines())) > 400}
     assert not long, long
+
+
+def test_the_scenario_and_the_components_import_no_jax():
+    """Reading and checking a scenario never needs JAX (`hoistsim check` loads it only for the reduced model)."""
+    found = []
+    for folder in ("scenario", "components"):
+        for path in sorted((PACKAGE / folder).rglob("*.py")):
+            for node in ast.walk(ast.parse(path.read_text())):
+                names = ([a.name for a in node.names] if isinstance(node, ast.Import) else
+                         [node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level else [])
+                found += [f"{path.relative_to(PACKAGE)} imports {n}" for n in names if n.split(".")[0] in
+                          ("jax", "jaxlib", "diffrax", "equinox")]
+    assert not found, found

@@ -86,6 +86,9 @@ def _check(layout: Layout, segment, t, met, modes, candidate):
     slip the way its sides part while it slides.  One solve: the sides' parting against the
     capacity is the parting while sliding moved along the response to the coupling's own torque
     (linear; a coupling pressed by a shaft's torque, a mesh, holds what it slides with: no move).
+    Where a coupling pressed by a shaft's torque (a mesh) can slip, its friction answers every other
+    coupling's torque through the torque that presses it, so the parting against each one's capacity
+    is solved again with it carrying that.
     """
     x = Instant(layout, t, met, modes, segment.table)
     reply = x.reply
@@ -93,6 +96,7 @@ def _check(layout: Layout, segment, t, met, modes, candidate):
     signs = [slip_sign(modes[k]) for k in range(len(couplings))]
     partings = [signs[k] * x.relative_acceleration(c.section) for k, c in enumerate(couplings)]
     let_go = [candidate[k] & (signs[k] != 0.0) for k in range(len(couplings))]
+    answered = any(c.can_slip and c.pressed_by is not None for c in couplings)
     stressed, cannot_hold, parting_ok, torques = [], [], [], []
     for k, coupling in enumerate(couplings):
         torque = jnp.asarray(x.coupling_torques[k], dtype=jnp.float64)
@@ -107,19 +111,30 @@ def _check(layout: Layout, segment, t, met, modes, candidate):
         limit = holding_capacity(coupling, x, sign)
         cannot = parting >= 0.0
         if coupling.pressed_by is None:
-            # how each coupling's relative acceleration answers this one's signed sliding torque
-            response = [q[k] for q in reply.accel_from_sliding]
-            extra = jnp.where(jnp.isfinite(limit), limit, 0.0) - coupling.sliding_torque(x)
+            if answered:
+                # A pressed coupling's friction answers this one's torque (what presses it grows with
+                # that torque, and it slides with a share of it): the answer is no one column of the
+                # response, so the machine is asked again with this coupling sliding with its capacity.
+                sliding = [None] * len(couplings)
+                sliding[k] = jnp.where(jnp.isfinite(limit), limit, coupling.sliding_torque(x))
+                at_capacity = Instant(layout, t, met, modes, segment.table, reply=reply, sliding=sliding)
+                partings_then = [signs[j] * at_capacity.relative_acceleration(c.section)
+                                 for j, c in enumerate(couplings)]
+            else:
+                # how each coupling's relative acceleration answers this one's signed sliding torque
+                response = [q[k] for q in reply.accel_from_sliding]
+                extra = jnp.where(jnp.isfinite(limit), limit, 0.0) - coupling.sliding_torque(x)
+                partings_then = [partings[j] + signs[j] * sign * extra * dot(x.rows[j], response)
+                                 for j in range(len(couplings))]
             # own answer negative: friction holds the sides
-            cannot = parting + extra * dot(x.rows[k], response) >= 0.0
+            cannot = partings_then[k] >= 0.0
             # Carrying its whole capacity, it would stop another let go from sliding the way it does (a
             # mesh's law, which changes with the way it rolls, met a torque its present way cannot
             # answer): this way's premise fails before the question is answered, and holding it is
             # decided by the ways with it held, tried first.
             for j in range(len(couplings)):
                 if j != k and couplings[j].can_slip:
-                    turned = partings[j] + signs[j] * sign * extra * dot(x.rows[j], response) < 0.0
-                    cannot = cannot | (let_go[j] & turned)
+                    cannot = cannot | (let_go[j] & (partings_then[j] < 0.0))
         # (at zero, others hold its sides together: letting it go changes nothing it could carry)
         cannot_hold.append(jnp.isfinite(limit) & cannot)
         parting_ok.append(parting >= 0.0)
