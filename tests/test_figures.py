@@ -111,6 +111,33 @@ def test_legends_sit_beside_the_panels_not_on_the_data(results):
     plt.close(fig)
 
 
+def test_every_text_lies_inside_the_figure_and_the_panels_keep_apart(results):
+    """A run's figure and a few runs' are placed from their measured texts: nothing past the figure's
+    edges, the title above the panels, no panel or legend on the next one, the y labels in one column."""
+    one = read_runs(results["engage_at_speed_with_brake"], columns=runs_columns())
+    two = read_runs(results["runback"], columns=runs_columns()) + read_runs(results["exercise6_direct_start"],
+                                                                             columns=runs_columns())
+    for runs, swept in ((one, ("run", np.zeros(1), "")), (two, ("run", np.arange(2.0), ""))):
+        fig = runs_figure(runs, plt, swept)
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        edge, panels = fig.bbox, _panels(fig)
+        for ax in panels:
+            tight = ax.get_tightbbox(renderer)  # ticks, labels, the right-hand scale and the legend
+            assert tight.x0 >= edge.x0 - 1 and tight.x1 <= edge.x1 + 1, ax.get_ylabel()
+            assert tight.y0 >= edge.y0 - 1 and tight.y1 <= edge.y1 + 1, ax.get_ylabel()
+        title = fig._suptitle.get_window_extent(renderer)
+        assert title.y1 <= edge.y1 + 1 and title.y0 >= panels[0].get_window_extent(renderer).y1
+        for upper, lower in zip(panels, panels[1:]):
+            below = lower.get_window_extent(renderer).y1
+            assert upper.get_window_extent(renderer).y0 > below
+            if upper.get_legend() is not None:
+                assert upper.get_legend().get_window_extent(renderer).y0 >= below - 1, upper.get_ylabel()
+        sides = [ax.yaxis.label.get_window_extent(renderer).x1 for ax in panels]  # the side facing the axes
+        assert max(sides) - min(sides) < 1
+        plt.close(fig)
+
+
 def test_the_load_position_panel_marks_where_a_load_that_ran_back_turned(results):
     fig, runs = _figure(results["turnaround"])
     load = _panels(fig)[3]

@@ -19,6 +19,7 @@ from ..machine.core.layout import SWITCH_KINDS
 from ..machine.elements import element_classes
 from ..results.report import headline
 from .base import colour_scale, swept_label
+from .placing import align_ylabels, place_panels
 
 FEW = 4  # more runs than this are drawn as a colour-mapped family
 MAX_EVENT_LINES = 40  # a run with more events than this (periodic stick-slip) has its events listed, not drawn
@@ -49,10 +50,12 @@ def runs_figure(runs, plt, swept):
         kind for cls in classes for kind in cls.cycles.values()}
 
     heights = [panel.height for panel in panels]
-    fig, axes = plt.subplots(len(panels), 1, sharex=True, squeeze=False, layout="constrained",
+    mode = "one" if len(runs) == 1 else "few" if len(runs) <= FEW else "family"
+    # a family's colour bar is placed by matplotlib's layout; a run or a few, from their texts measured once
+    fig, axes = plt.subplots(len(panels), 1, sharex=True, squeeze=False,
+                             layout="constrained" if mode == "family" else None,
                              figsize=(11, 0.9 + 1.9 * sum(heights)), height_ratios=heights)
     axes = list(axes[:, 0])
-    mode = "one" if len(runs) == 1 else "few" if len(runs) <= FEW else "family"
     run_colours, cmap, norm = colour_scale(swept[1], plt) if mode != "one" else ([None], None, None)
 
     for ax, panel in zip(axes, panels):
@@ -72,16 +75,23 @@ def runs_figure(runs, plt, swept):
             _right_axis(ax, panel.right_axis, runs[0])
         handles, labels = ax.get_legend_handles_labels()
         if handles:  # beside the panel, past the right-hand scale where there is one
-            ax.legend(handles, labels, **{**_LEGEND, "bbox_to_anchor": (1.13 if panel.right_axis else 1.01, 1.0)})
+            ax.legend(handles, labels, **{**_LEGEND, "bbox_to_anchor": (_legend_anchor(panel), 1.0)})
     axes[-1].set_xlabel("time [s]")
     axes[-1].set_xlim(min(r["time"][0] for r in runs), max(r["time"][-1] for r in runs))
-    _align_ylabels(fig, axes)
-    fig.suptitle(_title(runs, classes, swept), fontsize=11, x=0.01, ha="left")
+    title = fig.suptitle(_title(runs, classes, swept), fontsize=11, x=0.01, ha="left")
     if mode == "family":
+        align_ylabels(fig, axes)
         bar = fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=axes, location="top",
                            shrink=0.45, aspect=45, pad=0.01)
         bar.set_label(swept_label(swept), fontsize=9)
+    else:
+        place_panels(fig, axes, heights, [_legend_anchor(panel) for panel in panels], title)
     return fig
+
+
+def _legend_anchor(panel) -> float:
+    """Where a panel's legend starts, in its axes' widths from their left: past a right-hand scale."""
+    return 1.13 if panel.right_axis else 1.01
 
 
 def _panels(classes, present, run):
@@ -291,36 +301,6 @@ def _parameters(run) -> dict:
                 holder[last] = float(value)
         run["parameters"] = parameters
     return run["parameters"]
-
-
-def _align_ylabels(fig, axes) -> None:
-    """Each panel's y label the same distance left of its axes: just past the widest tick label of them all.
-
-    matplotlib's ``align_ylabels`` measures every sibling panel's tick labels again as each panel is
-    drawn (n^2 measurements for n panels: a quarter of a six-panel figure's time, which ``hoistsim
-    watch`` pays at every save).  Here each panel's tick texts come from its own locator and
-    formatter and are measured once; half an em more keeps clear of a tick the layout may add.
-    """
-    from matplotlib import rcParams
-    from matplotlib.font_manager import FontProperties
-    from matplotlib.text import Text
-    from matplotlib.transforms import offset_copy
-
-    renderer = fig.canvas.get_renderer()
-    font = FontProperties(size=rcParams["ytick.labelsize"])
-    widest = 0.0
-    for ax in axes:
-        low, high = sorted(ax.get_ylim())
-        ticks = [v for v in ax.yaxis.get_major_locator()() if low <= v <= high]
-        for text in ax.yaxis.get_major_formatter().format_ticks(ticks):
-            if text:
-                label = Text(0, 0, text, fontproperties=font, figure=fig)
-                widest = max(widest, label.get_window_extent(renderer).width)
-    tick = axes[0].yaxis.majorTicks[0]
-    gap = (widest * 72.0 / fig.dpi + tick.get_tick_padding() + tick.get_pad() + axes[0].yaxis.labelpad
-           + 0.5 * font.get_size_in_points())
-    for ax in axes:
-        ax.yaxis.set_label_coords(0.0, 0.5, transform=offset_copy(ax.transAxes, fig=fig, x=-gap, units="points"))
 
 
 def _title(runs, classes, swept) -> str:
