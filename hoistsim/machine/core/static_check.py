@@ -118,23 +118,26 @@ def _check(layout: Layout, segment, t, met, modes, candidate):
                 sliding = [None] * len(couplings)
                 sliding[k] = jnp.where(jnp.isfinite(limit), limit, coupling.sliding_torque(x))
                 at_capacity = Instant(layout, t, met, modes, segment.table, reply=reply, sliding=sliding)
-                partings_then = [signs[j] * at_capacity.relative_acceleration(c.section)
-                                 for j, c in enumerate(couplings)]
+
+                def parting_then(j):
+                    return signs[j] * at_capacity.relative_acceleration(couplings[j].section)
             else:
                 # how each coupling's relative acceleration answers this one's signed sliding torque
                 response = [q[k] for q in reply.accel_from_sliding]
                 extra = jnp.where(jnp.isfinite(limit), limit, 0.0) - coupling.sliding_torque(x)
-                partings_then = [partings[j] + signs[j] * sign * extra * dot(x.rows[j], response)
-                                 for j in range(len(couplings))]
+
+                def parting_then(j):  # its own parting moves with its own torque: no sign to apply
+                    scale = extra if j == k else signs[j] * sign * extra
+                    return partings[j] + scale * dot(x.rows[j], response)
             # own answer negative: friction holds the sides
-            cannot = partings_then[k] >= 0.0
+            cannot = parting_then(k) >= 0.0
             # Carrying its whole capacity, it would stop another let go from sliding the way it does (a
             # mesh's law, which changes with the way it rolls, met a torque its present way cannot
             # answer): this way's premise fails before the question is answered, and holding it is
             # decided by the ways with it held, tried first.
             for j in range(len(couplings)):
                 if j != k and couplings[j].can_slip:
-                    cannot = cannot | (let_go[j] & (partings_then[j] < 0.0))
+                    cannot = cannot | (let_go[j] & (parting_then(j) < 0.0))
         # (at zero, others hold its sides together: letting it go changes nothing it could carry)
         cannot_hold.append(jnp.isfinite(limit) & cannot)
         parting_ok.append(parting >= 0.0)
