@@ -105,8 +105,6 @@ def scenario_name(path) -> str:
 
 def swept_axis(path, summaries):
     """(name, values in display units, unit) of the first swept key with numbers, else the run index."""
-    from ..results.reading import read_swept_keys
-
     for key in read_swept_keys(path):
         values = np.asarray([row[key] for row in summaries], dtype=float)
         if np.all(np.isfinite(values)):

@@ -30,8 +30,10 @@ def place_panels(fig, axes, heights, anchors, title) -> None:
     top = PAD + inches(title.get_window_extent(renderer).height) + PAD
     bottom = axes[-1]
     below = inches(bottom.get_window_extent(renderer).y0 - bottom.xaxis.get_tightbbox(renderer).y0) + PAD
+    # each legend measured once: its height makes room below a short panel, its width narrows the panels
     legends = [ax.get_legend() for ax in axes]
-    tall = [inches(legend.get_window_extent(renderer).height) if legend is not None else 0.0 for legend in legends]
+    boxes = [legend.get_window_extent(renderer) if legend is not None else None for legend in legends]
+    tall = [inches(box.height) if box is not None else 0.0 for box in boxes]
     share = [h / sum(heights) for h in heights]
     room = height - top - below - BETWEEN * (len(axes) - 1)
     over = [max(0.0, t - room * s) for t, s in zip(tall, share)]
@@ -49,12 +51,12 @@ def place_panels(fig, axes, heights, anchors, title) -> None:
     left = align_ylabels(fig, axes) / 72.0 + max(inches(ax.yaxis.label.get_window_extent(renderer).width)
                                                  for ax in axes) + PAD
     span = width - left - PAD
-    for ax, legend, anchor in zip(axes, legends, anchors):
+    for ax, box, anchor in zip(axes, boxes, anchors):
         scale = _right_scale(ax, renderer)
         if scale:
             span = min(span, width - left - inches(scale) - PAD)
-        if legend is not None:
-            span = min(span, (width - PAD - left - inches(legend.get_window_extent(renderer).width)) / anchor)
+        if box is not None:
+            span = min(span, (width - PAD - left - inches(box.width)) / anchor)
     put(left, span)
 
 
