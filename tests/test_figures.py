@@ -138,6 +138,33 @@ def test_every_text_lies_inside_the_figure_and_the_panels_keep_apart(results):
         plt.close(fig)
 
 
+def test_a_kept_frame_draws_the_same_figure_as_a_new_one(results, tmp_path):
+    """`watch` keeps the last figure's panels and redraws on them: each figure is the one drawn afresh (to the
+    anti-aliasing of a line's end: the panels' places agree to round-off), a new structure gets a new frame,
+    and no figure is left open."""
+    from PIL import Image
+
+    from hoistsim.figures.files import plot_file
+    from hoistsim.figures.frames import KeptFrames
+
+    kept, open_before, frames_seen = KeptFrames(), set(plt.get_fignums()), []
+    order = ["exercise6_direct_start", "runback", "engage_at_speed_with_brake", "turnaround", "exercise6_direct_start"]
+    for name in order:
+        plot_file(results[name], tmp_path / "fresh.png")
+        plot_file(results[name], tmp_path / "kept.png", frames=kept, png_compression=1)
+        frames_seen.append(kept._frame)
+        fresh = np.asarray(Image.open(tmp_path / "fresh.png"), dtype=int)
+        again = np.asarray(Image.open(tmp_path / "kept.png"), dtype=int)
+        assert fresh.shape == again.shape, name
+        differ = np.any(fresh != again, axis=2)
+        assert differ.mean() < 1e-4, (name, int(differ.sum()))  # a dashed line's last dash, at most
+    assert frames_seen[1] is frames_seen[0]  # another force: the same panels
+    assert frames_seen[2] is not frames_seen[1]  # a brake: another panel, another frame
+    assert frames_seen[3] is frames_seen[2] and frames_seen[4] is not frames_seen[3]
+    assert set(plt.get_fignums()) - open_before == {frames_seen[-1].fig.number}  # only the kept one
+    plt.close(frames_seen[-1].fig)
+
+
 def test_the_load_position_panel_marks_where_a_load_that_ran_back_turned(results):
     fig, runs = _figure(results["turnaround"])
     load = _panels(fig)[3]

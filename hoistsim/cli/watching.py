@@ -38,6 +38,7 @@ class Watch:
         self.output = Path(output) if output is not None else None
         self.echo = echo
         self.runs = 0  # runs that wrote results
+        self._frames = None  # the figure's frame, kept from one run to the next (made at the first figure)
         self._read: bytes | None = None  # the scenario file as the last run read it
 
     def files(self) -> list[Path]:
@@ -84,8 +85,11 @@ class Watch:
                   f"({time.perf_counter() - started:.2f} s)")
         if self.figure is not None:
             from ..figures.files import plot_file
+            from ..figures.frames import KeptFrames
 
-            plot_file(self.output, self.figure)
+            self._frames = self._frames or KeptFrames()
+            # compressed lightly: a viewer reloads it at every save, and zlib's default costs a tenth of the wait
+            plot_file(self.output, self.figure, frames=self._frames, png_compression=1)
         return True
 
     def _load(self):

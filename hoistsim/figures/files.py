@@ -18,20 +18,26 @@ from ..results.reading import read_runs, read_summary, read_swept_keys
 from .base import DISPLAY_UNITS
 
 
-def plot_file(path, output) -> list[str]:
+def plot_file(path, output, *, frames=None, png_compression: int = 6) -> list[str]:
     """Write the figures of a results file; returns the paths written.
 
     OUT.png: the runs against time; OUT_summary.png: the summary against the
     swept value (a sweep, or a summary-only file, then OUT.png itself);
-    OUT_periodic.png: the first run's periodic regime.
+    OUT_periodic.png: the first run's periodic regime.  ``frames``: where the
+    runs' figure gets its frame (:class:`.frames.KeptFrames` keeps it for the
+    next call); ``png_compression``: zlib's level, 0-9 (1 writes a figure in
+    two thirds of the time of 6, 15 % larger).
     """
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from .frames import DPI, FreshFrames
     from .runs import runs_figure
     from .summary import summary_figure
+
+    frames = frames or FreshFrames()
 
     output = Path(output)
     summaries = read_summary(path)
@@ -41,12 +47,14 @@ def plot_file(path, output) -> list[str]:
 
     def save(fig, target):
         with atomic_path(target) as partial:  # a figure open in a viewer is replaced whole, never half-drawn
-            fig.savefig(partial, dpi=150, format=target.suffix[1:].lower())
-        plt.close(fig)
+            form = target.suffix[1:].lower()
+            fig.savefig(partial, dpi=DPI, format=form,
+                        **({"pil_kwargs": {"compress_level": png_compression}} if form == "png" else {}))
+        frames.done(plt, fig)
         written.append(str(target))
 
     if runs:
-        save(runs_figure(runs, plt, swept), output)
+        save(runs_figure(runs, plt, swept, frames), output)
     periodic = [run for run in runs if "turning_moment" in run]
     if periodic:  # the first run's periodic regime: its turning-moment diagram and speed over a period
         from .periodic import periodic_figure

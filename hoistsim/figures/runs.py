@@ -19,6 +19,7 @@ from ..machine.core.layout import SWITCH_KINDS
 from ..machine.elements import element_classes
 from ..results.report import headline
 from .base import colour_scale, swept_label
+from .frames import FrameSpec, FreshFrames
 from .placing import align_ylabels, place_panels
 
 FEW = 4  # more runs than this are drawn as a colour-mapped family
@@ -38,7 +39,8 @@ _CURVE = "curve"  # the gid of a run's curve (not a zero line, an event line or 
 _LEGEND = dict(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False, borderaxespad=0.0)
 
 
-def runs_figure(runs, plt, swept):
+def runs_figure(runs, plt, swept, frames=None):
+    """The figure of ``runs``; ``frames`` gives its frame (:mod:`.frames`: afresh, or kept by ``watch``)."""
     classes = element_classes()
     for run in runs:  # what traces read beside the columns (a limit the scenario gives)
         _parameters(run)
@@ -51,11 +53,16 @@ def runs_figure(runs, plt, swept):
 
     heights = [panel.height for panel in panels]
     mode = "one" if len(runs) == 1 else "few" if len(runs) <= FEW else "family"
+    scales = [_right_scale(panel, runs[0]) for panel in panels]
     # a family's colour bar is placed by matplotlib's layout; a run or a few, from their texts measured once
-    fig, axes = plt.subplots(len(panels), 1, sharex=True, squeeze=False,
-                             layout="constrained" if mode == "family" else None,
-                             figsize=(11, 0.9 + 1.9 * sum(heights)), height_ratios=heights)
-    axes = list(axes[:, 0])
+    frame = (frames or FreshFrames()).frame(plt, FrameSpec(
+        heights=tuple(heights), figsize=(11, 0.9 + 1.9 * sum(heights)),
+        layout="constrained" if mode == "family" else None,
+        right=tuple(scale[0] if scale else None for scale in scales)))
+    fig, axes = frame.fig, frame.axes
+    for right, scale in zip(frame.right, scales):
+        if scale:
+            right.factor = scale[1]
     run_colours, cmap, norm = colour_scale(swept[1], plt) if mode != "one" else ([None], None, None)
 
     for ax, panel in zip(axes, panels):
@@ -71,8 +78,6 @@ def runs_figure(runs, plt, swept):
         if panel.zero_line:
             ax.axhline(0.0, color="k", lw=0.6)
         _no_round_off_zoom(ax)
-        if panel.right_axis is not None:
-            _right_axis(ax, panel.right_axis, runs[0])
         handles, labels = ax.get_legend_handles_labels()
         if handles:  # beside the panel, past the right-hand scale where there is one
             ax.legend(handles, labels, **{**_LEGEND, "bbox_to_anchor": (_legend_anchor(panel), 1.0)})
@@ -276,14 +281,15 @@ def _no_round_off_zoom(ax):
     ax.ticklabel_format(axis="y", useOffset=False)
 
 
-def _right_axis(ax, right_axis, run):
-    label, factor_of = right_axis
+def _right_scale(panel, run) -> tuple[str, float] | None:
+    """A panel's right-hand scale for this run: its label and its factor, None where it has none."""
+    if panel.right_axis is None:
+        return None
+    label, factor_of = panel.right_axis
     try:
-        factor = float(factor_of(_parameters(run)))
+        return label, float(factor_of(_parameters(run)))
     except (KeyError, TypeError, ValueError):
-        return  # the scene has not the part that gives this scale
-    secondary = ax.secondary_yaxis("right", functions=(lambda x: x * factor, lambda x: x / factor))
-    secondary.set_ylabel(label)
+        return None  # the scene has not the part that gives this scale
 
 
 def _parameters(run) -> dict:

@@ -21,6 +21,7 @@ Format 2 (the contract's names; see README), one layout for one run or a million
 from __future__ import annotations
 
 import datetime as _dt
+import functools
 import json
 import platform
 from dataclasses import dataclass
@@ -36,12 +37,16 @@ _TEXT = h5py.string_dtype()
 
 
 def provenance() -> dict[str, str]:
+    return {"created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"), **_versions()}
+
+
+@functools.lru_cache(maxsize=1)
+def _versions() -> dict[str, str]:
+    """Python's and the packages' versions: read once a process (each costs a scan of the installed packages,
+    which ``hoistsim watch`` would pay at every save)."""
     from importlib.metadata import PackageNotFoundError, version
 
-    info = {
-        "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
-        "python_version": platform.python_version(),
-    }
+    info = {"python_version": platform.python_version()}
     for package in ("hoistsim", "jax", "diffrax", "numpy", "h5py"):
         try:
             info[f"{package}_version"] = version(package)
@@ -219,12 +224,14 @@ class Assembly:
         self.f, self.layout = f, layout
         self.count = len(layout.labels)
         self.instants = 0
+        self.scales: dict[str, h5py.Dataset] = {}  # run, time: held, not looked up by name for every column
+        self.columns: dict[str, h5py.Dataset] = {}
 
     def build(self, records) -> None:
         f, layout = self.f, self.layout
         _start_file(f, layout.summary_only)
         group = f.create_group("runs")
-        run = _scale(group, "run", np.arange(self.count), "1", "run index, in sweep order")
+        run = self.scales["run"] = _scale(group, "run", np.arange(self.count), "1", "run index, in sweep order")
         labels = _variable(group, "label", None, "1", "the run's swept values (or the scenario's name)", (run,),
                            shape=(self.count,), dtype=_TEXT)
         for start in range(0, self.count, LABEL_SLICE):  # a slice at a time: a million never all at once
@@ -234,7 +241,8 @@ class Assembly:
         for key, values in layout.parameters.items():
             _variable(group, key, np.asarray(values, dtype=float), key_units(key), f"swept: {key} (SI)", (run,))
         if layout.time is not None:
-            _scale(group, "time", layout.time, "s", "time since the start (the output grid; exact instants are in events)")
+            self.scales["time"] = _scale(group, "time", layout.time, "s",
+                                         "time since the start (the output grid; exact instants are in events)")
         units = _summary_units(layout.scenario)
         columns = None
         for record in records:  # open HDF5 groups, one at a time
@@ -248,36 +256,42 @@ class Assembly:
         group.attrs["solver"], group.attrs["rtol"], group.attrs["atol"] = sim.solver, sim.rtol, sim.atol
         _write_scenario(f, layout.scenario, layout.command)
 
-    def _column(self, group, name, dtype, units, text="", time_axis=False, rows=1):
-        if name in group:
-            return group[name]
-        shape = (self.count, group["time"].shape[0]) if time_axis else (self.count,)
+    def _put(self, group, name, values, rows, units, text="", time_axis=False) -> None:
+        """A record's values of one column into its rows of the file, the column made at its first record."""
+        if name in self.columns:
+            self.columns[name][rows] = values
+            return
+        whole = rows == slice(0, self.count)  # one record holds every run: the column is written as it is made
+        shape = (self.count, self.scales["time"].shape[0]) if time_axis else (self.count,)
         options = {}
         if time_axis:  # an HDF5 chunk a record: each is written once, never read back and rewritten
-            options = dict(chunks=(min(self.count, rows), shape[1]), compression="gzip", compression_opts=1,
+            options = dict(chunks=(min(self.count, len(values)), shape[1]), compression="gzip", compression_opts=1,
                            shuffle=True)
-        data = group.create_dataset(name, shape=shape, dtype=dtype,
-                                    fillvalue=np.nan if np.dtype(dtype).kind == "f" else 0, **options)
+        data = group.create_dataset(name, shape=shape, dtype=values.dtype, data=values if whole else None,
+                                    fillvalue=np.nan if values.dtype.kind == "f" else 0, **options)
         data.attrs["units"] = units
         if text:
             data.attrs["long_name"] = text
-        data.dims[0].attach_scale(group["run"])
+        data.dims[0].attach_scale(self.scales["run"])
         if time_axis:
-            data.dims[1].attach_scale(group["time"])
-        return data
+            data.dims[1].attach_scale(self.scales["time"])
+        self.columns[name] = data
+        if not whole:
+            data[rows] = values
 
     def _record(self, group, record, units) -> None:
         indices = record["indices"][()]
         contiguous = indices[-1] - indices[0] + 1 == len(indices)
         rows = slice(int(indices[0]), int(indices[-1]) + 1) if contiguous else indices
-        for key, item in record["values"].items():
-            self._column(group, key, item.dtype, units.get(key, ""))[rows] = item[()]
+        summaries = record["values"]
+        for key, item in summaries.items():
+            self._put(group, key, item[()], rows, units.get(key, ""))
         for key, item in record.get("extras", {}).items():
-            if key not in record["values"]:  # the residuals are summary values already
-                self._column(group, key, item.dtype, str(item.attrs["units"]))[rows] = item[()]
+            if key not in summaries:  # the residuals are summary values already
+                self._put(group, key, item[()], rows, str(item.attrs["units"]))
         for name, item in record.get("series", {}).items():
-            self._column(group, name, item.dtype, str(item.attrs["units"]), str(item.attrs["long_name"]),
-                         time_axis=True, rows=len(indices))[rows] = item[()]
+            self._put(group, name, item[()], rows, str(item.attrs["units"]), str(item.attrs["long_name"]),
+                      time_axis=True)
         if "instants" in record:
             self._instants(group, record, indices)
         for key, part in record.get("periodic", {}).items():
@@ -291,26 +305,28 @@ class Assembly:
             item = record[f"instants/{name}"]
             columns[name] = item.asstr()[()].astype(object) if name in _TEXT_COLUMNS else item[()]
         columns.update({name: item[()] for name, item in record["after"].items()})
-        if "event" not in events:
-            scale = events.create_dataset("event", shape=(0,), maxshape=(None,), dtype=np.int64, chunks=(4096,))
-            scale.attrs["units"] = "1"
-            scale.attrs["long_name"] = "instant index, runs in order"
-            scale.make_scale("event")
-            texts = {"run": ("1", "the run it belongs to"), **_INSTANT_COLUMNS}
-            for name, values in columns.items():
-                units, text = texts[name] if name in texts else (str(group[name].attrs["units"]),
-                                                                 "value just after the instant")
-                data = events.create_dataset(name, shape=(0,), maxshape=(None,), chunks=(4096,),
-                                             dtype=_TEXT if name in _TEXT_COLUMNS else values.dtype)
-                data.attrs["units"] = units
-                data.attrs["long_name"] = text
-                data.dims[0].attach_scale(scale)
         added, start = int(counts.sum()), self.instants
-        for name, values in {"event": np.arange(start, start + added), **columns}.items():
-            data = events[name]
-            data.resize((start + added,))
-            data[start:] = values
         self.instants += added
+        if "event" in events:  # appended to the rows of the records before
+            for name, values in {"event": np.arange(start, start + added), **columns}.items():
+                data = events[name]
+                data.resize((start + added,))
+                data[start:] = values
+            return
+        # the first record makes the columns, with its rows in them
+        scale = events.create_dataset("event", data=np.arange(added, dtype=np.int64), maxshape=(None,), chunks=(4096,))
+        scale.attrs["units"] = "1"
+        scale.attrs["long_name"] = "instant index, runs in order"
+        scale.make_scale("event")
+        texts = {"run": ("1", "the run it belongs to"), **_INSTANT_COLUMNS}
+        for name, values in columns.items():
+            units, text = texts[name] if name in texts else (str(self.columns[name].attrs["units"]),
+                                                             "value just after the instant")
+            data = events.create_dataset(name, data=values, maxshape=(None,), chunks=(4096,),
+                                         dtype=_TEXT if name in _TEXT_COLUMNS else values.dtype)
+            data.attrs["units"] = units
+            data.attrs["long_name"] = text
+            data.dims[0].attach_scale(scale)
 
 
 # Summary columns the host adds to the elements' own (which declare their units).

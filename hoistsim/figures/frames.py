@@ -1,0 +1,118 @@
+"""A figure's frame: its panels, their ticks and right-hand scales, kept between runs by ``hoistsim watch``.
+
+Making a figure of six panels builds some hundred tick objects (each two
+lines and two texts) and a secondary axis per right-hand scale before a curve
+is drawn: about a third of the time from a save to its figure.  A run of the
+same scene needs the same frame, so :class:`KeptFrames` keeps the last one and
+hands it back emptied of what a run drew on it (its curves, shading, events,
+legends), which matplotlib supports artist by artist (``Artist.remove``).
+The figure comes out the same, pixel for pixel, as one drawn afresh
+(tests/test_figures.py).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+
+# A figure's dots per inch, as saved.  Made at this resolution, the figure is laid out (its texts measured)
+# by the renderer that then draws it, and each text's size is measured once, not again at another scale.
+DPI = 150
+
+
+@dataclass(frozen=True)
+class FrameSpec:
+    """What fixes a frame: the panels' height ratios, the figure's size, its layout, and each panel's
+    right-hand scale (its label, or None)."""
+
+    heights: tuple[float, ...]
+    figsize: tuple[float, float]
+    layout: str | None
+    right: tuple[str | None, ...]
+
+
+class RightScale:
+    """A panel's right-hand scale: the panel's values times ``factor`` (set by each run, read at each draw)."""
+
+    def __init__(self, factor: float = 1.0):
+        self.factor = factor
+
+    def forward(self, values):
+        return values * self.factor
+
+    def inverse(self, values):
+        return values / self.factor
+
+
+@dataclass
+class Frame:
+    fig: object
+    axes: list
+    right: list  # a RightScale per panel, or None
+    _bare: dict = field(default_factory=dict)  # each panel's and the figure's own artists, before a run drew
+
+    def empty(self) -> None:
+        """Take away what a run drew, and let the panels scale to the next run's data."""
+        from matplotlib.transforms import Bbox
+
+        for holder, bare in self._bare.items():
+            for artist in list(holder.get_children()):
+                if artist not in bare:
+                    artist.remove()
+        for ax in self.axes:
+            ax.dataLim.set_points(Bbox.null().get_points())
+            ax.ignore_existing_data_limits = True
+            ax.set_autoscale_on(True)
+
+
+def new_frame(plt, spec: FrameSpec) -> Frame:
+    fig, axes = plt.subplots(len(spec.heights), 1, sharex=True, squeeze=False, layout=spec.layout,
+                             figsize=spec.figsize, height_ratios=list(spec.heights), dpi=DPI)
+    axes = list(axes[:, 0])
+    right = []
+    for ax, label in zip(axes, spec.right):
+        if label is None:
+            right.append(None)
+            continue
+        scale = RightScale()
+        ax.secondary_yaxis("right", functions=(scale.forward, scale.inverse)).set_ylabel(label)
+        right.append(scale)
+    frame = Frame(fig, axes, right)
+    frame._bare = {holder: set(holder.get_children()) for holder in (fig, *axes)}
+    return frame
+
+
+class FreshFrames:
+    """A new frame for every figure, closed once it is saved (``hoistsim plot``, ``hoistsim run --plot``)."""
+
+    def frame(self, plt, spec: FrameSpec) -> Frame:
+        return new_frame(plt, spec)
+
+    def done(self, plt, fig) -> None:
+        plt.close(fig)
+
+
+class KeptFrames(FreshFrames):
+    """The last frame of one run or a few kept for the next figure of the same spec (``hoistsim watch``).
+
+    A family of runs is laid out by matplotlib's constrained layout around its colour bar: always afresh.
+    """
+
+    def __init__(self):
+        self._spec: FrameSpec | None = None
+        self._frame: Frame | None = None
+
+    def frame(self, plt, spec: FrameSpec) -> Frame:
+        if spec.layout is not None:
+            return new_frame(plt, spec)
+        if spec == self._spec and self._frame is not None:
+            self._frame.empty()
+            return self._frame
+        if self._frame is not None:
+            plt.close(self._frame.fig)
+        self._spec, self._frame = spec, new_frame(plt, spec)
+        return self._frame
+
+    def done(self, plt, fig) -> None:
+        if self._frame is None or fig is not self._frame.fig:
+            plt.close(fig)
