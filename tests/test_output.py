@@ -110,6 +110,34 @@ def test_reading_back_gives_the_run_as_simulated(written, braked_run):
         np.testing.assert_array_equal(back[name], braked_run[name])
 
 
+def test_runs_in_memory_read_as_their_file_does(braked_run, tmp_path):
+    """What `watch` draws from while the file is written: the rows, the instants and the summary, value for
+    value and type for type, as reading the file back gives them."""
+    from hoistsim.results.reading import read_runs
+    from hoistsim.results.run_dicts import run_dicts
+
+    path = tmp_path / "two.h5"
+    write_runs(path, [braked_run, braked_run])
+    for columns in (None, {"motor_speed", "clutch_mode", "brake_torque"}):
+        from_file, in_memory = read_runs(path, columns=columns), run_dicts([braked_run, braked_run], columns=columns)
+        assert len(from_file) == len(in_memory) == 2
+        for back, made in zip(from_file, in_memory):
+            assert set(back) == set(made)
+            for name in set(back) - {"events", "attrs"}:
+                assert back[name].dtype == made[name].dtype, name
+                np.testing.assert_array_equal(back[name], made[name], err_msg=name)
+            assert back["events"].dtype == made["events"].dtype and len(back["events"]) >= 3
+            for field in back["events"].dtype.names:
+                if back["events"].dtype[field].kind == "f":
+                    np.testing.assert_array_equal(back["events"][field], made["events"][field], err_msg=field)
+                else:
+                    assert list(back["events"][field]) == list(made["events"][field]), field
+            assert set(back["attrs"]) == set(made["attrs"])
+            for key, value in back["attrs"].items():
+                assert type(made["attrs"][key]) is type(value), key
+                assert made["attrs"][key] == value or (value != value and made["attrs"][key] != made["attrs"][key]), key
+
+
 @pytest.mark.slow
 def test_sweep_of_runs_and_summary(tmp_path):
     runs = [simulate(scene(force=f"{f} N", duration="0.5 s"), label=f"clutch.engagement_force={f} N")

@@ -11,6 +11,7 @@ import time
 from pathlib import Path
 
 import h5py
+import numpy as np
 import pytest
 
 from hoistsim import _jax
@@ -69,6 +70,46 @@ def test_a_new_value_reruns_without_compiling_and_a_bad_edit_keeps_the_last_resu
     scenario.write_text(_force(SHORT, 2600).replace("solver: tsit5", "solver: dopri5"), encoding="utf-8")
     assert watched.run()  # another solver: another structure, compiled once
     assert len(compiled) == 2
+    watched.close()
+
+
+def _pixels(path):
+    from PIL import Image
+
+    return np.asarray(Image.open(path), dtype=int)
+
+
+def test_the_figure_drawn_beside_the_file_is_the_one_the_file_draws(tmp_path):
+    """The figure is drawn from the run while the results file is written: pixel for pixel what
+    `hoistsim plot` draws from that file, at each save; with no -o, no results file is written at all."""
+    from hoistsim.figures.files import plot_file
+
+    scenario, output, figure = tmp_path / "scene.yaml", tmp_path / "scene.h5", tmp_path / "scene.png"
+    watched = Watch(scenario, output=output, figure=figure, echo=lambda line: None)
+    for force in (3200, 2600):  # locks; slips and runs back
+        scenario.write_text(_force(SHORT, force), encoding="utf-8")
+        assert watched.run()
+        plot_file(output, tmp_path / "plotted.png")
+        assert np.array_equal(_pixels(figure), _pixels(tmp_path / "plotted.png")), force
+    watched.close()
+    alone = Watch(scenario, figure=tmp_path / "alone.png", echo=lambda line: None)
+    assert alone.run()
+    assert np.array_equal(_pixels(tmp_path / "alone.png"), _pixels(figure))
+    assert alone._scratch is None and sorted(p.name for p in tmp_path.iterdir()) == [
+        "alone.png", "plotted.png", "scene.h5", "scene.png", "scene.yaml"]
+    alone.close()
+
+
+@pytest.mark.slow
+def test_a_periodic_regime_is_drawn_from_its_file(tmp_path):
+    """The periodic regime's figures are made from its file: watch writes one aside and draws both."""
+    scenario, figure = tmp_path / "ripple.yaml", tmp_path / "ripple.png"
+    scenario.write_text((ROOT / "scenarios" / "motor_ripple_tredgold.yaml").read_text(encoding="utf-8"),
+                        encoding="utf-8")
+    watched = Watch(scenario, figure=figure, echo=lambda line: None)
+    assert watched.run()
+    assert figure.exists() and (tmp_path / "ripple_periodic.png").exists()
+    assert (Path(watched._scratch.name) / "results.h5").exists()
     watched.close()
 
 

@@ -66,6 +66,42 @@ def plot_file(path, output, *, frames=None, png_compression: int = 6) -> list[st
     return written
 
 
+def draw_runs_figure(runs, output, *, frames=None, png_compression: int = 6):
+    """The figure of ``runs`` (dicts as :func:`.reading.read_runs` gives, one run or a few) drawn now, and
+    written to ``output`` (PNG) by a thread, started and returned: join it before the next figure.
+
+    What ``hoistsim watch`` uses to draw a run while its results file is written: the PNG's compression,
+    a tenth of the figure's time, runs beside the file's writing (zlib lets go of Python's lock).  The
+    file is the one :func:`plot_file` writes (same pixels, same metadata; tests/test_watch.py).
+    """
+    import threading
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.image
+    import matplotlib.pyplot as plt
+
+    from .frames import FreshFrames
+    from .runs import runs_figure
+
+    frames = frames or FreshFrames()
+    fig = runs_figure(runs, plt, ("run", np.arange(len(runs), dtype=float), ""), frames)
+    fig.canvas.draw()
+    pixels = fig.canvas.buffer_rgba()
+    target = Path(output)
+
+    def write():
+        with atomic_path(target) as partial:
+            matplotlib.image.imsave(partial, pixels, format="png", origin="upper", dpi=fig.dpi,
+                                    pil_kwargs={"compress_level": png_compression})
+        frames.done(plt, fig)
+
+    writing = threading.Thread(target=write, name="hoistsim-figure")
+    writing.start()
+    return writing
+
+
 class _Read:
     """The columns the run figure reads: those the elements' panels, marks and shading name, and those a
     part named by the user claims (``reads``); the rest of a file is not loaded."""

@@ -161,12 +161,10 @@ def write_record(f: h5py.Group, indices, outcomes, *, summary_only: bool, time, 
     """Runs at ``indices`` (RunResults, or their :class:`hoistsim.results.run_result.Summaries` when summary-only) as a
     record for :func:`assemble`."""
     f["indices"] = np.asarray(list(indices), dtype=np.int64)
-    summaries = (outcomes if summary_only else Summaries.from_rows([o.summary for o in outcomes])).columns
-    columns = [k for k in summaries if k != "label"]
-    f.attrs["columns"] = json.dumps(columns)
-    for key in columns:  # floats, else integers (a yes/no too)
-        values = np.asarray(summaries[key])
-        f[f"values/{key}"] = values.astype("f8" if values.dtype.kind == "f" else "i8")
+    summaries = summary_values(outcomes if summary_only else Summaries.from_rows([o.summary for o in outcomes]))
+    f.attrs["columns"] = json.dumps(list(summaries))
+    for key, values in summaries.items():
+        f[f"values/{key}"] = values
     if summary_only:
         return
     runs = outcomes
@@ -194,6 +192,17 @@ def write_record(f: h5py.Group, indices, outcomes, *, summary_only: bool, time, 
             write_periods(group.create_group("periods"), run.periodic.regime)
             if run.periodic.diagram is not None:
                 write_diagram(group.create_group("turning_moment"), run.periodic.diagram)
+
+
+def summary_values(summaries: Summaries) -> dict[str, np.ndarray]:
+    """The runs' summary values as the file keeps them, a column a value: floats, else integers (a yes/no
+    too); the label apart."""
+    columns = {}
+    for key, values in summaries.columns.items():
+        if key != "label":
+            values = np.asarray(values)
+            columns[key] = values.astype("f8" if values.dtype.kind == "f" else "i8")
+    return columns
 
 
 @dataclass

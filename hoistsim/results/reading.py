@@ -56,18 +56,9 @@ def read_runs(path, columns=None, attributes=None) -> list[dict]:
         for i in range(group["run"].shape[0]):
             on_grid = np.isfinite(rows[i]) if rows is not None else np.ones(time.size, bool)
             mine = owner == i
-            times = np.concatenate([time[on_grid], instants["time"][mine]])
-            order = np.argsort(times, kind="stable")
-            sorted_times = times[order]
-            keep = np.append(sorted_times[1:] != sorted_times[:-1], True)  # an instant on a grid time: its row
-            run = {name: np.concatenate([data[name][i][on_grid], after[name][mine]])[order][keep] for name in wanted}
-            run["time"] = sorted_times[keep]
-            table = np.zeros(int(mine.sum()), dtype=[("time", "f8"), ("kind", object), ("element", object),
-                                                     ("torque_margin", "f8"), ("mode_after", object),
-                                                     ("category", object)])
-            for name in table.dtype.names:
-                table[name] = instants[name][mine]
-            run["events"] = table
+            run = merged_rows(time[on_grid], {name: data[name][i][on_grid] for name in wanted},
+                              instants["time"][mine], {name: after[name][mine] for name in wanted})
+            run["events"] = events_table({name: values[mine] for name, values in instants.items()})
             keys = summary if i == 0 or attributes is None else [k for k in attributes if k in summary]
             run["attrs"] = {**base, **{k: summary[k][i] for k in keys}}
             if f"periodic/{i}" in f:
@@ -76,6 +67,31 @@ def read_runs(path, columns=None, attributes=None) -> list[dict]:
                     run[name]["attrs"] = dict(part.attrs)
             runs.append(run)
     return runs
+
+
+def merged_rows(grid_time, on_grid: dict, instant_time, after: dict) -> dict[str, np.ndarray]:
+    """A run's series on its output grid with the state just after each exact instant put in, in time order
+    (an instant on a grid time: its row), and ``time``."""
+    times = np.concatenate([grid_time, instant_time])
+    order = np.argsort(times, kind="stable")
+    sorted_times = times[order]
+    keep = np.append(sorted_times[1:] != sorted_times[:-1], True)
+    run = {name: np.concatenate([on_grid[name], after[name]])[order][keep] for name in on_grid}
+    run["time"] = sorted_times[keep]
+    return run
+
+
+_EVENT_FIELDS = [("time", "f8"), ("kind", object), ("element", object), ("torque_margin", "f8"),
+                 ("mode_after", object), ("category", object)]
+
+
+def events_table(instants: dict) -> np.ndarray:
+    """A run's instants as one table (a row an instant): time, kind, element, torque_margin, mode_after,
+    category."""
+    table = np.zeros(len(instants["time"]), dtype=_EVENT_FIELDS)
+    for name in table.dtype.names:
+        table[name] = instants[name]
+    return table
 
 
 def _run_variables(group: h5py.Group) -> dict[str, np.ndarray]:
