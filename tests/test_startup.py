@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import ast
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -71,14 +72,39 @@ def test_importing_a_module_of_the_core_alone_gives_float64():
     assert done.stdout.split() == ["float64", "True"]
 
 
-def test_help_and_compare_import_no_jax_and_check_no_solver_library(tmp_path):
+def test_help_and_compare_import_no_jax_and_check_no_solver_library(tmp_path, monkeypatch):
     """`check` prints the reduced model worked out by the machine's own elements (JAX code), but never
-    the solver library, figures or the cluster."""
+    the solver library, figures or the cluster; pint only where a unit is new to the cache folder."""
+    monkeypatch.setenv("HOISTSIM_CACHE_DIR", str(tmp_path / "cache"))
     assert _loaded(["--help"], tmp_path) == (0, [])
     status, loaded = _loaded(["compare", tmp_path / "absent.h5"], tmp_path)
     assert status == 2 and loaded == []
     status, loaded = _loaded(["check", SCENARIO], tmp_path)
     assert status == 0 and loaded == ["jax", "pint"]
+    status, loaded = _loaded(["check", SCENARIO], tmp_path)  # every unit of it read before
+    assert status == 0 and loaded == ["jax"]
+
+
+def test_units_read_before_are_read_without_pint_and_to_the_same_bits(tmp_path):
+    """The factors kept on disk are pint's own: a scenario read again in a new process gives the same
+    numbers to the bit; a factors file that cannot be read is read again by pint."""
+    program = ("import json, sys; from hoistsim.scenario.loading import load_scenario; "
+               f"s = load_scenario({str(SCENARIO)!r}, overrides=['clutch.engagement_force=3.3 kN']); "
+               "print(json.dumps([s.resolved(), 'pint' in sys.modules]))")
+    env = dict(os.environ, HOISTSIM_CACHE_DIR=str(tmp_path / "cache"))
+
+    def read():
+        done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True, cwd=ROOT, env=env,
+                              check=True)
+        return json.loads(done.stdout)
+
+    first, again = read(), read()
+    assert first[1] and not again[1] and first[0] == again[0]
+    assert again[0]["clutch"]["engagement_force"]["forces"] == [3300.0]
+    (stored,) = (tmp_path / "cache" / "units").glob("factors-*.json")
+    stored.write_text("{not json", encoding="utf-8")
+    broken = read()
+    assert broken[1] and broken[0] == first[0]
 
 
 @pytest.mark.slow
@@ -90,4 +116,4 @@ def test_a_warm_run_loads_its_program_and_imports_no_figures_no_cluster_no_solve
     assert status == 0 and "diffrax" in first  # the first compiled it
     status, warm = _loaded(args, tmp_path)
     assert status == 0
-    assert warm == ["jax", "pint"]
+    assert warm == ["jax"]  # its units too were read before
