@@ -19,19 +19,17 @@ quantities are :mod:`.tables`').  Every problem is a :class:`UnitError` (a
 
 from __future__ import annotations
 
-import json
 import math
-import os
 import re
 import sys
 from dataclasses import dataclass
 from functools import lru_cache
-from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any, get_args
 
 from pydantic import BeforeValidator
 
 from ..cache_folders import cache_folder
+from .unit_factors import known_factors
 
 if TYPE_CHECKING:
     import pint
@@ -175,8 +173,8 @@ _NUMBER_UNIT = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A
 def _unit_factor(unit: str, dimension: Dimension) -> float | None:
     """What one ``unit`` is in the SI unit of ``dimension``; None where pint must read the whole text
     (a unit of another dimension, an unknown one, one with an offset).  Kept on disk once pint has said."""
-    known = _known_factors()
-    key = known.key(unit, dimension)
+    known = known_factors()
+    key = known.key(unit, dimension.si_unit, dimension.radians)
     if key in known.factors:
         return known.factors[key]
     try:
@@ -188,65 +186,6 @@ def _unit_factor(unit: str, dimension: Dimension) -> float | None:
         return None
     known.learn(key, one)
     return one
-
-
-class KnownFactors:
-    """Each unit's SI factor as pint worked it out in an earlier process, kept in the cache folder.
-
-    Importing pint and building its registry is some 0.15 s of a command's start (more than reading
-    the rest of the scenario); a scenario whose units were all read before is read without pint.  The
-    file is named by what decides the factors: pint's installed files and this module's source (the
-    registry is defined here), so a new pint or an edit here starts a new file.  It is rewritten whole
-    (a temporary file renamed): two processes learning at once lose at most a factor, read again later.
-    """
-
-    def __init__(self, folder: str | None):
-        self.path = None
-        self.factors: dict[str, float] = {}
-        if folder is None:
-            return
-        self.path = os.path.join(folder, f"factors-{_factors_origin()}.json")
-        try:
-            with open(self.path, encoding="utf-8") as file:
-                read = json.load(file)
-            self.factors = {k: float(v) for k, v in read.items() if isinstance(v, (int, float))}
-        except (OSError, ValueError, AttributeError):  # none yet, or unreadable: pint reads again
-            self.factors = {}
-
-    @staticmethod
-    def key(unit: str, dimension: Dimension) -> str:
-        return f"{unit} as {dimension.si_unit or '1'} (rad^{dimension.radians})"
-
-    def learn(self, key: str, factor: float) -> None:
-        self.factors[key] = factor
-        if self.path is None:
-            return
-        try:
-            partial = f"{self.path}.{os.getpid()}.partial"
-            with open(partial, "w", encoding="utf-8") as file:
-                json.dump(self.factors, file, sort_keys=True)
-            os.replace(partial, self.path)
-        except OSError:  # a read-only cache: learnt for this process only
-            pass
-
-
-@lru_cache(maxsize=1)
-def _known_factors() -> KnownFactors:
-    return KnownFactors(cache_folder("units"))
-
-
-def _factors_origin() -> str:
-    """A digest of what the factors come from: pint's files as installed, and this module."""
-    import hashlib
-    from importlib.util import find_spec
-
-    digest = hashlib.sha256(Path(__file__).read_bytes())
-    spec = find_spec("pint")
-    if spec is not None and spec.origin:
-        for path in sorted(Path(spec.origin).parent.glob("*.txt")) + [Path(spec.origin)]:  # its definitions
-            stat = path.stat()
-            digest.update(f"{path.name} {stat.st_size} {stat.st_mtime_ns}".encode())
-    return digest.hexdigest()[:16]
 
 
 def _to_si(value: object, dimension: Dimension) -> float:
