@@ -162,11 +162,13 @@ def executable(program, *args, name: str, devices: int = 1):
     Python loop (~0.5 s), which has to happen to find the cache key; a
     serialised executable skips both.  The key covers everything the program
     depends on: the package's source (:func:`source_digest`), the versions of
-    the libraries that trace it, the backend, the function's name and the
-    arguments' structure, shapes and dtypes.
+    the libraries that trace it, the backend, XLA's flags (a program built with
+    other flags is another program), the function's name and the arguments'
+    structure, shapes and dtypes.
     """
     leaves, treedef = jax.tree.flatten(args)
-    signature = repr((name, _program_origin(), jax.default_backend(), devices, str(treedef),
+    signature = repr((name, _program_origin(), jax.default_backend(), os.environ.get("XLA_FLAGS", ""), devices,
+                      str(treedef),
                       [(getattr(x, "shape", ()), str(getattr(x, "dtype", type(x)))) for x in leaves]))
     key = hashlib.sha256(signature.encode()).hexdigest()
     held = programs.get(key)

@@ -83,3 +83,15 @@ def test_a_watch_that_meets_more_structures_than_it_may_hold_answers_each_as_the
         assert len(_jax.programs) == 1
     assert _jax.programs.let_go == 2
     assert said[0].split(": ", 1)[1].rsplit(" (", 1)[0] == said[2].split(": ", 1)[1].rsplit(" (", 1)[0]
+
+
+def test_a_program_stored_under_other_xla_flags_is_not_served(pool, monkeypatch, tmp_path):
+    """XLA's flags are part of a stored program's key: a process started with other flags builds its own."""
+    monkeypatch.setattr(_jax, "_executables", str(tmp_path))
+    x = jnp.arange(3.0)
+    _jax.executable(_program(2), x, name="square")
+    assert len(list(tmp_path.glob("*.bin"))) == 1
+    monkeypatch.setenv("XLA_FLAGS", _jax.os.environ.get("XLA_FLAGS", "") + " --xla_cpu_enable_fast_math=false")
+    monkeypatch.setattr(_jax, "programs", ProgramPool())
+    assert float(_jax.executable(_program(2), x, name="square")(x)) == 5.0
+    assert len(list(tmp_path.glob("*.bin"))) == 2  # compiled and stored under its own key
