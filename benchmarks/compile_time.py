@@ -18,6 +18,8 @@ import sys
 import tempfile
 from pathlib import Path
 
+from trees import trees
+
 ROOT = Path(__file__).resolve().parents[1]
 EVERY_ELEMENT = ["brake.static_torque=3000 N*m", "brake.kinetic_torque=2000 N*m", "gears.efficiency=0.95",
                  "gears.backdrive_efficiency=0.9"]
@@ -57,22 +59,12 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--against", default=None, help="a commit to measure beside this tree")
     options = parser.parse_args()
-    roots = {"now": ROOT}
-    with tempfile.TemporaryDirectory() as folder:
-        if options.against:
-            other = Path(folder) / "against"
-            subprocess.run(["git", "worktree", "add", "--detach", str(other), options.against], cwd=ROOT,
-                           check=True, capture_output=True)
-            roots = {options.against: other, "now": ROOT}
-        try:
-            times = {(scene, label): [] for scene in SCENES for label in roots}
-            for _ in range(options.repeats):
-                for scene, spec in SCENES.items():
-                    for label, root in roots.items():
-                        times[(scene, label)].append(compile_seconds(root, spec))
-        finally:
-            if options.against:
-                subprocess.run(["git", "worktree", "remove", "--force", str(other)], cwd=ROOT, capture_output=True)
+    with tempfile.TemporaryDirectory() as folder, trees(folder, options.against) as roots:
+        times = {(scene, label): [] for scene in SCENES for label in roots}
+        for _ in range(options.repeats):
+            for scene, spec in SCENES.items():
+                for label, root in roots.items():
+                    times[(scene, label)].append(compile_seconds(root, spec))
     labels = list(roots)
     width = max(len(s) for s in SCENES)
     print(f"{'scene':<{width}}  " + "  ".join(f"{label + ' [s]':>14}" for label in labels))

@@ -20,6 +20,8 @@ import sys
 import tempfile
 from pathlib import Path
 
+from trees import trees
+
 ROOT = Path(__file__).resolve().parents[1]
 
 # run in each tree: its own plot_file (hoistsim.plotting before the package had a folder per layer)
@@ -55,23 +57,14 @@ def main() -> None:
         env = dict(os.environ, HOISTSIM_CACHE_DIR=str(folder / "cache"), PYTHONPATH=str(ROOT))
         subprocess.run([sys.executable, "-m", "hoistsim.cli", "run", str(ROOT / "scenarios" / options.scenario),
                         "-o", str(results)], check=True, capture_output=True, env=env, cwd=ROOT)
-        roots = {"now": ROOT}
-        if options.against:
-            other = folder / "against"
-            subprocess.run(["git", "worktree", "add", "--detach", str(other), options.against], cwd=ROOT,
-                           check=True, capture_output=True)
-            roots = {options.against: other, "now": ROOT}
-        medians = {label: [] for label in roots}
-        try:
+        with trees(folder, options.against) as roots:
+            medians = {label: [] for label in roots}
             for _ in range(options.rounds):
                 for label, root in roots.items():
                     done = subprocess.run(
                         [sys.executable, "-c", DRAW, str(results), str(folder / f"{label}.png"), str(options.draws)],
                         check=True, capture_output=True, text=True, cwd=root, env=dict(env, PYTHONPATH=str(root)))
                     medians[label].append(float(done.stdout.split()[-1]))
-        finally:
-            if options.against:
-                subprocess.run(["git", "worktree", "remove", "--force", str(other)], cwd=ROOT, capture_output=True)
     print(f"scenario: {options.scenario}; plot_file, median of {options.draws} draws a round, {options.rounds} rounds")
     print(f"{'tree':<10} {'median [s]':>11} {'min [s]':>9} {'max [s]':>9}")
     for label, values in medians.items():

@@ -22,6 +22,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from trees import trees
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -38,33 +40,23 @@ def main() -> None:
     parser.add_argument("--scenario", default="exercise6_direct_start.yaml")
     options = parser.parse_args()
     scenario = str(ROOT / "scenarios" / options.scenario)
-    roots = {"now": ROOT}
-    with tempfile.TemporaryDirectory() as folder:
+    with tempfile.TemporaryDirectory() as folder, trees(folder, options.against) as roots:
         folder = Path(folder)
-        if options.against:
-            other = folder / "against"
-            subprocess.run(["git", "worktree", "add", "--detach", str(other), options.against], cwd=ROOT,
-                           check=True, capture_output=True)
-            roots = {options.against: other, "now": ROOT}
         rows = {}
-        try:
-            jax = [wall([sys.executable, "-c", "import jax"], dict(os.environ), folder)
-                   for _ in range(options.repeats)]
+        jax = [wall([sys.executable, "-c", "import jax"], dict(os.environ), folder)
+               for _ in range(options.repeats)]
+        for label, root in roots.items():
+            env = dict(os.environ, HOISTSIM_CACHE_DIR=str(folder / f"cache-{label}"), PYTHONPATH=str(root))
+            run = [sys.executable, "-m", "hoistsim.cli", "run", scenario, "-o", str(folder / "out.h5")]
+            cold = wall(run, env, root)
+            rows[label] = {"cold": cold, "warm": [], "help": []}
+        for _ in range(options.repeats):  # interleaved: both trees in the same minutes
             for label, root in roots.items():
                 env = dict(os.environ, HOISTSIM_CACHE_DIR=str(folder / f"cache-{label}"), PYTHONPATH=str(root))
                 run = [sys.executable, "-m", "hoistsim.cli", "run", scenario, "-o", str(folder / "out.h5")]
-                cold = wall(run, env, root)
-                rows[label] = {"cold": cold, "warm": [], "help": []}
-            for _ in range(options.repeats):  # interleaved: both trees in the same minutes
-                for label, root in roots.items():
-                    env = dict(os.environ, HOISTSIM_CACHE_DIR=str(folder / f"cache-{label}"), PYTHONPATH=str(root))
-                    run = [sys.executable, "-m", "hoistsim.cli", "run", scenario, "-o", str(folder / "out.h5")]
-                    rows[label]["warm"].append(wall(run, env, root))
-                    rows[label]["help"].append(wall([sys.executable, "-m", "hoistsim.cli", "--help"], env, root))
-                jax.append(wall([sys.executable, "-c", "import jax"], dict(os.environ), folder))
-        finally:
-            if options.against:
-                subprocess.run(["git", "worktree", "remove", "--force", str(other)], cwd=ROOT, capture_output=True)
+                rows[label]["warm"].append(wall(run, env, root))
+                rows[label]["help"].append(wall([sys.executable, "-m", "hoistsim.cli", "--help"], env, root))
+            jax.append(wall([sys.executable, "-c", "import jax"], dict(os.environ), folder))
     floor = statistics.median(jax)
     print(f"scenario: {Path(scenario).name}; python -c 'import jax': {floor:.2f} s (median of {len(jax)})")
     print(f"{'tree':<10} {'--help [s]':>10} {'cold run [s]':>13} {'warm run [s]':>13} {'warm / import jax':>18}")

@@ -23,6 +23,8 @@ import threading
 import time
 from pathlib import Path
 
+from trees import trees
+
 ROOT = Path(__file__).resolve().parents[1]
 KEY = re.compile(r"^(\s*engagement_force:\s*).*$", re.MULTILINE)
 
@@ -87,14 +89,8 @@ def main() -> None:
     options = parser.parse_args()
     text = (ROOT / "scenarios" / options.scenario).read_text(encoding="utf-8")
     assert KEY.search(text), "the scenario needs a clutch.engagement_force line"
-    with tempfile.TemporaryDirectory() as folder:
+    with tempfile.TemporaryDirectory() as folder, trees(folder, options.against) as roots:
         folder = Path(folder)
-        roots = {"now": ROOT}
-        if options.against:
-            other = folder / "against"
-            subprocess.run(["git", "worktree", "add", "--detach", str(other), options.against], cwd=ROOT,
-                           check=True, capture_output=True)
-            roots = {options.against: other, "now": ROOT}
         watches, times = {}, {label: [] for label in roots}
         try:
             for label, root in roots.items():  # one at a time: each compiles its first run
@@ -107,8 +103,6 @@ def main() -> None:
         finally:
             for watched in watches.values():
                 watched.stop()
-            if options.against:
-                subprocess.run(["git", "worktree", "remove", "--force", str(other)], cwd=ROOT, capture_output=True)
     print(f"scenario: {options.scenario}, {options.saves} saves of a new engagement force"
           + (" to each tree, alternating" if options.against else ""))
     for label, pairs in times.items():
