@@ -66,16 +66,14 @@ def plot_file(path, output, *, frames=None, png_compression: int = 6) -> list[st
     return written
 
 
-def draw_runs_figure(runs, output, *, frames=None, png_compression: int = 6):
+def draw_runs_figure(runs, output, *, frames=None, png_compression: int = 6) -> "FigureWriting":
     """The figure of ``runs`` (dicts as :func:`.reading.read_runs` gives, one run or a few) drawn now, and
-    written to ``output`` (PNG) by a thread, started and returned: join it before the next figure.
+    written to ``output`` (PNG) by a thread: :meth:`FigureWriting.join` it before the next figure.
 
     What ``hoistsim watch`` uses to draw a run while its results file is written: the PNG's compression,
     a tenth of the figure's time, runs beside the file's writing (zlib lets go of Python's lock).  The
     file is the one :func:`plot_file` writes (same pixels, same metadata; tests/test_watch.py).
     """
-    import threading
-
     import matplotlib
 
     matplotlib.use("Agg")
@@ -95,11 +93,33 @@ def draw_runs_figure(runs, output, *, frames=None, png_compression: int = 6):
         with atomic_path(target) as partial:
             matplotlib.image.imsave(partial, pixels, format="png", origin="upper", dpi=fig.dpi,
                                     pil_kwargs={"compress_level": png_compression})
-        frames.done(plt, fig)
 
-    writing = threading.Thread(target=write, name="hoistsim-figure")
-    writing.start()
-    return writing
+    return FigureWriting(write, lambda: frames.done(plt, fig))
+
+
+class FigureWriting:
+    """A drawn figure's file being written by a thread; :meth:`join` waits for it, then lets the figure go
+    (on the caller's thread: pyplot is not for two threads) and raises what the writing raised."""
+
+    def __init__(self, write, done):
+        import threading
+
+        self._done, self._failed = done, None
+
+        def run():
+            try:
+                write()
+            except BaseException as exc:  # handed to join: a thread's own exception would go to stderr alone
+                self._failed = exc
+
+        self._thread = threading.Thread(target=run, name="hoistsim-figure")
+        self._thread.start()
+
+    def join(self) -> None:
+        self._thread.join()
+        self._done()
+        if self._failed is not None:
+            raise self._failed
 
 
 class _Read:

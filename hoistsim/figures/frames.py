@@ -12,7 +12,7 @@ The figure comes out the same, pixel for pixel, as one drawn afresh
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 
 # A figure's dots per inch, as saved.  Made at this resolution, the figure is laid out (its texts measured)
@@ -49,19 +49,16 @@ class Frame:
     fig: object
     axes: list
     right: list  # a RightScale per panel, or None
-    _bare: dict = field(default_factory=dict)  # each panel's and the figure's own artists, before a run drew
+    bare: dict  # each panel's and the figure's own artists, before a run drew on them
 
     def empty(self) -> None:
         """Take away what a run drew, and let the panels scale to the next run's data."""
-        from matplotlib.transforms import Bbox
-
-        for holder, bare in self._bare.items():
+        for holder, bare in self.bare.items():
             for artist in list(holder.get_children()):
                 if artist not in bare:
                     artist.remove()
         for ax in self.axes:
-            ax.dataLim.set_points(Bbox.null().get_points())
-            ax.ignore_existing_data_limits = True
+            ax.relim()  # the data limits of what is left: none
             ax.set_autoscale_on(True)
 
 
@@ -77,9 +74,7 @@ def new_frame(plt, spec: FrameSpec) -> Frame:
         scale = RightScale()
         ax.secondary_yaxis("right", functions=(scale.forward, scale.inverse)).set_ylabel(label)
         right.append(scale)
-    frame = Frame(fig, axes, right)
-    frame._bare = {holder: set(holder.get_children()) for holder in (fig, *axes)}
-    return frame
+    return Frame(fig, axes, right, {holder: set(holder.get_children()) for holder in (fig, *axes)})
 
 
 class FreshFrames:
