@@ -52,18 +52,20 @@ def _ask_for_cpu_devices() -> None:
 _ask_for_cpu_devices()
 
 
-def _one_object_per_cpu_program() -> None:
-    """Have XLA build each CPU program as one object, unless the user set the split themselves.
+def _cpu_program_built_on_every_core() -> None:
+    """Have XLA build a CPU program as one LLVM module per core, compiled side by side, unless the user chose.
 
-    XLA compiles a large CPU program as several LLVM modules side by side; a
-    serialised executable keeps only some of their kernels, and loading it in
-    a new process fails at the first call ("Function wrapped_divide.1 not
-    found"), so a stored program could never serve.  One module per program:
-    measured on 2 cores, compiling takes no longer (exercise 6 4.0 -> 3.8 s,
-    every friction element 13.2 -> 12.8 s).  Read when the backend starts, so
-    it counts only if hoistsim is imported before JAX computes anything.
+    A run's program is some hundreds of small kernels; split over the cores,
+    LLVM builds them in parallel.  Measured on 2 cores, fresh processes
+    alternating (``.lower().compile()``): exercise 6 3.8, 4.1 s as one module,
+    3.0, 3.3 s as two; CoupledClutches 15.0, 11.2 s as one, 12.1, 9.2 s as two.
+    (An earlier jaxlib kept only some of the modules' kernels when it serialised
+    such a program, so that a stored program failed to load; a program that
+    fails to load or to run is compiled afresh, see :func:`_falling_back`.)
+    Read when the backend starts, so it counts only if hoistsim is imported
+    before JAX computes anything.
     """
-    _default_xla_flag("xla_cpu_parallel_codegen_split_count", "1")
+    _default_xla_flag("xla_cpu_parallel_codegen_split_count", str(cpu_devices_wanted()))
 
 
 def _legacy_cpu_fusion_emitters() -> None:
@@ -86,7 +88,7 @@ def _default_xla_flag(name: str, value: str) -> None:
         os.environ["XLA_FLAGS"] = (flags + f" --{name}={value}").strip()
 
 
-_one_object_per_cpu_program()
+_cpu_program_built_on_every_core()
 _legacy_cpu_fusion_emitters()
 
 
@@ -216,7 +218,7 @@ def _falling_back(loaded, program, args, key: str, path: str):
     """Call a loaded executable; if XLA cannot run it in this process, forget it and compile ``program()``.
 
     (A process whose JAX started before hoistsim set up XLA cannot run a stored
-    CPU program: see :func:`_one_object_per_cpu_program`; the answer is then
+    CPU program: see :func:`_cpu_program_built_on_every_core`; the answer is then
     computed the usual way.)  The first call is waited for, where such a
     failure shows; later ones return at once, so that a sweep's host work goes
     on while they run.

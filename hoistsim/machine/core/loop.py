@@ -14,7 +14,6 @@ traced input of :class:`Plan`: a new value reuses the compiled loop.
 from __future__ import annotations
 
 import functools
-from functools import cached_property
 
 import diffrax
 import equinox as eqx
@@ -63,9 +62,15 @@ class Args:
     orients: dict  # two-way observations -> +1 or -1: the way each leaves where the pass started
     switches_from: object = None  # s: switch guards held off before this time (None: never; see _step)
 
-    @cached_property
+    def __post_init__(self):
+        # The layout is worked out where the arguments are made, in the trace they belong to: one first
+        # worked out inside another trace (diffrax finds a pass's first step under eval_shape) would keep
+        # that trace's values (a shaft's speed ratio) and leak them into the loop.
+        self.__dict__["layout"] = Layout(self.elements)
+
+    @property
     def layout(self) -> Layout:
-        return Layout(self.elements)
+        return self.__dict__["layout"]
 
 
 class _Carry(eqx.Module):
@@ -144,16 +149,18 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
                                      kinking, anchors, {}))
     args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, unset, kinking, anchors, orients)
     # a guard that ended the last pass starts this one at or below zero (see switching)
-    offsets = {name: jnp.where(c.fired[name], jnp.maximum(g(c.t, c.y, args), 0.0), 0.0)
-               for _, name, g in guards if name in c.fired}
+    unlowered = switching.guard_values(c.t, c.y, args)
+    offsets = {name: jnp.where(c.fired[name], jnp.maximum(unlowered[i], 0.0), 0.0)
+               for i, (_, name, _) in enumerate(guards) if name in c.fired}
     # the pass ends at the segment's end, or where a pass solved again for a limit must stop (see _step)
     end = jnp.where(jnp.isneginf(c.switches_from), segment.end, jnp.minimum(segment.end, c.switches_from))
     pass_args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, offsets, kinking, anchors,
                      args.orients, c.switches_from)
     # The guards other than switches where the pass starts (those above zero are armed).
-    armed = {name: g(c.t, c.y, pass_args) for role, name, g in guards if role != "switch"}
+    starting = switching.guard_values(c.t, c.y, pass_args)
+    armed = {name: starting[i] for i, (role, name, _) in enumerate(guards) if role != "switch"}
     return pass_args, armed, integrate_pass(
-        solver, pass_args, lambda t, y, a: jnp.stack([g(t, y, a) for _, _, g in guards]), c.t, c.y, end,
+        solver, pass_args, switching.guard_values, c.t, c.y, end,
         rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap, grid=plan.grid, grid_state=c.grid_state,
         write_rows=columns, max_steps=MAX_STEPS_PER_SEGMENT)
 
@@ -177,7 +184,8 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     # Likewise a stuck coupling over its capacity at its margin's valley: it broke away within the step.
     end = Instant(layout, t_end, y_end)
     missed = jnp.zeros((), bool)
-    by_name = {name: g for _, name, g in guards}
+    at_end = switching.guard_values(t_end, y_end, pass_args)
+    by_name = {name: at_end[i] for i, (_, name, _) in enumerate(guards)}
     margin_valley, over = jnp.zeros((), bool), jnp.zeros((), bool)
     for k, coupling in enumerate(layout.coupling_elements):
         if coupling.can_slip:
@@ -187,11 +195,9 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
             missed = missed | (masks[f"{name}.slip_valley"] & wrong)
             # (one valley is located where several couplings' margins dip at once: any of them may be over)
             margin_valley = margin_valley | masks[f"{name}.margin_valley"]
-            over = over | (by_name[f"{name}.breakaway+"](t_end, y_end, pass_args) < 0.0) | (
-                by_name[f"{name}.breakaway-"](t_end, y_end, pass_args) < 0.0)
+            over = over | (by_name[f"{name}.breakaway+"] < 0.0) | (by_name[f"{name}.breakaway-"] < 0.0)
     missed = missed | (margin_valley & over)
-    overtaken, limit_overtaken, coinciding = switching.crossed_together(guards, pass_args, t_end, y_end, armed,
-                                                                        masks)
+    overtaken, limit_overtaken, coinciding = switching.crossed_together(guards, at_end, armed, masks)
     # An observation or a limit below zero at the switch located, yet not the crossing found (it crossed and
     # came back within the step, so that only part of the step showed it): the pass is solved again once, only
     # up to that switch's instant and with the switches held off, so that its own root is found; the next

@@ -20,6 +20,7 @@ switches, listed first).
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 
 import diffrax
@@ -27,7 +28,6 @@ import equinox as eqx
 import equinox.internal as eqxi
 import jax
 import jax.numpy as jnp
-import numpy as np
 from diffrax._root_finder import use_stepsize_tol
 
 from .dynamics import vector_field
@@ -52,12 +52,20 @@ class Pass(eqx.Module):
     grid_state: jax.Array  # output rows with times in [start, t) written
 
 
+@functools.lru_cache(maxsize=None)
+def _traced_once(field):
+    """The vector field as a call of its own (a jitted function): a step reads it at each of its stages
+    and a crossing's step again, and the program is traced and lowered with one copy of it instead of one
+    a stage.  (XLA inlines the calls: the compiled program computes the same.)"""
+    return jax.jit(field)
+
+
 class _Stepper:
     """One step of an explicit Runge-Kutta solver, its stages written out from the tableau; any other
     diffrax solver (the implicit ones) through its own ``step``."""
 
     def __init__(self, solver, args, field):
-        self.solver, self.args, self.vector_field = solver, args, field
+        self.solver, self.args, self.vector_field = solver, args, _traced_once(field)
         self.term = diffrax.ODETerm(field)
         tableau = getattr(solver, "tableau", None)
         self.explicit = isinstance(solver, diffrax.AbstractERK) and tableau is not None

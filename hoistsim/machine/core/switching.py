@@ -184,6 +184,18 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
     return switch + limit + observe + valley + kinks
 
 
+@jax.jit
+def guard_values(t, y, args):
+    """Every guard at (t, y), in the order of :func:`guards`: one array.
+
+    A pass reads its guards where it starts, at each step's end, in the
+    bisection and where it stops; traced once as a call of its own (a jitted
+    function), the program is traced and lowered with one copy of them
+    instead of one a place.
+    """
+    return jnp.stack([jnp.asarray(g(t, y, args), dtype=jnp.float64) for _, _, g in guards(args.layout)])
+
+
 def held_off(guard):
     """A switch guard that stays positive up to ``args.switches_from``: a pass solved again, up to that
     instant, to find a limit or an observation that crossed and came back within the step (loop._step)."""
@@ -213,7 +225,7 @@ def orients(layout: Layout, t, y, args) -> dict:
     return out
 
 
-def crossed_together(guards, args, t, y, armed: dict, masks: dict):
+def crossed_together(guards, values, armed: dict, masks: dict):
     """Which guards crossed zero in the same step as the one located at (t, y).
 
     A pass ends at the earliest crossing of the guards that changed sign over a
@@ -227,13 +239,14 @@ def crossed_together(guards, args, t, y, armed: dict, masks: dict):
     an answer, not a row beside one).  Returns (an observation overtaken, a
     limit overtaken, the knots reached and the limits crossed at (t, y) along
     with the located guard: a period that ends on a table's knot is reached; a
-    limit reached as a coupling locks was crossed, there).
+    limit reached as a coupling locks was crossed, there).  ``values``: every
+    guard at (t, y) (:func:`guard_values`).
     """
     overtaken, limit_overtaken, coinciding = jnp.zeros((), bool), jnp.zeros((), bool), {}
-    for role, name, g in guards:
+    for i, (role, name, _) in enumerate(guards):
         if role == "switch":
             continue
-        value = g(t, y, args)
+        value = values[i]
         resolution = {"kink": KNOT_RESOLUTION, "limit": 1e-9 * jnp.abs(armed[name])}.get(
             role, 1e-4 * jnp.abs(armed[name]))
         passed = (armed[name] > 0.0) & ~masks[name] & (value < -resolution)
