@@ -15,6 +15,7 @@ import jax
 
 from .cache_folders import cache_folder, cache_root
 from .program_pool import ProgramPool
+from .stored_programs import ReadAhead, read, store
 
 jax.config.update("jax_enable_x64", True)
 
@@ -97,6 +98,8 @@ programs = ProgramPool()  # the programs this process has compiled or loaded, by
 # Set by the command line: a context manager, given the program's name, that tells the user a
 # compilation is under way (it takes seconds, and the first run of a scene would otherwise sit silent).
 compile_notice = None
+read_ahead = ReadAhead()  # stored programs being read while the host works (see preload)
+_served: list | None = None  # (key, devices) of each program served while serving_recorded() runs
 
 
 def enable_compilation_cache() -> None:
@@ -173,55 +176,62 @@ def executable(program, *args, name: str, devices: int = 1):
                       str(treedef),
                       [(getattr(x, "shape", ()), str(getattr(x, "dtype", type(x)))) for x in leaves]))
     key = hashlib.sha256(signature.encode()).hexdigest()
+    if _served is not None and (key, devices) not in _served:
+        _served.append((key, devices))
     held = programs.get(key)
     if held is not None:
         return held
+    ahead, maps = read_ahead.take(key)
+    if ahead is not None:
+        return programs.make(key, lambda: _falling_back(ahead, program, args, key, _stored_at(key)), maps=maps)
     return programs.make(key, lambda: _load_or_compile(program, args, name, key, devices))
+
+
+def _stored_at(key: str) -> str:
+    return os.path.join(_executables, key + ".bin")
 
 
 def _load_or_compile(program, args, name: str, key: str, devices: int):
     if _executables is not None:
-        import pickle
-
-        from jax.experimental.serialize_executable import deserialize_and_load
-
-        path = os.path.join(_executables, key + ".bin")
         try:
-            with open(path, "rb") as handle:
-                loaded = deserialize_and_load(*pickle.load(handle), execution_devices=jax.devices()[:devices])
-            return _falling_back(loaded, program, args, key, path)
+            return _falling_back(read(_stored_at(key), devices), program, args, key, _stored_at(key))
         except Exception:  # absent, stale or unreadable: compile afresh
             pass
     with compile_notice(name) if compile_notice is not None else contextlib.nullcontext():
         compiled = program().lower(*args).compile()
     if _executables is not None:
-        _store(compiled, os.path.join(_executables, key + ".bin"))
+        store(compiled, _stored_at(key))
     return compiled
 
 
-def _store(compiled, path: str) -> None:
-    import pickle
-    import tempfile
+def preload(wanted) -> None:
+    """Start reading stored programs, (key, devices) each, in a thread (see :mod:`.stored_programs`):
+    the command line has them read while it reads the scenario that asks for them, and
+    :func:`executable` takes one from there when its key comes up."""
+    if _executables is not None:
+        read_ahead.start({key: (_stored_at(key), devices) for key, devices in wanted if programs.get(key) is None})
 
-    from jax.experimental.serialize_executable import serialize
 
+@contextlib.contextmanager
+def serving_recorded():
+    """Within: the (key, devices) of every program served, in order, in the list this yields."""
+    global _served
+    _served = served = []
     try:
-        fd, tmp = tempfile.mkstemp(dir=os.path.dirname(path), suffix=".partial")
-        with os.fdopen(fd, "wb") as handle:
-            pickle.dump(serialize(compiled), handle)
-        os.replace(tmp, path)
-    except Exception:  # a full disk or an executable that cannot be serialised: still run
-        pass
+        yield served
+    finally:
+        _served = None
 
 
 def _falling_back(loaded, program, args, key: str, path: str):
     """Call a loaded executable; if XLA cannot run it in this process, forget it and compile ``program()``.
 
-    (A process whose JAX started before hoistsim set up XLA cannot run a stored
-    CPU program: see :func:`_cpu_program_built_on_every_core`; the answer is then
-    computed the usual way.)  The first call is waited for, where such a
-    failure shows; later ones return at once, so that a sweep's host work goes
-    on while they run.
+    (A stored program that loads and then fails at its first call was seen once,
+    and an older jaxlib wrote such programs: see
+    :func:`_cpu_program_built_on_every_core`; the answer is then computed the
+    usual way.)  The first call is waited for, where such a failure shows;
+    later ones return at once, so that a sweep's host work goes on while they
+    run.
     """
     ran = []
 

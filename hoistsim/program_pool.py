@@ -58,13 +58,16 @@ class ProgramPool:
         self._held.move_to_end(key)
         return self._held[key][0]
 
-    def make(self, key: str, build):
-        """``build()``'s program, held under ``key``, after making room for it."""
+    def make(self, key: str, build, maps: int | None = None):
+        """``build()``'s program, held under ``key``, after making room for it; ``maps``: the memory maps it
+        took where it was made elsewhere (a program loaded beforehand), else counted around ``build``."""
         self.make_room()
         before = memory_maps()
         program = build()
         after = memory_maps()
-        self._held[key] = (program, max(0, after[0] - before[0]) if before and after else 0)
+        if maps is None:
+            maps = max(0, after[0] - before[0]) if before and after else 0
+        self._held[key] = (program, maps)
         return program
 
     def replace(self, key: str, program) -> None:

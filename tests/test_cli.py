@@ -127,7 +127,8 @@ def _short_runback(out, env, cwd, notices=None) -> h5py.File:
 def test_second_run_loads_the_stored_executable(tmp_path):
     """With the cache on, a run stores its compiled loop; the next process loads it and agrees bit for bit.
 
-    The first says on stderr, in one line, that it compiles; the second, loading, says nothing.
+    The first says on stderr, in one line, that it compiles; the second, loading, says nothing.  The first
+    also leaves a hint naming its program, so the second reads it ahead, while it reads the scenario.
     """
     env = dict(os.environ, HOISTSIM_CACHE_DIR=str(tmp_path / "cache"))
     outputs, notices = [], []
@@ -136,6 +137,7 @@ def test_second_run_loads_the_stored_executable(tmp_path):
             outputs.append(f["runs/slip_speed"][0])
     assert notices == [["hoistsim: compiling the solver for this scene's structure (once; later runs load it)"], []]
     assert len(list((tmp_path / "cache" / "executables").glob("*.bin"))) == 1
+    assert len(list((tmp_path / "cache" / "hints").glob("*.json"))) == 1
     # JAX's own cache took the loop too: it refuses programs with host callbacks
     assert list((tmp_path / "cache").glob("jit__run-*"))
     assert (outputs[0] == outputs[1]).all()

@@ -8,7 +8,7 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from hoistsim import _jax, program_pool
+from hoistsim import _jax, program_hints, program_pool, stored_programs
 from hoistsim.program_pool import ProgramPool
 
 
@@ -95,3 +95,45 @@ def test_a_program_stored_under_other_xla_flags_is_not_served(pool, monkeypatch,
     monkeypatch.setattr(_jax, "programs", ProgramPool())
     assert float(_jax.executable(_program(2), x, name="square")(x)) == 5.0
     assert len(list(tmp_path.glob("*.bin"))) == 2  # compiled and stored under its own key
+
+
+def test_a_program_read_ahead_is_served_as_read_without_reading_or_compiling_it_again(pool, monkeypatch, tmp_path):
+    """What `hoistsim run` does where the command ran before: the stored program is read in a thread while
+    the scenario is read, and the call that wants it takes it from there."""
+    monkeypatch.setattr(_jax, "_executables", str(tmp_path))
+    x = jnp.arange(4.0)
+    with _jax.serving_recorded() as served:
+        first = float(_jax.executable(_program(3), x, name="cube")(x))
+    assert len(served) == 1 and len(list(tmp_path.glob("*.bin"))) == 1
+    monkeypatch.setattr(_jax, "programs", ProgramPool())
+    monkeypatch.setattr(_jax, "read_ahead", stored_programs.ReadAhead())
+    _jax.preload(served)
+
+    def never():
+        raise AssertionError("read ahead: neither read again nor compiled")
+
+    monkeypatch.setattr(_jax, "read", lambda *args: never())
+    assert float(_jax.executable(never, x, name="cube")(x)) == first == 36.0
+
+
+def test_a_hint_that_no_longer_fits_leaves_the_program_to_be_made_as_usual(pool, monkeypatch, tmp_path):
+    monkeypatch.setattr(_jax, "_executables", str(tmp_path))
+    monkeypatch.setattr(_jax, "read_ahead", stored_programs.ReadAhead())
+    _jax.preload([("0" * 64, 1)])  # no such program stored
+    x = jnp.arange(4.0)
+    assert float(_jax.executable(_program(2), x, name="square")(x)) == 14.0
+    assert _jax.read_ahead.take("0" * 64) == (None, None)  # read, found wanting, and let go
+
+
+def test_a_command_remembers_the_programs_it_was_served(monkeypatch, tmp_path):
+    monkeypatch.setenv("HOISTSIM_CACHE_DIR", str(tmp_path))
+    hint = program_hints.command_hint("scenario.yaml", ("motor.inertia=1 kg*m^2",), (), False)
+    assert hint != program_hints.command_hint("scenario.yaml", (), (), False)
+    assert program_hints.programs_wanted(hint) == []
+    program_hints.remember_programs(hint, [("a" * 64, 2)])
+    assert program_hints.programs_wanted(hint) == [("a" * 64, 2)]
+    (tmp_path / "hints" / f"{hint}.json").write_text("{not json")
+    assert program_hints.programs_wanted(hint) == []  # unreadable: as if the command never ran
+    monkeypatch.setenv("HOISTSIM_CACHE_DIR", "")
+    program_hints.remember_programs(hint, [("a" * 64, 2)])  # the cache off: nothing kept, nothing read
+    assert program_hints.programs_wanted(hint) == []

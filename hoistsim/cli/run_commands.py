@@ -33,7 +33,16 @@ from .terminal import compiling, progress_printer
 @one_line_errors
 def run(scenario, output, overrides, sweeps, summary_only, resume, workers, scheduler):
     """Simulate SCENARIO (every sweep value, when it has a sweep) and write OUTPUT."""
+    from ..program_hints import command_hint, programs_wanted, remember_programs
+
     scenario_path = scenario
+    hint = command_hint(scenario_path, overrides, sweeps, summary_only)
+    wanted = programs_wanted(hint)
+    if wanted:  # this command ran before: its stored programs load while the scenario is read
+        from .. import _jax
+
+        _jax.enable_compilation_cache()
+        _jax.preload(wanted)
     scenario = read_scenario(scenario_path, overrides, sweeps)
     target = Path(output)
     if target.suffix.lower() not in RESULT_SUFFIXES:
@@ -64,16 +73,17 @@ def run(scenario, output, overrides, sweeps, summary_only, resume, workers, sche
 
     clustered = workers is not None or scheduler is not None
     try:
-        if scenario.sweep or summary_only or clustered:  # written block by block as the runs finish
-            from ..running.sweeps import sweep
+        with _jax.serving_recorded() as served:
+            if scenario.sweep or summary_only or clustered:  # written block by block as the runs finish
+                from ..running.sweeps import sweep
 
-            result = sweep(scenario, summary_only=summary_only, progress=progress_printer(), output=target,
-                           command=command, resume=resume, workers=workers, scheduler=scheduler)
-            summaries, warnings = result.summaries, result.warnings
-        else:  # one run: the plain compiled loop, kept in the persistent cache
-            one = simulate(scenario)
-            write_runs(target, [one], command=command)
-            summaries, warnings = [one.summary], one.warnings
+                result = sweep(scenario, summary_only=summary_only, progress=progress_printer(), output=target,
+                               command=command, resume=resume, workers=workers, scheduler=scheduler)
+                summaries, warnings = result.summaries, result.warnings
+            else:  # one run: the plain compiled loop, kept in the persistent cache
+                one = simulate(scenario)
+                write_runs(target, [one], command=command)
+                summaries, warnings = [one.summary], one.warnings
     except SimulationError as exc:
         fail(str(exc), RUN_FAILED)
     except ResumeError as exc:
@@ -84,6 +94,7 @@ def run(scenario, output, overrides, sweeps, summary_only, resume, workers, sche
         fail(str(exc))
     except OSError as exc:  # the results file could not be written (a full disk, no permission)
         fail(f"{output}: cannot write: {exc.strerror or exc}")
+    remember_programs(hint, served)
     for warning in warnings[:5]:
         click.echo(f"hoistsim: warning: {warning}", err=True)
     if len(warnings) > 5:
