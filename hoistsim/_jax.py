@@ -197,11 +197,32 @@ def _load_or_compile(program, args, name: str, key: str, devices: int):
             return _falling_back(read(_stored_at(key), devices), program, args, key, _stored_at(key))
         except Exception:  # absent, stale or unreadable: compile afresh
             pass
-    with compile_notice(name) if compile_notice is not None else contextlib.nullcontext():
+    with compile_notice(name) if compile_notice is not None else contextlib.nullcontext(), _own_compile():
         compiled = program().lower(*args).compile()
     if _executables is not None:
         store(compiled, _stored_at(key))
     return compiled
+
+
+@contextlib.contextmanager
+def _own_compile():
+    """Within: XLA compiles, JAX's persistent cache neither serves nor keeps the program, where hoistsim
+    stores it itself.
+
+    A CPU program JAX's cache serves is read back from that cache; built as one
+    module per core (:func:`_cpu_program_built_on_every_core`) and serialised
+    again, it lacks some of its kernels, and the next process fails to run it
+    ("Function div.130_kernel not found"): stored, read, failed and compiled
+    again at every other run.
+    """
+    if _executables is None:
+        yield
+        return
+    jax.config.update("jax_enable_compilation_cache", False)
+    try:
+        yield
+    finally:
+        jax.config.update("jax_enable_compilation_cache", True)
 
 
 def preload(wanted) -> None:
