@@ -60,9 +60,10 @@ def _cpu_program_built_on_every_core() -> None:
     LLVM builds them in parallel.  Measured on 2 cores, fresh processes
     alternating (``.lower().compile()``): exercise 6 3.8, 4.1 s as one module,
     3.0, 3.3 s as two; CoupledClutches 15.0, 11.2 s as one, 12.1, 9.2 s as two.
-    (An earlier jaxlib kept only some of the modules' kernels when it serialised
-    such a program, so that a stored program failed to load; a program that
-    fails to load or to run is compiled afresh, see :func:`_falling_back`.)
+    Such a program, serialised, keeps every module's kernels, except where JAX's
+    own persistent cache served the compile: see :func:`_own_compile`.  (An
+    earlier jaxlib lost kernels either way; a program that fails to load or to
+    run is compiled afresh, see :func:`_falling_back`.)
     Read when the backend starts, so it counts only if hoistsim is imported
     before JAX computes anything.
     """
