@@ -18,15 +18,21 @@ SCENARIO = ROOT / "scenarios" / "exercise6_direct_start.yaml"
 GUARDED_PACKAGES = ("machine/core", "machine/elements", "results/periodic")
 
 PROBE = """
-import json, sys
+import json, os, sys
 sys.argv = ["hoistsim", *{args!r}]
+
+def report(status):
+    print(json.dumps({{"status": status, "loaded": sorted(m for m in {watched!r} if m in sys.modules)}}), file=sys.stderr)
+
+exit_now = os._exit
+os._exit = lambda status: (report(status), sys.stderr.flush(), exit_now(status))  # a command done early
 from hoistsim.cli import main
 status = 0
 try:
     main()
 except SystemExit as exit:
     status = exit.code
-print(json.dumps({{"status": status, "loaded": sorted(m for m in {watched!r} if m in sys.modules)}}), file=sys.stderr)
+report(status)
 """
 HEAVY = ["jax", "diffrax", "matplotlib", "dask", "distributed", "xarray", "scipy.optimize", "pint"]
 

@@ -7,7 +7,8 @@ from pathlib import Path
 
 import click
 
-from .group import RESULT_SUFFIXES, RUN_FAILED, debug_option, fail, main, one_line_errors, read_scenario
+from .group import (RESULT_SUFFIXES, RUN_FAILED, debug_option, exit_when_done, fail, main, one_line_errors,
+                    read_scenario)
 from .terminal import compiling, progress_printer
 
 
@@ -107,6 +108,8 @@ def run(scenario, output, overrides, sweeps, summary_only, resume, workers, sche
     count = len(summaries)
     click.echo(f"wrote {output} ({count} run{'s' if count != 1 else ''}"
                f"{', summaries only' if summary_only else ''}, {elapsed:.2f} s)")
+    if not clustered:  # a cluster's processes are stopped by the interpreter's teardown
+        exit_when_done()
 
 
 @main.command()
