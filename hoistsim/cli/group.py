@@ -121,8 +121,11 @@ class OneLineErrors(click.Group):
         global _nothing_left_to_tidy
         done, _nothing_left_to_tidy = _nothing_left_to_tidy, False
         if from_command_line and done and not status:
-            sys.stdout.flush()
-            sys.stderr.flush()
+            try:
+                sys.stdout.flush()
+                sys.stderr.flush()
+            except OSError:  # output piped into `head` and the like, closed: as one_line_errors says
+                os._exit(1)
             os._exit(0)
         if isinstance(status, int):
             sys.exit(status)
