@@ -194,8 +194,9 @@ def _stored_at(key: str) -> str:
 
 def _load_or_compile(program, args, name: str, key: str, devices: int):
     if _executables is not None:
+        path = _stored_at(key)
         try:
-            return _falling_back(read(_stored_at(key), devices), program, args, key, _stored_at(key))
+            return _falling_back(read(path, devices), program, args, key, path)
         except Exception:  # absent, stale or unreadable: compile afresh
             pass
     with compile_notice(name) if compile_notice is not None else contextlib.nullcontext(), _own_compile():
@@ -219,11 +220,12 @@ def _own_compile():
     if _executables is None:
         yield
         return
+    was = jax.config.jax_enable_compilation_cache
     jax.config.update("jax_enable_compilation_cache", False)
     try:
         yield
     finally:
-        jax.config.update("jax_enable_compilation_cache", True)
+        jax.config.update("jax_enable_compilation_cache", was)
 
 
 def preload(wanted) -> None:
@@ -231,7 +233,7 @@ def preload(wanted) -> None:
     the command line has them read while it reads the scenario that asks for them, and
     :func:`executable` takes one from there when its key comes up."""
     if _executables is not None:
-        read_ahead.start({key: (_stored_at(key), devices) for key, devices in wanted if programs.get(key) is None})
+        read_ahead.start({key: (_stored_at(key), devices) for key, devices in wanted if key not in programs})
 
 
 @contextlib.contextmanager

@@ -1,5 +1,6 @@
-"""Where hoistsim keeps what it can reuse between processes: compiled programs, pint's parsed units, each
-unit's SI factor as pint read it (:class:`hoistsim.scenario.units.KnownFactors`).
+"""Where hoistsim keeps what it can reuse between processes: compiled programs, which of them each command
+was served (:mod:`hoistsim.program_hints`), pint's parsed units, each unit's SI factor as pint read it
+(:class:`hoistsim.scenario.unit_factors.KnownFactors`).
 
 HOISTSIM_CACHE_DIR, else ~/.cache/hoistsim/jax (the compiled programs' folder
 kept its name; the others sit inside it).  HOISTSIM_CACHE_DIR set to an empty

@@ -45,7 +45,7 @@ def programs_wanted(hint: str) -> list[tuple[str, int]]:
 def remember_programs(hint: str, served: list[tuple[str, int]]) -> None:
     """Keep (atomically) the programs a command was served, for its next run; nothing where the cache is off."""
     path = _path(hint)
-    if path is None or programs_wanted(hint) == served:
+    if path is None:
         return
     try:
         fd, tmp = tempfile.mkstemp(dir=os.path.dirname(path), suffix=".partial")

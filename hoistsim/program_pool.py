@@ -38,6 +38,14 @@ def max_programs() -> int | None:
     return None if memory_maps() is not None else DEFAULT_MAX_PROGRAMS
 
 
+def counting_maps(build):
+    """(``build()``, the memory maps the process gained while it ran: 0 where /proc cannot tell)."""
+    before = memory_maps()
+    made = build()
+    after = memory_maps()
+    return made, max(0, after[0] - before[0]) if before and after else 0
+
+
 class ProgramPool:
     """Compiled programs by key, least recently used first."""
 
@@ -62,12 +70,8 @@ class ProgramPool:
         """``build()``'s program, held under ``key``, after making room for it; ``maps``: the memory maps it
         took where it was made elsewhere (a program loaded beforehand), else counted around ``build``."""
         self.make_room()
-        before = memory_maps()
-        program = build()
-        after = memory_maps()
-        if maps is None:
-            maps = max(0, after[0] - before[0]) if before and after else 0
-        self._held[key] = (program, maps)
+        program, counted = counting_maps(build)
+        self._held[key] = (program, counted if maps is None else maps)
         return program
 
     def replace(self, key: str, program) -> None:

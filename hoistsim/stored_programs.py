@@ -15,7 +15,7 @@ import pickle
 import tempfile
 from concurrent.futures import Future, ThreadPoolExecutor
 
-from .program_pool import memory_maps
+from .program_pool import counting_maps
 
 
 def store(compiled, path: str) -> None:
@@ -66,18 +66,15 @@ class ReadAhead:
             return
         reader = ThreadPoolExecutor(max_workers=1, thread_name_prefix="hoistsim-read-ahead")
         for key, (path, devices) in wanted.items():
-            self._reading[key] = reader.submit(self._read_counting_maps, path, devices)
+            self._reading[key] = reader.submit(self._read, path, devices)
         reader.shutdown(wait=False)
 
     @staticmethod
-    def _read_counting_maps(path: str, devices: int):
-        before = memory_maps()
+    def _read(path: str, devices: int):
         try:
-            program = read(path, devices)
+            return counting_maps(lambda: read(path, devices))
         except Exception:  # absent, stale or unreadable: loaded or compiled in turn where it is wanted
             return None, None
-        after = memory_maps()
-        return program, max(0, after[0] - before[0]) if before and after else 0
 
     def take(self, key: str):
         """(the program read ahead under ``key``, the memory maps it took), waiting for it; (None, None)

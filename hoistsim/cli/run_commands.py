@@ -95,7 +95,8 @@ def run(scenario, output, overrides, sweeps, summary_only, resume, workers, sche
         fail(str(exc))
     except OSError as exc:  # the results file could not be written (a full disk, no permission)
         fail(f"{output}: cannot write: {exc.strerror or exc}")
-    remember_programs(hint, served)
+    if served != wanted:
+        remember_programs(hint, served)
     for warning in warnings[:5]:
         click.echo(f"hoistsim: warning: {warning}", err=True)
     if len(warnings) > 5:
