@@ -142,6 +142,29 @@ def test_second_run_loads_the_stored_executable(tmp_path):
 
 
 @pytest.mark.slow
+def test_a_command_run_before_whose_scenario_went_bad_ends_at_its_one_line_error(tmp_path):
+    """The second time, the command reads its program ahead while it reads the scenario; a bad edit still
+    ends in one line naming the key, exit 2, nothing written (and at once: the program being read is left)."""
+    env = dict(os.environ, HOISTSIM_CACHE_DIR=str(tmp_path / "cache"))
+    scenario = tmp_path / "scene.yaml"
+    text = (SCENARIOS / "runback_slipping_clutch.yaml").read_text(encoding="utf-8")
+    scenario.write_text(text, encoding="utf-8")
+    command = [sys.executable, "-m", "hoistsim.cli", "run", str(scenario), "-o", "out.h5",
+               "--set", "simulation.duration=0.2 s"]
+    assert subprocess.run(command, capture_output=True, env=env, cwd=tmp_path).returncode == 0
+    assert len(list((tmp_path / "cache" / "hints").glob("*.json"))) == 1  # the next one reads ahead
+    (tmp_path / "out.h5").unlink()
+    bad = text.replace("engagement_force:", "engagement_forse:", 1)
+    assert bad != text
+    scenario.write_text(bad, encoding="utf-8")
+    proc = subprocess.run(command, capture_output=True, text=True, env=env, cwd=tmp_path)
+    assert proc.returncode == 2
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("hoistsim: error:") and "engagement_forse" in lines[0], proc.stderr
+    assert not (tmp_path / "out.h5").exists()
+
+
+@pytest.mark.slow
 def test_a_changed_source_is_never_served_a_stored_program(tmp_path):
     """The cache key holds a digest of the package's source: edit the physics and the next run rebuilds."""
     import shutil

@@ -88,17 +88,19 @@ debug_option = click.option("--debug", is_flag=True, help="Show Python traceback
 _nothing_left_to_tidy = False
 
 
-def exit_when_done() -> None:
-    """Let the process end as soon as the command returns, without the interpreter's teardown.
+def exit_when_done(done: bool = True) -> None:
+    """Let the process end as soon as the command returns or fails, without the interpreter's teardown
+    (``done=False``: with it again).
 
     Tearing down a process that used JAX takes some 0.4 s on 2 cores (XLA's
     client and its programs, every module's objects), a fifth of a warm `run`.
     A command calls this once its files are written and closed and its output
-    printed; only the command line itself exits early (a caller in the same
-    process, a test's CliRunner, goes on as usual).
+    printed, or while nothing it could fail at leaves anything open; only the
+    command line itself exits early (a caller in the same process, a test's
+    CliRunner, goes on as usual).
     """
     global _nothing_left_to_tidy
-    _nothing_left_to_tidy = True
+    _nothing_left_to_tidy = done
 
 
 class OneLineErrors(click.Group):
@@ -118,15 +120,19 @@ class OneLineErrors(click.Group):
         except click.exceptions.Abort:
             click.echo("hoistsim: interrupted", err=True)
             sys.exit(130)
+        except SystemExit as exc:  # a command's one-line error and its status
+            if not isinstance(exc.code, int):
+                raise
+            status = exc.code
         global _nothing_left_to_tidy
         done, _nothing_left_to_tidy = _nothing_left_to_tidy, False
-        if from_command_line and done and not status:
+        if from_command_line and done:
             try:
                 sys.stdout.flush()
                 sys.stderr.flush()
             except OSError:  # output piped into `head` and the like, closed: as one_line_errors says
                 os._exit(1)
-            os._exit(0)
+            os._exit(status if isinstance(status, int) else 0)
         if isinstance(status, int):
             sys.exit(status)
 

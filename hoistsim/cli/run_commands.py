@@ -44,12 +44,15 @@ def run(scenario, output, overrides, sweeps, summary_only, resume, workers, sche
 
         _jax.enable_compilation_cache()
         _jax.preload(wanted)
+        # bad input ends the process at its one-line error, not after the program being read and JAX's teardown
+        exit_when_done()
     scenario = read_scenario(scenario_path, overrides, sweeps)
     target = Path(output)
     if target.suffix.lower() not in RESULT_SUFFIXES:
         fail(f"{output}: results are HDF5: name the file .h5, .hdf5 or .nc")
     if not target.parent.exists() and str(target.parent):
         fail(f"{output}: the folder {target.parent} does not exist")
+    exit_when_done(False)  # from here on the command may leave a cluster to stop
 
     from .. import _jax
     from ..results.output import write_runs
