@@ -88,7 +88,7 @@ def scenario_from_text(text: str, source: str = "<scenario>",
         exc.source = source
         raise
     from .sweep_runs import check_combinations
-    from .sweep_spec import _check_sweep, _expand_range, parse_sweep
+    from .sweep_spec import check_sweep, expand_range, parse_sweep
 
     if sweeps:
         raw["sweep"] = dict(parse_sweep(item) for item in sweeps)
@@ -111,8 +111,8 @@ def scenario_from_text(text: str, source: str = "<scenario>",
             raise ScenarioError(key, "is swept in the file (sweep:); --set cannot also set it", source="--set")
         # a sweep given on the command line has no line in the file
         where, lines = ("--sweep", None) if sweeps else (source, tree)
-        values, labels = _expand_range(key, values, Where(f"sweep.{key}", where, lines, ("sweep", key)))
-        scenario._sweep_numbers[key], scenario._sweep_validated[key] = _check_sweep(scenario, raw, key, values,
+        values, labels = expand_range(key, values, Where(f"sweep.{key}", where, lines, ("sweep", key)))
+        scenario._sweep_numbers[key], scenario._sweep_validated[key] = check_sweep(scenario, raw, key, values,
                                                                                   lines, where)
         scenario._sweep_values[key] = values
         scenario._sweep_labels[key] = labels

@@ -266,7 +266,7 @@ class Scenario(Section):
     rope: RopeSpec | None = None
     ground: GroundSpec | None = None
     simulation: SimulationSpec
-    sweep: dict[str, Any] | None = None  # checked by _check_sweep
+    sweep: dict[str, Any] | None = None  # checked by check_sweep
 
     _raw: dict = PrivateAttr(default_factory=dict)
     _text: str = PrivateAttr(default="")

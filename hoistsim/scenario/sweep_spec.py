@@ -27,7 +27,7 @@ from .yamlsource import copy_plain as _copy_plain
 from .yamlsource import line_of
 
 
-def _check_sweep(scenario: Scenario, raw: dict, key: str, values: list, tree: Any,
+def check_sweep(scenario: Scenario, raw: dict, key: str, values: list, tree: Any,
                  source: str) -> tuple[np.ndarray, list]:
     """A sweep names a known key, and each of its values is one the key accepts (validated alone, on the
     validated base): the SI number of each value (NaN where it is not one, a table that varies), and each
@@ -155,7 +155,7 @@ def swept_number(scenario: Scenario, key: str) -> float:
     return float(value) if isinstance(value, (int, float)) else math.nan
 
 
-def _expand_range(key: str, spec: Any, where: Where) -> tuple[Any, list[str]]:
+def expand_range(key: str, spec: Any, where: Where) -> tuple[Any, list[str]]:
     """``{from: 1000 N, to: 9000 N, count: 9}`` -> the evenly spaced values and their labels."""
     if not isinstance(spec, dict):
         return spec, [_format_value(v) for v in spec] if isinstance(spec, list) else []
