@@ -13,7 +13,6 @@ this tree's and the saves alternate between them.
 from __future__ import annotations
 
 import argparse
-import os
 import re
 import statistics
 import subprocess
@@ -23,7 +22,7 @@ import threading
 import time
 from pathlib import Path
 
-from trees import trees
+from trees import trees, user_environment
 
 ROOT = Path(__file__).resolve().parents[1]
 KEY = re.compile(r"^(\s*engagement_force:\s*).*$", re.MULTILINE)
@@ -43,7 +42,7 @@ class Watching:
         folder.mkdir()
         self.text, self.scenario, self.figure = text, folder / "scene.yaml", folder / "scene.png"
         self.scenario.write_text(text, encoding="utf-8")
-        env = dict(os.environ, HOISTSIM_CACHE_DIR=str(folder / "cache"), PYTHONUNBUFFERED="1", PYTHONPATH=str(root))
+        env = user_environment(HOISTSIM_CACHE_DIR=str(folder / "cache"), PYTHONUNBUFFERED="1", PYTHONPATH=str(root))
         self.errors = open(folder / "stderr.txt", "w+", encoding="utf-8")
         self.proc = subprocess.Popen([sys.executable, "-m", "hoistsim.cli", "watch", str(self.scenario), "-o",
                                       str(folder / "scene.h5"), "--plot", str(self.figure)], cwd=root, env=env,
