@@ -346,3 +346,34 @@ def test_plot_draws_the_turning_moment_diagram_and_the_speed_over_a_period(linea
     assert f"net area theta_1 -> theta_2: dE_max = {v['energy_fluctuation_tredgold']:.4g} J" in legend
     assert f"delta = {v['irregularity']:.4g} simulated" in fig.axes[1].get_title(loc="left")
     plt.close(fig)
+
+
+def test_a_periodic_run_kept_in_a_chunk_file_is_written_as_the_run_in_memory(linear_motor_ripple, tmp_path):
+    """A streamed sweep keeps its records in chunk files and copies a periodic regime from there; a run
+    written at once writes it from the run itself: the two files hold the same periods and diagram."""
+    import h5py
+
+    from hoistsim.results import output
+    from hoistsim.results.records import make_record, read_record, store_record
+
+    run = linear_motor_ripple
+    time, padded = output.common_time([run.grid])
+    heading = output.Heading(run.scenario, [run.name], {}, False, time)
+    record = make_record([0], [run], summary_only=False, time=time, padded=padded)
+    output.assemble(tmp_path / "at_once.h5", [record], heading)
+    with h5py.File(tmp_path / "chunk.h5", "w") as chunk:
+        store_record(chunk, record)
+    with h5py.File(tmp_path / "chunk.h5", "r") as chunk:
+        output.assemble(tmp_path / "streamed.h5", [read_record(chunk)], heading)
+
+    def contents(path):
+        found = {}
+        with h5py.File(path, "r") as f:
+            f["periodic"].visititems(lambda name, item: found.__setitem__(name, (
+                item[()].tolist() if isinstance(item, h5py.Dataset) else None,
+                sorted((k, str(v)) for k, v in item.attrs.items() if k not in ("DIMENSION_LIST", "REFERENCE_LIST")))))
+        return found
+
+    at_once = contents(tmp_path / "at_once.h5")
+    assert {"0/periods", "0/turning_moment", "0/turning_moment/energy"} <= set(at_once)
+    assert contents(tmp_path / "streamed.h5") == at_once

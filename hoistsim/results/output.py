@@ -1,10 +1,10 @@
 """HDF5 output, format 2, written atomically: a file is complete or absent.
 
-Runs arrive as *records* (:func:`write_record`: a chunk's summaries, series
-blocks and instants) and :func:`assemble` builds the file from them one at a
-time, so one run written at once (one record in memory) and a sweep streamed
-as its chunks finish (records kept as files, :mod:`hoistsim.running.streaming`) take
-the same path.  Reading is :mod:`hoistsim.results.reading`.
+Runs arrive as *records* (:mod:`.records`: a block's summaries, series blocks
+and instants) and :func:`assemble` builds the file from them one at a time, so
+one run written at once (one record, handed over in memory) and a sweep streamed
+as its chunks finish (records kept as files, :mod:`hoistsim.running.streaming`)
+take the same path.  Reading is :mod:`hoistsim.results.reading`.
 
 Format 2 (the contract's names; see README), one layout for one run or a million:
 
@@ -30,10 +30,7 @@ import h5py
 import numpy as np
 
 from .atomic import atomic_path
-from .output_periodic import write_diagram, write_periods
-from .summaries import Summaries
-
-_TEXT = h5py.string_dtype()
+from .records import INSTANT_COLUMNS, TEXT, TEXT_COLUMNS, Record, make_record, store_record, write_periodic
 
 
 def provenance() -> dict[str, str]:
@@ -72,9 +69,8 @@ def write_sweep(path, result, *, command: str = "") -> None:
 
 def _write_at_once(path, scenario, labels, parameters, outcomes, *, summary_only: bool, command: str) -> None:
     time, padded = (None, False) if summary_only else common_time([run.grid for run in outcomes])
-    with h5py.File(f"record-{id(outcomes)}", "w", driver="core", backing_store=False) as record:
-        write_record(record, range(len(outcomes)), outcomes, summary_only=summary_only, time=time, padded=padded)
-        assemble(path, [record], Heading(scenario, labels, parameters, summary_only, time, command))
+    record = make_record(range(len(outcomes)), outcomes, summary_only=summary_only, time=time, padded=padded)
+    assemble(path, [record], Heading(scenario, labels, parameters, summary_only, time, command))
 
 
 FORMAT_VERSION = 2
@@ -105,19 +101,6 @@ def _variable(group: h5py.Group, name: str, values, units: str, text: str, dims:
     return data
 
 
-def _run_extras(runs) -> dict:
-    """Per-run numbers beside the summary: the energy ledger's terms and the solver's counts."""
-    extras = {}
-    balances = [run.energy_balance for run in runs]  # each closes the run's ledger: once a run
-    for key in balances[0]:
-        extras[f"energy_{key}"] = ("1" if key.endswith("relative_residual") else "J",
-                                   np.asarray([balance[key] for balance in balances], dtype=float))
-    for key in runs[0].stats:
-        extras[f"solver_{key}"] = ("s" if key == "wall_time" else "1",
-                                   np.asarray([run.stats[key] for run in runs]))
-    return extras
-
-
 def common_time(grids) -> tuple[np.ndarray, bool]:
     """The time axis every run's output grid lies on, and whether some run lacks some of its rows."""
     grids = [np.asarray(g) for g in grids]
@@ -126,83 +109,12 @@ def common_time(grids) -> tuple[np.ndarray, bool]:
     return np.unique(np.concatenate(grids)), True
 
 
-def series_blocks(runs, time, padded: bool) -> dict[str, np.ndarray]:
-    """Every series of the runs on (run, time): each run's output-grid rows, NaN where a run has no row
-    (a flag stays a small integer where every run has every row)."""
-    blocks = {}
-    places = [np.searchsorted(time, run.grid) for run in runs]
-    rows = [run.grid_rows() for run in runs]
-    for name, first in runs[0].series.items():
-        dtype = np.float64 if padded or first.dtype.kind == "f" else first.dtype
-        block = np.full((len(runs), time.size), np.nan if dtype == np.float64 else 0, dtype=dtype)
-        for k, run in enumerate(runs):
-            block[k, places[k]] = run.series[name][rows[k]]
-        blocks[name] = block
-    return blocks
-
-
 # ------------------------------------------------------------------ records: runs as they finish
 
-# What an instant row holds besides the series just after it, with its units and meaning.
-_INSTANT_COLUMNS = {
-    "time": ("s", "the instant, exact (root-found or scheduled)"),
-    "kind": ("1", "lock, unlock, reversal, engage, disengage, a scheduled event, an observation "
-                  "(slip_peak, load_lowest, ...) or a period mark"),
-    "element": ("1", "the element it belongs to"),
-    "category": ("1", "switch, scheduled, observation or cycle"),
-    "torque_margin": ("N*m", "the coupling's static capacity minus the torque it would carry stuck "
-                             "(NaN where it does not apply)"),
-    "mode_after": ("1", "the coupling's mode after it"),
-}
-_TEXT_COLUMNS = ("kind", "element", "category", "mode_after")
-
-
 def write_record(f: h5py.Group, indices, outcomes, *, summary_only: bool, time, padded: bool) -> None:
-    """Runs at ``indices`` (RunResults, or their :class:`hoistsim.results.run_result.Summaries` when summary-only) as a
-    record for :func:`assemble`."""
-    f["indices"] = np.asarray(list(indices), dtype=np.int64)
-    summaries = summary_values(outcomes if summary_only else Summaries.from_rows([o.summary for o in outcomes]))
-    f.attrs["columns"] = json.dumps(list(summaries))
-    for key, values in summaries.items():
-        f[f"values/{key}"] = values
-    if summary_only:
-        return
-    runs = outcomes
-    for key, (units, values) in _run_extras(runs).items():
-        f[f"extras/{key}"] = values
-        f[f"extras/{key}"].attrs["units"] = units
-    first = runs[0]
-    for name, block in series_blocks(runs, time, padded).items():
-        f[f"series/{name}"] = block
-        f[f"series/{name}"].attrs["units"] = first.units[name]
-        f[f"series/{name}"].attrs["long_name"] = first.descriptions.get(name, "")
-    tables = [run.instants for run in runs]
-    f["instants/counts"] = np.asarray([len(t["time"]) for t in tables], dtype=np.int64)
-    for name in _INSTANT_COLUMNS:
-        values = np.concatenate([np.asarray(t[name]) for t in tables])
-        if name in _TEXT_COLUMNS:
-            f.create_dataset(f"instants/{name}", data=values.astype(object), dtype=_TEXT)
-        else:
-            f[f"instants/{name}"] = values.astype(float)
-    for name in first.series:
-        f[f"after/{name}"] = np.concatenate([run.series[name][run.instant_rows()] for run in runs])
-    for k, run in enumerate(runs):
-        if run.periodic is not None:
-            group = f.create_group(f"periodic/{k}")
-            write_periods(group.create_group("periods"), run.periodic.regime)
-            if run.periodic.diagram is not None:
-                write_diagram(group.create_group("turning_moment"), run.periodic.diagram)
-
-
-def summary_values(summaries: Summaries) -> dict[str, np.ndarray]:
-    """The runs' summary values as the file keeps them, a column a value: floats, else integers (a yes/no
-    too); the label apart."""
-    columns = {}
-    for key, values in summaries.columns.items():
-        if key != "label":
-            values = np.asarray(values)
-            columns[key] = values.astype("f8" if values.dtype.kind == "f" else "i8")
-    return columns
+    """Runs at ``indices`` (RunResults, or their :class:`hoistsim.results.run_result.Summaries` when summary-only)
+    kept in ``f`` as a record for :func:`assemble` (read back with :func:`.records.read_record`)."""
+    store_record(f, make_record(indices, outcomes, summary_only=summary_only, time=time, padded=padded))
 
 
 @dataclass
@@ -242,7 +154,7 @@ class Assembly:
         group = f.create_group("runs")
         run = self.scales["run"] = _scale(group, "run", np.arange(self.count), "1", "run index, in sweep order")
         labels = _variable(group, "label", None, "1", "the run's swept values (or the scenario's name)", (run,),
-                           shape=(self.count,), dtype=_TEXT)
+                           shape=(self.count,), dtype=TEXT)
         for start in range(0, self.count, LABEL_SLICE):  # a slice at a time: a million never all at once
             labels[start:start + LABEL_SLICE] = np.asarray(layout.labels[start:start + LABEL_SLICE], dtype=object)
         from ..scenario.keys import key_units
@@ -254,8 +166,8 @@ class Assembly:
                                          "time since the start (the output grid; exact instants are in events)")
         units = _summary_units(layout.scenario)
         columns = None
-        for record in records:  # open HDF5 groups, one at a time
-            columns = columns or json.loads(record.attrs["columns"])
+        for record in records:  # one at a time (a streamed sweep's read from its chunk file as it comes)
+            columns = columns or list(record.values)
             self._record(group, record, units)
         group.attrs["summary_columns"] = json.dumps(["label", *layout.parameters, *(columns or [])])
         group.attrs["swept_keys"] = json.dumps(list(layout.parameters))
@@ -288,32 +200,30 @@ class Assembly:
         if not whole:
             data[rows] = values
 
-    def _record(self, group, record, units) -> None:
-        indices = record["indices"][()]
+    def _record(self, group, record: Record, units) -> None:
+        indices = record.indices
         contiguous = indices[-1] - indices[0] + 1 == len(indices)
         rows = slice(int(indices[0]), int(indices[-1]) + 1) if contiguous else indices
-        summaries = record["values"]
-        for key, item in summaries.items():
-            self._put(group, key, item[()], rows, units.get(key, ""))
-        for key, item in record.get("extras", {}).items():
-            if key not in summaries:  # the residuals are summary values already
-                self._put(group, key, item[()], rows, str(item.attrs["units"]))
-        for name, item in record.get("series", {}).items():
-            self._put(group, name, item[()], rows, str(item.attrs["units"]), str(item.attrs["long_name"]),
-                      time_axis=True)
-        if "instants" in record:
+        for key, values in record.values.items():
+            self._put(group, key, values, rows, units.get(key, ""))
+        for key, (unit, values) in record.extras.items():
+            if key not in record.values:  # the residuals are summary values already
+                self._put(group, key, values, rows, unit)
+        for name, (unit, text, block) in record.series.items():
+            self._put(group, name, block, rows, unit, text, time_axis=True)
+        if record.counts is not None:
             self._instants(group, record, indices)
-        for key, part in record.get("periodic", {}).items():
-            self.f.copy(part, self.f.require_group("periodic"), name=str(int(indices[int(key)])))
+        for k, periodic in record.periodic.items():
+            name = str(int(indices[k]))
+            if isinstance(periodic, h5py.Group):  # kept in a chunk file: copied as it is
+                self.f.copy(periodic, self.f.require_group("periodic"), name=name)
+            else:
+                write_periodic(self.f.require_group("periodic").create_group(name), periodic)
 
     def _instants(self, group, record, indices) -> None:
         events = group.require_group("events")
-        counts = record["instants/counts"][()]
-        columns = {"run": np.repeat(indices, counts).astype(np.int64)}
-        for name in _INSTANT_COLUMNS:
-            item = record[f"instants/{name}"]
-            columns[name] = item.asstr()[()].astype(object) if name in _TEXT_COLUMNS else item[()]
-        columns.update({name: item[()] for name, item in record["after"].items()})
+        counts = record.counts
+        columns = {"run": np.repeat(indices, counts).astype(np.int64), **record.instants, **record.after}
         added, start = int(counts.sum()), self.instants
         self.instants += added
         if "event" in events:  # appended to the rows of the records before
@@ -327,12 +237,12 @@ class Assembly:
         scale.attrs["units"] = "1"
         scale.attrs["long_name"] = "instant index, runs in order"
         scale.make_scale("event")
-        texts = {"run": ("1", "the run it belongs to"), **_INSTANT_COLUMNS}
+        texts = {"run": ("1", "the run it belongs to"), **INSTANT_COLUMNS}
         for name, values in columns.items():
             units, text = texts[name] if name in texts else (str(self.columns[name].attrs["units"]),
                                                              "value just after the instant")
             data = events.create_dataset(name, data=values, maxshape=(None,), chunks=(4096,),
-                                         dtype=_TEXT if name in _TEXT_COLUMNS else values.dtype)
+                                         dtype=TEXT if name in TEXT_COLUMNS else values.dtype)
             data.attrs["units"] = units
             data.attrs["long_name"] = text
             data.dims[0].attach_scale(scale)
@@ -355,7 +265,7 @@ def _summary_units(scenario) -> dict[str, str]:
 
 
 def _write_scenario(f: h5py.File, scenario, command: str) -> None:
-    data = f.create_dataset("scenario", data=scenario.text, dtype=_TEXT)
+    data = f.create_dataset("scenario", data=scenario.text, dtype=TEXT)
     data.attrs["units"] = "1"
     data.attrs["source"] = scenario.source
     data.attrs["command"] = command

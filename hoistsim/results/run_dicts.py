@@ -13,7 +13,7 @@ import json
 
 import numpy as np
 
-from .output import summary_values
+from .records import summary_values
 from .reading import events_table, merged_rows
 from .summaries import Summaries
 

@@ -30,6 +30,7 @@ import h5py
 import numpy as np
 
 from ..results import output
+from ..results.records import read_record
 from ..results.summaries import Summaries
 
 FILE_BYTES = 32 * 2**20  # series gathered into one chunk file
@@ -144,7 +145,7 @@ class StreamedFile:
     def _records(self):
         for number in range(1, self.files + 1):
             with h5py.File(self._chunk(number), "r") as f:
-                yield f
+                yield read_record(f)
 
     def discard(self) -> None:
         """Forget the sweep (a run failed): no chunk is left behind."""

@@ -66,7 +66,8 @@ class SweepResult:
         every summary value on (run), with units."""
         import xarray as xr
 
-        from ..results.output import _summary_units, common_time, series_blocks
+        from ..results.output import _summary_units, common_time
+        from ..results.records import series_blocks
         from ..scenario.keys import key_units
 
         units = _summary_units(self.scenario)
