@@ -9,7 +9,9 @@ string turns every cache off.  No JAX here: reading a scenario uses it.
 
 from __future__ import annotations
 
+import contextlib
 import os
+import tempfile
 
 CACHE_VARIABLE = "HOISTSIM_CACHE_DIR"
 
@@ -34,3 +36,18 @@ def cache_folder(name: str) -> str | None:
     except OSError:
         return None
     return folder
+
+
+def keep(path: str, data: bytes) -> None:
+    """Write ``data`` at ``path`` in the cache whole or not at all: under a temporary name beside it, then
+    renamed, so that two processes never read each other's half-written file (raises OSError: a full disk,
+    a read-only cache; no temporary file is left)."""
+    fd, tmp = tempfile.mkstemp(dir=os.path.dirname(path), suffix=".partial")
+    try:
+        with os.fdopen(fd, "wb") as handle:
+            handle.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise

@@ -12,9 +12,8 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-import tempfile
 
-from .cache_folders import cache_folder, cache_root
+from .cache_folders import cache_folder, cache_root, keep
 
 
 def command_hint(scenario_path: str, *options) -> str:
@@ -48,9 +47,6 @@ def remember_programs(hint: str, served: list[tuple[str, int]]) -> None:
     if path is None:
         return
     try:
-        fd, tmp = tempfile.mkstemp(dir=os.path.dirname(path), suffix=".partial")
-        with os.fdopen(fd, "w") as handle:
-            json.dump(served, handle)
-        os.replace(tmp, path)
+        keep(path, json.dumps(served).encode())
     except OSError:  # a full disk or a read-only cache: the next run loads its programs in turn
         pass

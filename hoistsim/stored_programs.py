@@ -10,11 +10,10 @@ Kept apart, the first runs in a thread while the command line reads the scenario
 
 from __future__ import annotations
 
-import os
 import pickle
-import tempfile
 from concurrent.futures import Future, ThreadPoolExecutor
 
+from .cache_folders import keep
 from .program_pool import counting_maps
 
 
@@ -24,10 +23,7 @@ def store(compiled, path: str) -> None:
 
     try:
         executable, in_tree, out_tree = serialize(compiled)
-        fd, tmp = tempfile.mkstemp(dir=os.path.dirname(path), suffix=".partial")
-        with os.fdopen(fd, "wb") as handle:
-            pickle.dump((executable, pickle.dumps(in_tree), pickle.dumps(out_tree)), handle)
-        os.replace(tmp, path)
+        keep(path, pickle.dumps((executable, pickle.dumps(in_tree), pickle.dumps(out_tree))))
     except Exception:  # a full disk or an executable that cannot be serialised: still run
         pass
 

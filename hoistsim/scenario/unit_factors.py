@@ -11,7 +11,7 @@ import os
 from functools import lru_cache
 from pathlib import Path
 
-from ..cache_folders import cache_folder
+from ..cache_folders import cache_folder, keep
 
 
 class KnownFactors:
@@ -48,10 +48,7 @@ class KnownFactors:
         if self.path is None:
             return
         try:
-            partial = f"{self.path}.{os.getpid()}.partial"
-            with open(partial, "w", encoding="utf-8") as file:
-                json.dump(self.factors, file, sort_keys=True)
-            os.replace(partial, self.path)
+            keep(self.path, json.dumps(self.factors, sort_keys=True).encode())
         except OSError:  # a read-only cache: learnt for this process only
             pass
 
