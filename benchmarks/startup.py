@@ -6,7 +6,8 @@ same command again, the compiled loop loaded from the cache; median of
 floor a command that computes anything stands on.  With `--against COMMIT`
 the same commands are timed on that commit too (a git worktree), interleaved.
 Also a warm run inside one Python process (`hoistsim.simulate`, compiled once
-first): median and min of 20.  And a bad edit: a copy of the scenario run once (so that its
+first): median and min of 20; and its results file written (`write_runs`), the first write and the
+median of 14 more.  And a bad edit: a copy of the scenario run once (so that its
 command reads its program ahead), then given a misspelt key, timed from the command to its one-line
 error.  Python keeps its modules' bytecode, as a user's does (``trees.user_environment``;
 ``KEEP_ENVIRONMENT=1`` measures with the environment as it is).
@@ -98,6 +99,17 @@ def main() -> None:
         inside.append(time.perf_counter() - start)
     print(f"in-process simulate (warm, this tree): {statistics.median(inside) * 1e3:.2f} ms median, "
           f"{min(inside) * 1e3:.2f} ms min")
+    from hoistsim.results.output import write_runs
+
+    run = simulate(loaded)
+    writes = []
+    with tempfile.TemporaryDirectory() as folder:
+        for _ in range(15):  # the first in a process apart: it starts HDF5
+            start = time.perf_counter()
+            write_runs(Path(folder) / "run.h5", [run], command="startup.py")
+            writes.append(time.perf_counter() - start)
+    print(f"in-process write_runs (this tree): {writes[0] * 1e3:.0f} ms the first, "
+          f"{statistics.median(writes[1:]) * 1e3:.0f} ms median of the next {len(writes) - 1}")
 
 
 if __name__ == "__main__":
