@@ -34,3 +34,10 @@ def scene(force="3201 N", mass="500 kg", motor_speed=None, brake=None, duration=
     if brake is not None:
         data["brake"] = {"release_time": brake}
     return scenario_from_dict(data, name=name)
+
+
+def reduced(run):
+    """The two-shaft reduced model of a run's scenario (:mod:`hoistsim.references.model`): the oracles' numbers."""
+    from hoistsim.references.model import Machine
+
+    return Machine.from_scenario(run.scenario).reduced()

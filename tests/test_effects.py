@@ -5,7 +5,7 @@ from __future__ import annotations
 import jax
 import numpy as np
 import pytest
-from scenes import scene
+from scenes import scene, reduced
 
 from hoistsim import simulate
 from hoistsim.machine.assemble import build_plan, loop_sizes
@@ -49,7 +49,7 @@ def test_brake_contributes_boundary_event_and_outputs():
     # while held the drum does not move and the brake carries what the clutch does not
     assert np.all(run["drum_speed"][held] == 0.0)
     assert np.all(run["brake_engaged"][held] == 1) and np.all(run["brake_engaged"][~held] == 0)
-    d = run.drivetrain
+    d = reduced(run)
     expected = (d.load_torque - run["clutch_torque"][held]) * d.ratio
     np.testing.assert_allclose(run["brake_torque"][held], expected, rtol=1e-12)
     assert np.all(run["brake_torque"][~held] == 0.0)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scenes import scene
+from scenes import scene, reduced
 
 from hoistsim import exact_from_scenario, simulate
 
@@ -65,7 +65,7 @@ def test_events_match_exact(pair):
 def test_speeds_match_exact(pair):
     run, exact = pair
     reference = exact.evaluate(run.time)
-    tau = run.drivetrain.ratio
+    tau = reduced(run).ratio
     assert np.max(np.abs(run["motor_speed"] - reference["motor_speed"])) < SPEED_TOL
     assert np.max(np.abs(run["drum_speed"] * tau - reference["output_speed"])) < SPEED_TOL
     assert np.max(np.abs(run["load_position"] - reference["load_position"])) < 1e-7
@@ -110,7 +110,7 @@ def _exact_series(run, exact, t):
     ref = exact.evaluate(t)
     held = np.zeros(t.shape, bool) if run.scenario.brake is None else t < run.scenario.brake.release_time
     force = ForceSchedule.from_scenario(run.scenario)(t)
-    torque = clutch_torque(run.drivetrain, ref["mode"], force, ref["motor_speed"], held)
+    torque = clutch_torque(reduced(run), ref["mode"], force, ref["motor_speed"], held)
     return ref["motor_speed"] - ref["output_speed"], ref["load_position"], torque, ref["mode"]
 
 

@@ -18,12 +18,13 @@ LAYERS = (
     ("foundation", ("errors", "cache_folders", "program_pool", "stored_programs", "program_hints", "_jax", "_pytree",
                     "__init__")),
     ("components", ("components",)),
+    ("display", ("display",)),
     ("scenario", ("scenario",)),
     ("machine", ("machine",)),
-    ("references", ("references",)),
     ("results", ("results",)),
     ("running", ("running",)),
     ("figures", ("figures",)),
+    ("references", ("references",)),
     ("studies", ("studies",)),
     ("command line", ("cli",)),
 )
@@ -121,10 +122,11 @@ def test_no_module_above_400_lines():
     assert not long, long
 
 
-def test_the_scenario_and_the_components_import_no_jax():
-    """Reading and checking a scenario never needs JAX (`hoistsim check` loads it only for the reduced model)."""
+def test_the_scenario_the_components_and_the_displays_import_no_jax():
+    """Reading and checking a scenario never needs JAX (`hoistsim check` loads it only for the reduced model),
+    nor does knowing what a part shows in the figures."""
     found = []
-    for folder in ("scenario", "components"):
+    for folder in ("scenario", "components", "display"):
         for path in sorted((PACKAGE / folder).rglob("*.py")):
             for node in ast.walk(ast.parse(path.read_text())):
                 names = ([a.name for a in node.names] if isinstance(node, ast.Import) else
@@ -132,3 +134,21 @@ def test_the_scenario_and_the_components_import_no_jax():
                 found += [f"{path.relative_to(PACKAGE)} imports {n}" for n in names if n.split(".")[0] in
                           ("jax", "jaxlib", "diffrax", "equinox")]
     assert not found, found
+
+
+def test_the_figures_read_results_and_displays_only():
+    """A figure is drawn from a results file (or runs in memory as reading gives them) and the parts' displays:
+    it never needs the machine, a run or the scenario's schema."""
+    allowed = {layer_of("hoistsim.errors"), layer_of("hoistsim.display"), layer_of("hoistsim.results"),
+               layer_of("hoistsim.figures")}
+    found = [f"{a} imports {b}" for a, targets in sorted(_graph().items()) if a.startswith("hoistsim.figures")
+             for b in sorted(targets) if layer_of(b) not in allowed]
+    assert not found, "\n".join(found)
+
+
+def test_the_core_accepts_the_solvers_the_schema_names():
+    """The core does not import the scenario's schema: its table of solvers is its own, the same names."""
+    from hoistsim.machine.core.loop import SOLVERS
+    from hoistsim.scenario.schema import SOLVERS as SOLVER_NAMES
+
+    assert tuple(SOLVERS) == SOLVER_NAMES

@@ -162,7 +162,7 @@ def watch(scenario, output, figure, overrides):
 @one_line_errors
 def check(scenario, overrides):
     """Validate SCENARIO and print the reduced model, without simulating."""
-    from ..results.report import machine_table
+    from ..studies.machine_tables import machine_table
     from ..scenario.sweep_runs import SweepRuns
 
     scenario_path = scenario

@@ -133,10 +133,9 @@ class Watch:
 
 
 def _headline(summary: dict) -> list[str]:
-    from ..machine.elements import element_classes
-    from ..results.report import headline
+    from ..display import headline
 
-    said = headline(summary, element_classes())
+    said = headline(summary)
     return said or [f"energy residual {summary.get('energy_relative_residual', float('nan')):.1e}"]
 
 

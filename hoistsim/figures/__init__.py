@@ -5,5 +5,6 @@ periodic regime.
 them from the panels the elements declare, so this layer names no part; :mod:`.base` holds what
 they share, :mod:`.placing` lays out a figure of runs from its measured texts.  matplotlib is imported inside these modules only, never by a layer below.
 
-May import: every layer below it; nothing here runs the machine.
+May import: the foundation, the displays (:mod:`hoistsim.display`) and the results; nothing here runs the
+machine, and nothing here loads JAX.
 """

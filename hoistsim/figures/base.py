@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from ..machine.core.panel import RPM
+from ..display.panel import RPM
 
 # how a swept key is shown: SI value x scale, in unit
 DISPLAY_UNITS = {

@@ -1,6 +1,6 @@
 """Figures of a results file: the runs against time, the summary against the swept value, the periodic regime.
 
-The panels come from the elements (:mod:`hoistsim.machine.core.panel`): each part the
+The panels come from the parts' displays (:mod:`hoistsim.display`): each part the
 file's runs have columns of draws its own, so this module names no part.
 matplotlib is imported here and in the other figure modules only, so the rest
 of hoistsim never pays for it.
@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..machine.elements import element_classes
+from ..display import DISPLAYS
 from ..results.atomic import atomic_path
 from ..results.reading import read_runs, read_summary, read_swept_keys
 from .base import DISPLAY_UNITS
@@ -123,20 +123,19 @@ class FigureWriting:
 
 
 class _Read:
-    """The columns the run figure reads: those the elements' panels, marks and shading name, and those a
+    """The columns the run figure reads: those the parts' panels, marks and shading name, and those a
     part named by the user claims (``reads``); the rest of a file is not loaded."""
 
     def __init__(self):
-        self.classes = element_classes()
         self.names = {"time", "motor_angle"}
-        for cls in self.classes:
-            for panel in cls.panels:
+        for display in DISPLAYS:
+            for panel in display.panels:
                 for trace in panel.traces:
                     self.names.update(trace.columns())
-            self.names.update(phase.column for phase in cls.shading)
+            self.names.update(phase.column for phase in display.shading)
 
     def __contains__(self, name: str) -> bool:
-        return name in self.names or any(cls.reads(name) for cls in self.classes)
+        return name in self.names or any(display.reads_column(name) for display in DISPLAYS)
 
 
 def runs_columns() -> _Read:

@@ -15,9 +15,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..machine.core.layout import SWITCH_KINDS
-from ..machine.elements import element_classes
-from ..results.report import headline
+from ..display import DISPLAYS, headline
 from .base import colour_scale, swept_label
 from .frames import FrameSpec, FreshFrames
 from .placing import align_ylabels, place_panels
@@ -25,6 +23,7 @@ from .placing import align_ylabels, place_panels
 FEW = 4  # more runs than this are drawn as a colour-mapped family
 MAX_EVENT_LINES = 40  # a run with more events than this (periodic stick-slip) has its events listed, not drawn
 THIN_TO = 600  # in a family, a curve longer than 2 x this many rows is thinned to its extremes per bucket
+QUIET = ("observation", "cycle")  # categories of instant drawn as no line: rows, not events
 
 _TRACE_COLOURS = ("#1f4e79", "#c1440e", "#2a7f62", "#6a3d9a", "#b8860b", "#17becf", "#8c564b", "#e377c2")
 _LIMIT_COLOUR = "0.35"
@@ -41,15 +40,12 @@ _LEGEND = dict(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon
 
 def runs_figure(runs, plt, swept, frames=None):
     """The figure of ``runs``; ``frames`` gives its frame (:mod:`.frames`: afresh, or kept by ``watch``)."""
-    classes = element_classes()
     for run in runs:  # what traces read beside the columns (a limit the scenario gives)
         _parameters(run)
     present = set(runs[0])
-    panels = _panels(classes, present, runs[0])
-    shading = list({id(phase): phase for cls in classes for phase in cls.shading if phase.column in present}.values())
-    # events that are not switches or scheduled instants (observations, period marks) get no line
-    quiet = {"slip_peak"} | {k for cls in classes for k in cls.observation_kinds if k not in cls.limits} | {
-        kind for cls in classes for kind in cls.cycles.values()}
+    panels = _panels(present, runs[0])
+    shading = list({id(phase): phase for display in DISPLAYS for phase in display.shading
+                    if phase.column in present}.values())
 
     heights = [panel.height for panel in panels]
     mode = "one" if len(runs) == 1 else "few" if len(runs) <= FEW else "family"
@@ -70,7 +66,7 @@ def runs_figure(runs, plt, swept, frames=None):
     if mode == "one":
         _shade(axes, runs[0], shading)
     if mode != "family":
-        _draw_events(axes, runs, run_colours, mode, quiet)
+        _draw_events(axes, runs, run_colours, mode)
 
     for ax, panel in zip(axes, panels):
         ax.set_ylabel(panel.ylabel)
@@ -83,7 +79,7 @@ def runs_figure(runs, plt, swept, frames=None):
             ax.legend(handles, labels, **{**_LEGEND, "bbox_to_anchor": (_legend_anchor(panel), 1.0)})
     axes[-1].set_xlabel("time [s]")
     axes[-1].set_xlim(min(r["time"][0] for r in runs), max(r["time"][-1] for r in runs))
-    title = fig.suptitle(_title(runs, classes, swept), fontsize=11, x=0.01, ha="left")
+    title = fig.suptitle(_title(runs, swept), fontsize=11, x=0.01, ha="left")
     if mode == "family":
         align_ylabels(fig, axes)
         bar = fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=axes, location="top",
@@ -99,14 +95,11 @@ def _legend_anchor(panel) -> float:
     return 1.13 if panel.right_axis else 1.01
 
 
-def _panels(classes, present, run):
-    """The elements' panels merged by name, each with the curves the file has columns for, top first."""
-    merged, seen = {}, set()
-    for cls in classes:
-        for panel in cls.panels_for(run):
-            if id(panel) in seen:  # inherited by the variants of a part (the motor's characteristics)
-                continue
-            seen.add(id(panel))
+def _panels(present, run):
+    """The parts' panels merged by name, each with the curves the file has columns for, top first."""
+    merged = {}
+    for display in DISPLAYS:
+        for panel in display.panels_of(run):
             traces = tuple(t for t in panel.traces if all(c in present for c in t.columns()))
             if panel.name in merged:
                 first = merged[panel.name]
@@ -195,7 +188,7 @@ def _marks(ax, trace, scale, runs, run_colours, mode):
         if not xs:
             continue
         name = _MARK_NAMES.get(kind, kind.replace("_", " "))
-        if kind in {k for cls in element_classes() for k in cls.limits}:  # a limit crossed: a warning, in red
+        if kind in _limits(runs):  # a limit crossed: a warning, in red
             ax.scatter(xs, ys, s=40 if mode != "family" else 14, c=_LIMIT_MARK, marker="v", lw=0, zorder=4,
                        label=name)
         elif mode == "family":
@@ -218,19 +211,26 @@ def _shade(axes, run, shading):
                             label=phase.label if ax is axes[0] else None)
 
 
+def _limits(runs) -> set:
+    """The kinds of limit the runs crossed (a temperature limit): their instants are warnings."""
+    return {_kind(row) for run in runs for row in run["events"] if _text(row, "category") == "limit"}
+
+
 def _event_text(row) -> str:
     """What a line's label says: a coupling's switch names the coupling ("mesh unlock"), a scheduled event
     names itself ("brake release")."""
     kind = _kind(row)
-    text = f"{_text(row, 'element')} {kind}" if kind in SWITCH_KINDS else kind
+    text = f"{_text(row, 'element')} {kind}" if _text(row, "category") == "switch" else kind
     return text.replace("_", " ")
 
 
-def _draw_events(axes, runs, run_colours, mode, quiet):
-    """Switches and scheduled instants as lines in every panel; named at the top (one run) or by style."""
+def _draw_events(axes, runs, run_colours, mode):
+    """Switches, scheduled instants and limits crossed as lines in every panel; named at the top (one run) or
+    by style.  Observations (a peak, a lowest point) and the ends of cycles get none: they are rows."""
     seen = set()
     for run, colour in zip(runs, run_colours):
-        rows = [(float(row["time"]), _kind(row), _event_text(row)) for row in run["events"] if _kind(row) not in quiet]
+        rows = [(float(row["time"]), _kind(row), _event_text(row)) for row in run["events"]
+                if _text(row, "category") not in QUIET]
         if len(rows) > MAX_EVENT_LINES:
             axes[0].annotate(f"{len(rows)} switches: listed in the file's events, not drawn",
                              (0.01, 0.02), xycoords="axes fraction", fontsize=8, color="0.3")
@@ -309,12 +309,12 @@ def _parameters(run) -> dict:
     return run["parameters"]
 
 
-def _title(runs, classes, swept) -> str:
+def _title(runs, swept) -> str:
     attrs = runs[0]["attrs"]
     name = str(attrs.get("name", ""))
     if len(runs) > 1:
         return f"{name}: {len(runs)} runs, coloured by {swept_label(swept)}"
-    return f"{name}: " + "; ".join(headline(attrs, classes))
+    return f"{name}: " + "; ".join(headline(attrs))
 
 
 def _run_name(run) -> str:

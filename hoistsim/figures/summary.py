@@ -12,19 +12,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..machine.elements import element_classes
+from ..display import DISPLAYS
 from .base import swept_label
 
 POINTS = 60  # up to this many runs, each is a marked point
 
 
 def summary_figure(summaries, swept, plt, name: str = "", parameters: dict | None = None):
-    classes = element_classes()
     names = set(summaries[0])
     # variants of one part (a load on a rigid or an elastic rope) share their panels: each is drawn once
-    panels = sorted(dict.fromkeys(p for cls in classes for p in cls.summary_panels if p.name in names),
+    panels = sorted(dict.fromkeys(p for display in DISPLAYS for p in display.summary_panels if p.name in names),
                     key=lambda p: p.order)
-    outcomes = [(o, _applies(o, summaries)) for o in dict.fromkeys(o for cls in classes for o in cls.outcomes)]
+    outcomes = [(o, _applies(o, summaries)) for o in dict.fromkeys(o for display in DISPLAYS for o in display.outcomes)]
     outcomes = [(o, mask) for o, mask in outcomes if mask is not None and mask.any()]
     x = np.asarray(swept[1], dtype=float)
     order = np.argsort(x, kind="stable")

@@ -4,7 +4,7 @@ The two-shaft reduced model of exercise 6 (:mod:`.model`), its closed-form piece
 (:mod:`.exact`, with :mod:`.exppoly` for its exponential-polynomial phases), the elastic rope's
 exact phases (:mod:`.rope_exact`), and two independent peers: scipy's event-restart integration
 of the same equations (:mod:`.scipy_reference`) and the regularised (smoothed-friction) ODE
-(:mod:`.regularised`).  The engine never imports these; results and studies read them.
+(:mod:`.regularised`).  The engine, the results and the figures never import these; the tests and the studies read them.
 
 May import: the foundation, :mod:`hoistsim.components`, :mod:`hoistsim.scenario` and
 :mod:`hoistsim.machine` (the regularised peer drives the assembled machine's smooth right-hand side).

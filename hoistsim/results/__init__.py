@@ -5,5 +5,6 @@ Tredgold's diagram read off a run's rows (:mod:`.periodic`), the HDF5 file writt
 (:mod:`.output`, :mod:`.output_periodic`, :mod:`.atomic`) and read back (:mod:`.reading`), and
 the tables a terminal shows (:mod:`.report`).
 
-May import: the foundation, components, the scenario, the machine and the references.
+May import: the foundation, components, the displays, the scenario and the machine (never the references:
+the tests' oracles are no part of a result).
 """

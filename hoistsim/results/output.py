@@ -57,20 +57,21 @@ def write_runs(path, runs, *, command: str = "", parameters: dict | None = None)
     if not runs:
         raise ValueError("no runs to write")
     _write_at_once(path, runs[0].scenario, [run.label or run.name for run in runs], parameters or {}, runs,
-                   summary_only=False, command=command)
+                   runs[0].summary_units, summary_only=False, command=command)
 
 
 def write_sweep(path, result, *, command: str = "") -> None:
     """Write a sweep: every run's time series, or (summary-only) the run variables alone."""
     summary_only = result.runs is None
     _write_at_once(path, result.scenario, result.labels, result.parameters,
-                   result.summaries if summary_only else result.runs, summary_only=summary_only, command=command)
+                   result.summaries if summary_only else result.runs, result.summary_units, summary_only=summary_only,
+                   command=command)
 
 
-def _write_at_once(path, scenario, labels, parameters, outcomes, *, summary_only: bool, command: str) -> None:
+def _write_at_once(path, scenario, labels, parameters, outcomes, units, *, summary_only: bool, command: str) -> None:
     time, padded = (None, False) if summary_only else common_time([run.grid for run in outcomes])
     record = make_record(range(len(outcomes)), outcomes, summary_only=summary_only, time=time, padded=padded)
-    assemble(path, [record], Heading(scenario, labels, parameters, summary_only, time, command))
+    assemble(path, [record], Heading(scenario, labels, parameters, summary_only, time, units, command))
 
 
 FORMAT_VERSION = 2
@@ -126,6 +127,7 @@ class Heading:
     parameters: dict
     summary_only: bool
     time: np.ndarray | None
+    summary_units: dict  # summary column -> units, as the scene's elements declare them (summary_units)
     command: str = ""
 
 
@@ -164,7 +166,7 @@ class Assembly:
         if layout.time is not None:
             self.scales["time"] = _scale(group, "time", layout.time, "s",
                                          "time since the start (the output grid; exact instants are in events)")
-        units = _summary_units(layout.scenario)
+        units = layout.summary_units
         columns = None
         for record in records:  # one at a time (a streamed sweep's read from its chunk file as it comes)
             columns = columns or list(record.values)
@@ -253,14 +255,12 @@ _HOST_SUMMARY_UNITS = {"lock_events": "1", "unlock_events": "1", "energy_residua
                        "energy_relative_residual": "1", "heat_relative_residual": "1"}
 
 
-def _summary_units(scenario) -> dict[str, str]:
-    """Units of every summary column: as the scene's elements declare them, yes/no values as 1."""
-    from ..machine.assemble import machine_elements
-    from ..machine.core.layout import Layout
-    from .periodic.analysis import summary_units
+def summary_units(layout) -> dict[str, str]:
+    """Units of every summary column of a machine (its :class:`hoistsim.machine.core.layout.Layout`): as its
+    elements declare them, yes/no values as 1, and the host's own."""
+    from .periodic.analysis import periodic_summary_units
 
-    layout = Layout(machine_elements(scenario))
-    declared = {**layout.summaries, **summary_units(layout)}
+    declared = {**layout.summaries, **periodic_summary_units(layout)}
     return {**{k: "1" if u == "bool" else u for k, u in declared.items()}, **_HOST_SUMMARY_UNITS}
 
 

@@ -25,7 +25,7 @@ INSTANT_COLUMNS = {
     "kind": ("1", "lock, unlock, reversal, engage, disengage, a scheduled event, an observation "
                   "(slip_peak, load_lowest, ...) or a period mark"),
     "element": ("1", "the element it belongs to"),
-    "category": ("1", "switch, scheduled, observation or cycle"),
+    "category": ("1", "switch, scheduled, observation, limit (a threshold crossed) or cycle"),
     "torque_margin": ("N*m", "the coupling's static capacity minus the torque it would carry stuck "
                              "(NaN where it does not apply)"),
     "mode_after": ("1", "the coupling's mode after it"),

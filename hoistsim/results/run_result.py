@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import cached_property
 
 import numpy as np
 
@@ -36,8 +35,10 @@ class RunResult:
     periodic: object = None  # hoistsim.results.periodic.analysis.Periodic, for a machine with a periodic regime
     grid: np.ndarray | None = None  # the output grid's times (rows of ``time`` that are not event instants)
     # every exact instant, events and observations alike (time, kind, element, torque_margin, mode_after,
-    # category: "switch", "scheduled", "observation" or "cycle"); ``events`` keeps the switches and schedule
+    # category: "switch", "scheduled", "observation", "limit" or "cycle"); ``events`` keeps the switches and
+    # schedule
     instants: dict | None = None
+    summary_units: dict = field(default_factory=dict)  # summary value -> units (results.output.summary_units)
 
     def grid_rows(self) -> np.ndarray:
         """Indices of the output grid's rows in ``time`` (a grid time that is also an event time: its row)."""
@@ -53,13 +54,6 @@ class RunResult:
     @property
     def name(self) -> str:
         return self.scenario.name
-
-    @cached_property
-    def drivetrain(self):
-        """The two-shaft reduced model of the scenario (:mod:`hoistsim.references.model`): the oracles' numbers."""
-        from ..references.model import Machine
-
-        return Machine.from_scenario(self.scenario).reduced()
 
     # ------------------------------------------------------------------ summary
 

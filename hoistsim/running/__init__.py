@@ -4,5 +4,5 @@
 structure (:mod:`.block_plans`, :mod:`.blocks`), streams them to chunk files that survive a kill
 (:mod:`.streaming`) and may spread them over a Dask cluster (:mod:`.cluster`).
 
-May import: every layer below it (foundation, components, scenario, machine, references, results).
+May import: every layer below it (foundation, components, display, scenario, machine, results).
 """

@@ -15,6 +15,7 @@ from ..machine.core.element import MODE_NAMES
 from ..machine.core.layout import SWITCH_KINDS
 from ..machine.core.plan import CHATTERING, OK, SOLVER_FAILED, STATUS_TEXT
 from ..machine.core.readout import Readout
+from ..results.output import summary_units
 from ..results.run_result import RunResult
 from ..scenario.loading import Scenario
 
@@ -77,6 +78,14 @@ def failure_message(scenario: Scenario, raw: Readout) -> str:
     return f"{name}: the run stopped at t = {t:.6g} s: {STATUS_TEXT[raw.status]}"
 
 
+def scene_summary_units(scenario: Scenario) -> dict[str, str]:
+    """Units of every summary column a run of the scenario has (a sweep's, from its base scenario)."""
+    from ..machine.assemble import machine_elements
+    from ..machine.core.layout import Layout
+
+    return summary_units(Layout(machine_elements(scenario)))
+
+
 def run_result(scenario: Scenario, label: str, grid: np.ndarray, raw: Readout, elapsed: float) -> RunResult:
     layout = raw.layout
     series = raw.columns(grid.size)
@@ -100,14 +109,17 @@ def run_result(scenario: Scenario, label: str, grid: np.ndarray, raw: Readout, e
 
         periodic = periodic_regime(scenario, raw)
     cycles = [kind for _, _, kind in layout.cycles]
-    category = np.asarray(["observation" if k in layout.observation_kinds else "cycle" if k in cycles
-                           else "switch" if k in SWITCH_KINDS else "scheduled" for k in kinds], dtype=object)
+    limits = {kind for element in layout.elements for kind in element.limits}  # thresholds crossed: warnings
+    category = np.asarray(["limit" if k in limits else "observation" if k in layout.observation_kinds
+                           else "cycle" if k in cycles else "switch" if k in SWITCH_KINDS else "scheduled"
+                           for k in kinds], dtype=object)
     return RunResult(
         scenario=scenario,
         label=label,
         time=times[keep],
         series=series,
         units={name: units for name, (units, _) in columns.items()},
+        summary_units=summary_units(layout),
         descriptions={name: text for name, (_, text) in columns.items()},
         events={
             "time": event_time[switches],

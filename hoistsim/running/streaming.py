@@ -137,8 +137,10 @@ class StreamedFile:
     def finish(self) -> None:
         """Assemble the results file from the chunk files, one at a time; it takes the target's name atomically."""
         self._flush()
+        from .simulation import scene_summary_units
+
         heading = output.Heading(self.scenario, self.labels, self.parameters, self.summary_only, self.time,
-                                 self.command)
+                                 scene_summary_units(self.scenario), self.command)
         output.assemble(self.target, self._records(), heading)
         shutil.rmtree(self.folder, ignore_errors=True)
 

@@ -14,6 +14,7 @@ import contextlib
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 
 import jax
@@ -56,6 +57,13 @@ class SweepResult:
         """Column -> one value per run (labels included)."""
         return self.summaries.columns
 
+    @cached_property
+    def summary_units(self) -> dict[str, str]:
+        """Units of every summary column, as the scene's elements declare them."""
+        from .simulation import scene_summary_units
+
+        return scene_summary_units(self.scenario)
+
     def to_hdf5(self, path, command: str = "") -> None:
         from ..results.output import write_sweep
 
@@ -66,11 +74,11 @@ class SweepResult:
         every summary value on (run), with units."""
         import xarray as xr
 
-        from ..results.output import _summary_units, common_time
+        from ..results.output import common_time
         from ..results.records import series_blocks
         from ..scenario.keys import key_units
 
-        units = _summary_units(self.scenario)
+        units = self.summary_units
         data = {"label": ("run", np.asarray(self.labels, dtype=object))}
         for key, values in self.parameters.items():
             data[key] = ("run", np.asarray(values, dtype=float), {"units": key_units(key)})

@@ -64,10 +64,10 @@ Contributions, all read at trace time (``x`` is the machine at one instant,
   ("bool" for a yes/no);
 - ``outputs(x)``: time series, described in ``columns`` (name -> (units, description));
   a column in units "1" is a flag or a mode, stored as a small integer;
-- ``speed_scale()``: a speed (rad/s) typical of the element, for the slip resolution;
-- ``panels``, ``shading``, ``summary_panels``, ``outcomes`` and ``headline(summary)``:
-  what the figures draw of it (:mod:`hoistsim.machine.core.panel`), only where its columns are in the file;
-  ``panels_for(run)`` and ``reads(column)`` where the panels are named after parts the user named.
+- ``speed_scale()``: a speed (rad/s) typical of the element, for the slip resolution.
+
+What the figures draw of a part is not the element's: :mod:`hoistsim.display` holds it as plain data,
+so that reading and drawing a results file needs no machine.
 """
 
 from __future__ import annotations
@@ -117,32 +117,10 @@ class AbstractElement:
     ledger_kinds: ClassVar[dict[str, str]] = {}  # energy term -> "work", "loss", "potential" or "heat of <loss>"
     cycles: ClassVar[dict[str, str]] = {}  # kink -> event kind recorded where it is crossed
     inertia_varies: ClassVar[bool] = False  # brings varying_inertias
-    # what it shows (hoistsim.machine.core.panel): run-figure panels, shaded phases, summary-figure panels,
-    # kinds of run the summary figure marks apart
-    panels: ClassVar[tuple] = ()
-    shading: ClassVar[tuple] = ()
-    summary_panels: ClassVar[tuple] = ()
-    outcomes: ClassVar[tuple] = ()
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         pytree_dataclass(cls)
-
-    @classmethod
-    def panels_for(cls, run: dict) -> tuple:
-        """The run figure's panels of this kind of part for a run read back (``run["parameters"]`` the
-        resolved scenario): ``panels``, or panels named after the parts a scenario drew (a drivetrain's)."""
-        return cls.panels
-
-    @classmethod
-    def reads(cls, column: str) -> bool:
-        """Whether the run figure reads a column beyond those its ``panels`` name (a part named by the user)."""
-        return False
-
-    @classmethod
-    def headline(cls, summary: dict) -> str | None:
-        """What a run's figure title says of this part, from the run's summary (None: nothing)."""
-        return None
 
     def bodies(self) -> dict:
         return {}

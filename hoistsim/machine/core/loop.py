@@ -21,7 +21,6 @@ import jax
 import jax.numpy as jnp
 
 from ..._pytree import pytree_dataclass
-from ...scenario.schema import SOLVERS as SOLVER_NAMES
 from . import decisions, switching
 from .bodies import Response, response, response_table
 from .columns import row_outputs, summary_values
@@ -35,8 +34,10 @@ from .readout import RawRun
 from .schedule import Segment, segment_from
 from .stepping import integrate_pass
 
-# The names a scenario accepts (schema.SOLVERS) are diffrax's class names in lower case.
-SOLVERS = {name: getattr(diffrax, name.capitalize()) for name in SOLVER_NAMES}
+# The solvers a run may use, by the names a scenario gives them (simulation.solver: the schema's list, which
+# tests/test_layers.py holds equal to this one).
+SOLVERS = {"tsit5": diffrax.Tsit5, "dopri5": diffrax.Dopri5, "dopri8": diffrax.Dopri8, "bosh3": diffrax.Bosh3,
+           "heun": diffrax.Heun, "kvaerno3": diffrax.Kvaerno3, "kvaerno5": diffrax.Kvaerno5}
 
 MAX_STEPS_PER_SEGMENT = 200_000
 _REDUCTIONS = {"max": -jnp.inf, "min": jnp.inf, "first": jnp.nan, "first_value": jnp.nan, "duration": 0.0}

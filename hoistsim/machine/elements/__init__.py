@@ -88,13 +88,3 @@ def elements_for(scenario) -> tuple[AbstractElement, ...]:
         built = cls.from_spec(spec, scenario)
         out += built if isinstance(built, tuple) else [built]  # a drivetrain: an element per part
     return tuple(out)
-
-
-def element_classes() -> list:
-    """Every kind of element there is, in registry order (what may have columns in a file)."""
-    classes = []
-    for entry in REGISTRY.values():
-        for cls in (entry.values() if isinstance(entry, dict) else getattr(entry, "parts", (entry,))):
-            if cls not in classes:
-                classes.append(cls)
-    return classes

@@ -5,7 +5,6 @@ from __future__ import annotations
 from typing import ClassVar
 
 from ..core.element import AbstractElement
-from ..core.panel import Panel, SummaryPanel, Trace
 
 
 class AbstractLoad(AbstractElement):
@@ -26,25 +25,6 @@ class AbstractLoad(AbstractElement):
         "load_position": ("m", "height of the load above its start"),
         "load_velocity": ("m/s", "rope speed, positive up"),
     }
-    panels: ClassVar[tuple] = (
-        Panel("load_position", "load height [m]\n(above its start)", 30,
-              (Trace("load", "load_position", marks=("load_lowest",)),), zero_line=True, height=0.8),
-        Panel("load_velocity", "load speed [m/s]\n(+ up)", 31, (Trace("load", "load_velocity"),),
-              zero_line=True, height=0.8),
-    )
-    summary_panels: ClassVar[tuple] = (
-        SummaryPanel("lowest_load_position", "lowest load position [m]", 30, zero_line=True),
-        SummaryPanel("final_load_position", "load position at the end [m]", 31, zero_line=True),
-    )
-
-    @classmethod
-    def headline(cls, summary: dict) -> str | None:
-        final, lowest = float(summary["final_load_position"]), float(summary["lowest_load_position"])
-        if lowest < 0 and final < 0:
-            return f"load runs back {-final:.3g} m"
-        if lowest < 0:
-            return f"load dips {-lowest:.3g} m, ends {final:+.3g} m"
-        return f"load {final:+.3g} m"
 
     def load_speed(self, x):
         """The load's speed (m/s, positive up)."""

@@ -5,7 +5,6 @@ from __future__ import annotations
 from typing import ClassVar
 
 from ..core.element import AbstractElement
-from ..core.panel import Trace, speed_panel
 
 
 class AbstractMotor(AbstractElement):
@@ -27,12 +26,6 @@ class AbstractMotor(AbstractElement):
         "motor_torque": ("N*m", "motor torque from its characteristic"),
         "motor_work": ("J", "work done by the motor so far"),
     }
-    panels: ClassVar[tuple] = (speed_panel(Trace("motor", "motor_speed")),)
-
-    @classmethod
-    def panels_for(cls, run: dict) -> tuple:
-        # a drawn drivetrain's shaft may be named motor: its speed is in the shafts' panel, not the hoist's
-        return () if (run.get("parameters") or {}).get("drivetrain") else cls.panels
 
     def characteristic(self, speed):
         """Motor torque (N*m) at shaft speed ``speed`` (rad/s)."""

@@ -5,10 +5,8 @@ from __future__ import annotations
 from typing import ClassVar
 
 import jax.numpy as jnp
-import numpy as np
 
 from ..core.element import AbstractElement
-from ..core.panel import Panel, Phase, SummaryPanel, Trace
 
 
 class AbstractRope(AbstractElement):
@@ -45,21 +43,6 @@ class AbstractRope(AbstractElement):
         "rope_stretch": ("m", "rope stretch s (negative: the slack the rope hangs with)"),
         "rope_taut": ("1", "1 while the rope pulls, 0 while it is slack"),
     }
-    panels: ClassVar[tuple] = (Panel("rope", "rope force [kN]", 32, (
-        Trace("rope force", "rope_force", marks=("lift_off", "touch_down", "rope_force_peak")),
-        Trace("load weight M g", "rope_force", style=":", limit=True,
-              value=lambda run: _weight_line(run)),
-    ), scale=1e-3, zero_line=True),)
-    shading: ClassVar[tuple] = (Phase("rope slack", "rope_taut", 0, "#fdb863", hatch="//"),)
-    summary_panels: ClassVar[tuple] = (
-        SummaryPanel("peak_rope_force", "peak rope force [kN]", 32, scale=1e-3),
-        SummaryPanel("dynamic_factor", "dynamic factor\n(peak rope force / M g)", 33,
-                     beside=("EN 13001-2's phi2 at the lift-off rope speed", "dynamic_factor_standard")),
-    )
-
-    @classmethod
-    def headline(cls, summary: dict) -> str | None:
-        return f"peak rope force {float(summary['peak_rope_force']) / 1000:.3g} kN (x{float(summary['dynamic_factor']):.3f} M g)"
 
     def stiffness(self, x):
         """k (N/m) at this instant."""
@@ -136,9 +119,3 @@ def initial_stretch(scenario, stiffness: float) -> float:
 def damping(scenario, stiffness: float) -> float:
     """c = 2 zeta sqrt(k M), k at t = 0 (N*s/m)."""
     return 2.0 * scenario.rope.damping_ratio * (stiffness * scenario.load.mass) ** 0.5
-
-
-def _weight_line(run):
-    """The load's weight across the run (N): where the rope force lifts it off the ground."""
-    parameters = run["parameters"]
-    return np.full(np.shape(run["rope_force"]), parameters["load"]["mass"] * parameters["gravity"])

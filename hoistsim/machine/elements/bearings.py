@@ -10,7 +10,6 @@ import jax.numpy as jnp
 from ..._pytree import static
 from ...components import DrumShaft
 from ..core.element import AbstractElement
-from ..core.panel import Panel, Trace
 
 _DESCRIPTIONS = {
     "tooth_tangential_force": "tooth force along the pitch-circle tangent, from the torque the wheel receives",
@@ -50,10 +49,6 @@ class DrumShaftLoads(AbstractElement):
 
     section: ClassVar[str] = "bearings"
     columns: ClassVar[dict] = {name: ("N", text) for name, text in _DESCRIPTIONS.items()}
-    panels: ClassVar[tuple] = (Panel("drum_shaft_loads", "drum-shaft loads [kN]", 50, (
-        Trace("bearing A", "bearing_A"), Trace("bearing B", "bearing_B", style="--"),
-        Trace("tooth force", "tooth_force", style="-."), Trace("rope tension", "rope_tension", style=":"),
-    ), scale=1e-3, height=1.1),)
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "DrumShaftLoads":

@@ -4,20 +4,11 @@ from __future__ import annotations
 
 from typing import ClassVar
 
-import jax.numpy as jnp
 import numpy as np
 
 from ..._pytree import static
 from ..core.element import AbstractElement
-from ..core.panel import Outcome, Panel, SummaryPanel, Trace
 from ._slip_heat import slip_power
-
-ZERO_CELSIUS = 273.15  # K: the figures speak degrees Celsius, the numbers kelvin
-
-
-def _celsius(kelvin):
-    return np.asarray(kelvin, dtype=float) - ZERO_CELSIUS
-
 
 class ClutchHeating(AbstractElement):
     """C dT/dt = P - G (T - T_ambient): the clutch's heat of slip P (its torque times the slip speed)
@@ -51,19 +42,6 @@ class ClutchHeating(AbstractElement):
         "clutch_cooling_power": ("W", "heat the clutch passes to ambient, G (T - T_ambient)"),
         "clutch_heat_to_ambient": ("J", "heat the clutch has passed to ambient so far"),
     }
-    panels: ClassVar[tuple] = (Panel("clutch_temperature", "clutch temperature [degC]", 21, (
-        Trace("friction surfaces", "clutch_temperature", value=lambda run: _celsius(run["clutch_temperature"]),
-              marks=("overheat", "temperature_peak")),
-        Trace("max temperature", "clutch_temperature", style=":", limit=True,
-              value=lambda run: _limit_line(run)),
-    )),)
-    summary_panels: ClassVar[tuple] = (
-        SummaryPanel("peak_clutch_temperature", "peak clutch temperature [degC]", 3, offset=-ZERO_CELSIUS,
-                     limit=("max temperature", "clutch_heating.max_temperature")),
-    )
-    outcomes: ClassVar[tuple] = (
-        Outcome("overheats", lambda row: not np.isnan(row["overheat_time"]), "#e08214", "v"),
-    )
 
     @property
     def summaries(self) -> dict:
@@ -79,12 +57,6 @@ class ClutchHeating(AbstractElement):
         return cls(heat_capacity=spec.heat_capacity, conductance=spec.cooling,
                    ambient_temperature=spec.ambient_temperature, initial_temperature=spec.start_temperature,
                    max_temperature=spec.max_temperature if limited else np.inf, limited=limited)
-
-    @classmethod
-    def headline(cls, summary: dict) -> str | None:
-        peak = f"clutch peaks at {_celsius(summary['peak_clutch_temperature']):.0f} degC"
-        overheat = float(summary.get("overheat_time", np.nan))
-        return peak if np.isnan(overheat) else f"{peak}, overheats at {overheat:.3f} s"
 
     def cooling_power(self, x):
         return self.conductance * (x.state("clutch_temperature") - self.ambient_temperature)
@@ -123,14 +95,3 @@ class ClutchHeating(AbstractElement):
     def outputs(self, x) -> dict:
         return {"clutch_temperature": x.state("clutch_temperature"), "clutch_cooling_power": self.cooling_power(x),
                 "clutch_heat_to_ambient": x.state("clutch_heat_to_ambient")}
-
-
-def _max_temperature(parameters: dict):
-    """The scenario's max_temperature (K), None where it gives none."""
-    return (parameters.get("clutch_heating") or {}).get("max_temperature")
-
-
-def _limit_line(run):
-    """The max temperature across the run (degC), or None (not drawn) where the scenario gives none."""
-    limit = _max_temperature(run["parameters"])
-    return None if limit is None else np.full(np.shape(run["clutch_temperature"]), _celsius(limit))

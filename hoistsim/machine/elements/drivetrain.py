@@ -18,9 +18,6 @@ class Drivetrain:
     geared to it), the motors and torques on them, its clutches, the losses of its lossy gear stages, the
     load hanging from one."""
 
-    # the kinds of element it builds (what a file may hold)
-    parts = (Shaft, ShaftTorque, ShaftMotor, FrictionClutch, MeshFriction, RigidLoad)
-
     @staticmethod
     def from_spec(spec, scenario) -> tuple:
         groups = gear_groups(spec)

@@ -8,10 +8,8 @@ import jax.numpy as jnp
 import numpy as np
 
 from ..core.element import OPEN
-from ..core.panel import Panel, SummaryPanel, Trace
 from ._drum_hold import AbstractDrumHold
 from ._slip_heat import AbstractSlipHeat
-from .holding_brake import HoldingBrake
 
 
 class FrictionBrake(AbstractSlipHeat, AbstractDrumHold):
@@ -44,26 +42,12 @@ class FrictionBrake(AbstractSlipHeat, AbstractDrumHold):
         "brake_heat": ("J", "energy dissipated in the brake so far (the summary's brake_energy at the end)"),
         "brake_capacity": ("N*m", "the most the brake holds: its static torque while closed, 0 while open"),
     }
-    # the holding brake's panel and phase (the same objects: drawn once), and its static torque beside it
-    panels: ClassVar[tuple] = HoldingBrake.panels + (Panel("brake", "brake torque [N*m]\n(at the drum)", 40, (
-        Trace("static torque", "brake_capacity", style=":", limit=True),
-        # a load lifted against the brake meets the capacity's other side
-        Trace("- static torque", "brake_capacity", style=":", limit=True, needs=("brake_capacity", "brake_torque"),
-              value=lambda run: -run["brake_capacity"] if (run["brake_torque"] < 0).any() else None),
-    ), zero_line=True, height=0.8),)
-    shading: ClassVar[tuple] = HoldingBrake.shading
-    summary_panels: ClassVar[tuple] = (SummaryPanel("brake_energy", "brake heat [kJ]", 40, scale=1e-3),)
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "FrictionBrake":
         kinetic = spec.static_torque if spec.kinetic_torque is None else spec.kinetic_torque
         return cls(static_torque=spec.static_torque, kinetic_torque=kinetic, release_time=spec.release_time,
                    apply_time=np.inf if spec.apply_time is None else spec.apply_time)
-
-    @classmethod
-    def headline(cls, summary: dict) -> str | None:
-        heat = float(summary["brake_energy"])
-        return f"brake heat {heat / 1000:.2f} kJ" if heat > 0 else None
 
     def capacity(self, x):
         return self.static_torque

@@ -9,7 +9,6 @@ import numpy as np
 
 from ..._pytree import static
 from ..core.element import STUCK
-from ..core.panel import Panel, Trace
 from ._signal import harmonics_at, signal_fields
 from ._slip_heat import AbstractSlipHeat
 
@@ -48,30 +47,6 @@ class FrictionClutch(AbstractSlipHeat):
         return cls(static_friction=spec.static_friction, kinetic_friction=spec.kinetic_friction,
                    torque_per_newton=spec.torque_per_newton, **signal_fields(spec.force, "force"), driving=a,
                    driven=None if b == "ground" else b, section=name, in_harmonics=spec.force.has_harmonics)
-
-    @classmethod
-    def headline(cls, summary: dict) -> str | None:
-        locks = [(key[: -len("_lockup_time")], float(value)) for key, value in summary.items()
-                 if key.endswith("_lockup_time")]
-        if not locks:
-            return None
-        said = [f"{name} locks at {t:.4f} s" if t == t else f"{name} never locks" for name, t in locks]
-        return ", ".join(said)
-
-    @classmethod
-    def reads(cls, column: str) -> bool:
-        return column.endswith(("_torque", "_slip", "_force"))
-
-    @classmethod
-    def panels_for(cls, run: dict) -> tuple:
-        """A panel per clutch: the torque it passes and the force pressing it (a right-hand scale's worth
-        of story: where it opens), and one panel of every clutch's slip, its locks marked."""
-        clutches = (run.get("parameters", {}).get("drivetrain") or {}).get("clutches") or {}
-        panels = [Panel(f"{name}_torque", f"{name}\ntorque [N*m]", 20 + i, (Trace("torque", f"{name}_torque"),),
-                        zero_line=True, height=0.8) for i, name in enumerate(clutches)]
-        slips = tuple(Trace(name, f"{name}_slip", marks=("lock",), marks_of=name) for name in clutches)
-        return (Panel("clutch_slips", "clutch slip [rad/s]", 10, slips, zero_line=True),) + tuple(panels) \
-            if clutches else ()
 
     @property
     def heat_state(self) -> str:

@@ -5,7 +5,6 @@ from __future__ import annotations
 from typing import ClassVar
 
 from ..core.element import AbstractElement
-from ..core.panel import speed_panel
 
 
 class GearPair(AbstractElement):
@@ -23,11 +22,6 @@ class GearPair(AbstractElement):
     initial_pinion_speed: object  # rad/s
 
     section: ClassVar[str] = "gears"
-    # The clutch output turns with the pinion, z2/z1 times as fast as the drum: the drum's
-    # speed is a second scale of the same curve.
-    panels: ClassVar[tuple] = (speed_panel(right_axis=(
-        "drum speed [rpm]\n(clutch output / gear ratio)",
-        lambda parameters: parameters["gears"]["pinion_teeth"] / parameters["gears"]["wheel_teeth"])),)
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "GearPair":

@@ -8,7 +8,6 @@ import jax.numpy as jnp
 
 from ..._pytree import static
 from ..core.element import STUCK, AbstractCoupling
-from ..core.panel import Phase
 from ._one_way import OneWayHold
 
 # EN 13001-2's dynamic factor phi2 = phi2_min + beta2 * v_h by hoisting class: (phi2_min, beta2 [s/m])
@@ -44,7 +43,6 @@ class Ground(OneWayHold, AbstractCoupling):
         "ground_force": ("N", "the ground's push up on the load (0 in the air)"),
         "load_on_ground": ("1", "1 while the load rests on the ground"),
     }
-    shading: ClassVar[tuple] = (Phase("load on the ground", "load_on_ground", 1, "#8c510a", hatch="xx"),)
 
     @property
     def summaries(self) -> dict:
@@ -56,11 +54,6 @@ class Ground(OneWayHold, AbstractCoupling):
         classed = spec.hoisting_class is not None
         phi2_min, beta2 = HOISTING_CLASSES[spec.hoisting_class] if classed else (float("nan"), float("nan"))
         return cls(phi2_min=phi2_min, beta2=beta2, classed=classed)
-
-    @classmethod
-    def headline(cls, summary: dict) -> str | None:
-        lift_off = float(summary["lift_off_time"])
-        return "load never lifts off" if lift_off != lift_off else f"lifts off at {lift_off:.3f} s"
 
     def joins(self) -> tuple:
         return ("load", None)

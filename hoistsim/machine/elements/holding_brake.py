@@ -6,7 +6,6 @@ from typing import ClassVar
 
 import jax.numpy as jnp
 
-from ..core.panel import Panel, Phase, Trace
 from ._drum_hold import AbstractDrumHold
 
 
@@ -27,9 +26,6 @@ class HoldingBrake(AbstractDrumHold):
         "brake_torque": ("N*m", "torque the brake applies to the drum, positive holding the load up"),
         "brake_engaged": ("1", "1 while the brake holds the drum"),
     }
-    panels: ClassVar[tuple] = (Panel("brake", "brake torque [N*m]\n(at the drum)", 40,
-                                     (Trace("holding the load up", "brake_torque"),), zero_line=True, height=0.8),)
-    shading: ClassVar[tuple] = (Phase("brake holding", "brake_engaged", 1, "#8c510a", hatch="///"),)
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "HoldingBrake":

@@ -9,7 +9,6 @@ import jax.numpy as jnp
 from ..._pytree import static
 from ..core.dynamics import slip_sign
 from ..core.element import OPEN, STUCK
-from ..core.panel import Panel, Phase, SummaryPanel, Trace
 from ._slip_heat import AbstractSlipHeat
 
 
@@ -51,10 +50,6 @@ class MeshFriction(AbstractSlipHeat):
     # law of the losses: a row of its own, and no step across it
     observation_kinds: ClassVar[tuple] = ("power_reversal",)
     crossings: ClassVar[tuple] = ("power_reversal",)
-    panels: ClassVar[tuple] = (Panel("mesh", "mesh [N*m]\n(tooth load at the drum)", 45, (
-        Trace("tooth load", "mesh_torque"),), zero_line=True, height=0.8),)
-    shading: ClassVar[tuple] = (Phase("wheel drives the pinion", "mesh_mode", 2, "#b2182b", hatch="..."),)
-    summary_panels: ClassVar[tuple] = (SummaryPanel("mesh_loss_energy", "mesh losses [kJ]", 45, scale=1e-3),)
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "MeshFriction":
@@ -68,27 +63,6 @@ class MeshFriction(AbstractSlipHeat):
         efficiency, backdrive = stage.efficiencies
         return cls(efficiency=efficiency, backdrive_efficiency=backdrive, ratio=1.0 / stage.ratio, section=name,
                    prefix=f"{name}_mesh", driving=stage.between[0], beyond=beyond)
-
-    @classmethod
-    def headline(cls, summary: dict) -> str | None:
-        losses = [float(v) for key, v in summary.items() if key.endswith("mesh_loss_energy")]
-        return f"mesh losses {sum(losses) / 1000:.2f} kJ" if losses else None
-
-    @classmethod
-    def reads(cls, column: str) -> bool:
-        return column.endswith("_mesh_torque")
-
-    @classmethod
-    def panels_for(cls, run: dict) -> tuple:
-        """The hoist's mesh panel, or for a drawn drivetrain one panel of every lossy stage's tooth load."""
-        drawn = (run.get("parameters") or {}).get("drivetrain")
-        if not drawn:
-            return cls.panels
-        lossy = [name for name, stage in (drawn.get("gears") or {}).items()
-                 if stage.get("efficiency") is not None or stage.get("backdrive_efficiency") is not None]
-        traces = tuple(Trace(name, f"{name}_mesh_torque") for name in lossy)
-        return (Panel("meshes", "tooth load [N*m]\n(at each stage's output)", 45, traces, zero_line=True,
-                      height=0.8),) if traces else ()
 
     @property
     def heat_state(self) -> str:

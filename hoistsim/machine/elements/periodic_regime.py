@@ -9,7 +9,6 @@ import jax.numpy as jnp
 from ..._pytree import static
 from ...scenario.period import machine_period
 from ..core.element import STUCK, AbstractElement
-from ..core.panel import SummaryPanel
 
 
 class PeriodicRegime(AbstractElement):
@@ -36,12 +35,6 @@ class PeriodicRegime(AbstractElement):
     cycles: ClassVar[dict] = {"periods": "period"}
     observation_kinds: ClassVar[tuple] = ("speed_max", "speed_min", "energy_max", "energy_min")
     columns: ClassVar[dict] = {"kinetic_energy": ("J", "kinetic energy of the whole machine")}
-    summary_panels: ClassVar[tuple] = (SummaryPanel("irregularity", "degree of irregularity delta\n(settled regime)", 60),)
-
-    @classmethod
-    def headline(cls, summary: dict) -> str | None:
-        delta = float(summary["irregularity"])
-        return "periodic regime not settled" if delta != delta else f"delta = {delta:.4g} in the settled regime"
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "PeriodicRegime":

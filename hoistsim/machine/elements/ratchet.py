@@ -6,7 +6,6 @@ from typing import ClassVar
 
 import numpy as np
 
-from ..core.panel import Panel, Phase, Trace
 from ._drum_hold import AbstractDrumHold
 from ._one_way import OneWayHold
 
@@ -30,9 +29,6 @@ class Ratchet(OneWayHold, AbstractDrumHold):
         "ratchet_torque": ("N*m", "torque the pawl applies to the drum, positive holding the load up"),
         "ratchet_engaged": ("1", "1 while the pawl holds the drum"),
     }
-    panels: ClassVar[tuple] = (Panel("ratchet", "pawl torque [N*m]\n(at the drum)", 41,
-                                     (Trace("holding the load up", "ratchet_torque"),), zero_line=True, height=0.8),)
-    shading: ClassVar[tuple] = (Phase("pawl holding", "ratchet_engaged", 1, "#5e3c99", hatch="\\\\\\"),)
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "Ratchet":

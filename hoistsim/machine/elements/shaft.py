@@ -6,7 +6,6 @@ import numpy as np
 
 from ..._pytree import static
 from ..core.element import AbstractElement
-from ..core.panel import Panel, Trace
 
 SPEED_SCALE_FLOOR = 1.0  # rad/s
 
@@ -21,16 +20,6 @@ class Shaft(AbstractElement):
     speed_ratio: object = 1.0  # its speed over that of the shaft it is geared to
     section: str = static("")  # the shaft's name in drivetrain.shafts
     geared_to: str = static("")  # the first shaft of its gear train ("" : it is that shaft)
-
-    @classmethod
-    def reads(cls, column: str) -> bool:
-        return column.endswith("_speed")
-
-    @classmethod
-    def panels_for(cls, run: dict) -> tuple:
-        shafts = (run.get("parameters", {}).get("drivetrain") or {}).get("shafts") or {}
-        traces = tuple(Trace(name, f"{name}_speed") for name in shafts)
-        return (Panel("shaft_speeds", "shaft speed [rad/s]", 0, traces, height=1.5),) if traces else ()
 
     @property
     def columns(self) -> dict:

@@ -40,7 +40,7 @@ def periodic_element(layout):
     return next((e for e in layout.elements if e.cycles), None)
 
 
-def summary_units(layout) -> dict[str, str]:
+def periodic_summary_units(layout) -> dict[str, str]:
     """Units of the periodic summary values of a machine (none for one without a periodic regime)."""
     if periodic_element(layout) is None:
         return {}

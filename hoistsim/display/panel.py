@@ -1,9 +1,9 @@
-"""What an element shows in the figures: panels of its columns, shaded phases, summary panels.
+"""What a part shows in the figures: panels of its columns, shaded phases, summary panels, its headline.
 
-Plain descriptions, no matplotlib: an element lists them as class attributes
-(``panels``, ``shading``, ``summary_panels``) and the plotting code draws those
-whose columns a results file holds, so a part the scene does not name draws
-nothing and a new part draws itself without a list in the plotting code.
+Plain descriptions, no matplotlib and no JAX: each kind of part lists them in a :class:`Display`
+(one module of this folder each) and the figures draw those whose columns a results file holds,
+so a part the scene does not name draws nothing and a new part draws itself without a list in the
+plotting code.
 """
 
 from __future__ import annotations
@@ -111,3 +111,30 @@ class Outcome:
 def speed_panel(*traces: Trace, right_axis=None) -> Panel:
     """The shaft-speed panel, on top: each element that turns a shaft adds its curve to it."""
     return Panel("speed", "shaft speed [rpm]", 0, traces, scale=RPM, height=1.5, right_axis=right_axis)
+
+
+@dataclass(frozen=True)
+class Display:
+    """What the figures show of one kind of part, read by the figures and the tables, never by a run.
+
+    ``panels`` of the run figure, ``shading`` (phases), ``summary_panels`` and ``outcomes`` of the sweep's
+    summary figure; ``headline(summary)``: what a run's title says of the part, from the run's summary
+    (None: nothing; a KeyError: the run has not the part); ``panels_for(run)``: the panels for a run read
+    back (``run["parameters"]`` the resolved scenario) where they are named after parts the user named
+    (a drawn drivetrain's), ``panels`` when None; ``reads(column)``: whether the run figure reads a column
+    beyond those its ``panels`` name.
+    """
+
+    panels: tuple[Panel, ...] = ()
+    shading: tuple[Phase, ...] = ()
+    summary_panels: tuple[SummaryPanel, ...] = ()
+    outcomes: tuple[Outcome, ...] = ()
+    headline: Callable[[dict], str | None] | None = None
+    panels_for: Callable[[dict], tuple] | None = None
+    reads: Callable[[str], bool] | None = None
+
+    def panels_of(self, run: dict) -> tuple:
+        return self.panels if self.panels_for is None else self.panels_for(run)
+
+    def reads_column(self, column: str) -> bool:
+        return self.reads is not None and self.reads(column)

@@ -1,0 +1,45 @@
+"""What each kind of part shows: the panels, phases, summary panels and headline the figures and tables
+draw of it, as plain data (:mod:`.panel`), one module a part; no JAX, no machine.
+
+``DISPLAYS`` lists them in the order the figures merge their panels and the title says their headlines.
+May import: the foundation.
+"""
+
+from __future__ import annotations
+
+from .bearings import DRUM_SHAFT_LOADS
+from .clutch_heating import CLUTCH_HEATING
+from .cone_clutch import CONE_CLUTCH
+from .friction_brake import FRICTION_BRAKE
+from .friction_clutch import FRICTION_CLUTCH
+from .gear_pair import GEAR_PAIR
+from .ground import GROUND
+from .holding_brake import HOLDING_BRAKE
+from .load import LOAD
+from .mesh_friction import MESH_FRICTION
+from .motor import MOTOR
+from .panel import Display as Display
+from .periodic_regime import PERIODIC_REGIME
+from .ratchet import RATCHET
+from .rope import ROPE
+from .shaft import SHAFT
+
+DISPLAYS: tuple[Display, ...] = (MOTOR, GEAR_PAIR, MESH_FRICTION, CONE_CLUTCH, CLUTCH_HEATING, LOAD, ROPE, GROUND,
+                                 HOLDING_BRAKE, FRICTION_BRAKE, RATCHET, DRUM_SHAFT_LOADS, PERIODIC_REGIME, SHAFT,
+                                 FRICTION_CLUTCH)
+
+
+def headline(summary: dict) -> list[str]:
+    """What each part of a run says of it in a few words (when the clutch locks, its heat, where the load
+    went, the peak rope force), each part the run has."""
+    said = []
+    for display in DISPLAYS:
+        if display.headline is None:
+            continue
+        try:
+            text = display.headline(summary)
+        except KeyError:  # a part the run has not
+            continue
+        if text:
+            said.append(text)
+    return said

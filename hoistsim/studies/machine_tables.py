@@ -1,0 +1,57 @@
+"""The machine a scenario stands for, as ``hoistsim check`` prints it: each body's inertia and the hoist's
+two-shaft reduced model, or a drawn drivetrain's shafts and clutches."""
+
+from __future__ import annotations
+
+from ..results.report import fmt, table
+
+
+def reduced_model_table(scenario) -> str:
+    """The machine as the simulator sees it: each body's inertia, then the two-shaft numbers of exercise 6."""
+    from ..errors import ScenarioError
+    from ..machine.assemble import machine_elements
+    from ..machine.core.bodies import Bodies
+    from ..machine.core.layout import Layout
+    from ..references.model import Machine
+
+    layout = Layout(machine_elements(scenario))
+    rows = [[f"J[{body}]", f"inertia of the {body} body (all its shafts carry, reduced)", fmt(float(j)), "kg*m^2"]
+            for body, j in zip(layout.bodies, Bodies(layout).inertia)]
+    try:
+        d = Machine.from_scenario(scenario).reduced()
+    except ScenarioError:  # not the two-shaft hoist of exercise 6 (a motor that is not linear)
+        return table(["symbol", "quantity", "value", "unit"], rows, align="llrl")
+    force = scenario.clutch.engagement_force
+    peak = max(force.forces)
+    rows += [
+        ["J_a", "motor-side inertia", fmt(d.motor_inertia), "kg*m^2"],
+        ["J_b", "output-side inertia (at the pinion)", fmt(d.output_inertia), "kg*m^2"],
+        ["tau", "gear ratio z2/z1", fmt(d.ratio), "-"],
+        ["T_L", "load torque at the pinion", fmt(d.load_torque), "N*m"],
+        ["c", "clutch constant n r_m / sin(beta)", fmt(d.clutch_constant), "m"],
+        ["T_s", f"static capacity at {fmt(peak)} N", fmt(d.static_capacity(peak)), "N*m"],
+        ["T_k", f"kinetic torque at {fmt(peak)} N", fmt(d.kinetic_torque(peak)), "N*m"],
+    ]
+    return table(["symbol", "quantity", "value", "unit"], rows, align="llrl")
+
+
+def machine_table(scenario) -> str:
+    """What ``check`` prints of a scenario's machine: the hoist's reduced model, or a drawn drivetrain."""
+    return reduced_model_table(scenario) if scenario.drivetrain is None else drivetrain_table(scenario.drivetrain)
+
+
+def drivetrain_table(drivetrain) -> str:
+    """A drawn drivetrain as ``check`` prints it: its shafts, then its clutches with their capacities at
+    the largest force they are given (for a force in harmonics, the offset plus every amplitude)."""
+    shafts = table(["shaft", "inertia [kg*m^2]", "speed at t = 0 [rad/s]"],
+                   [[name, fmt(s.inertia), fmt(s.speed)] for name, s in drivetrain.shafts.items()], align="lrr")
+    rows = []
+    for name, clutch in drivetrain.clutches.items():
+        force = clutch.force
+        largest = max(force.values) + sum(abs(a) for a in force.amplitudes)
+        per = clutch.torque_per_newton * max(largest, 0.0)
+        rows.append([name, " - ".join(clutch.between), fmt(largest), fmt(clutch.static_friction * per),
+                     fmt(clutch.kinetic_friction * per)])
+    clutches = table(["clutch", "between", "largest force [N]", "capacity [N*m]", "sliding [N*m]"], rows,
+                     align="llrrr")
+    return shafts + ("\n\n" + clutches if rows else "")
