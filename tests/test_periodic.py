@@ -358,7 +358,7 @@ def test_a_periodic_run_kept_in_a_chunk_file_is_written_as_the_run_in_memory(lin
 
     run = linear_motor_ripple
     time, padded = output.common_time([run.grid])
-    heading = output.Heading(run.scenario, [run.name], {}, False, time)
+    heading = output.Heading(run.scenario, [run.name], {}, False, time, run.summary_units)
     record = make_record([0], [run], summary_only=False, time=time, padded=padded)
     output.assemble(tmp_path / "at_once.h5", [record], heading)
     with h5py.File(tmp_path / "chunk.h5", "w") as chunk:
