@@ -16,7 +16,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-from scenes import scene  # noqa: E402
+from scenes import reduced, scene  # noqa: E402
 from test_hybrid import CASES  # noqa: E402
 
 from hoistsim import exact_from_scenario, simulate  # noqa: E402
@@ -30,7 +30,7 @@ def main() -> None:
         run, exact = simulate(s), exact_from_scenario(s)
         ref = exact.evaluate(run.time)
         speed = max(np.max(np.abs(run["motor_speed"] - ref["motor_speed"])),
-                    np.max(np.abs(run["drum_speed"] * run.drivetrain.ratio - ref["output_speed"])))
+                    np.max(np.abs(run["drum_speed"] * reduced(run).ratio - ref["output_speed"])))
         times = np.max(np.abs(run.events["time"] - [e.time for e in exact.events]), initial=0.0)
         energy = abs(run.slip_energy - exact.slip_energy) / max(exact.slip_energy, 1e-300) if exact.slip_energy else 0
         balance = run.energy_balance["relative_residual"]

@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from ..references.exact import exact_from_scenario
+from ..references.model import Machine
 from ..references.regularised import simulate_regularised
 from ..references.scipy_reference import solve_scenario_with_scipy
 from ..running.simulation import simulate
@@ -119,7 +120,8 @@ def _errors(exact, t, motor, output, energy, switches):
 def run_hybrid(name, solver, rtol, exact, repeats):
     s = scene(name, rtol, solver)
     run, best, median, compile_time = _timed(lambda: simulate(s), repeats)
-    errors = _errors(exact, run.time, run["motor_speed"], run["drum_speed"] * run.drivetrain.ratio,
+    ratio = Machine.from_scenario(s).reduced().ratio
+    errors = _errors(exact, run.time, run["motor_speed"], run["drum_speed"] * ratio,
                      run.slip_energy, list(zip(run.events["time"], run.events["kind"])))
     steps = run.stats["steps"]
     return Row(name, "hybrid (hoistsim)", solver, f"{rtol:.0e}", rtol, *errors, steps,
