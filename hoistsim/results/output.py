@@ -164,7 +164,7 @@ class Assembly:
         if layout.time is not None:
             self.scales["time"] = _scale(group, "time", layout.time, "s",
                                          "time since the start (the output grid; exact instants are in events)")
-        units = _summary_units(layout.scenario)
+        units = summary_column_units(layout.scenario)
         columns = None
         for record in records:  # one at a time (a streamed sweep's read from its chunk file as it comes)
             columns = columns or list(record.values)
@@ -253,7 +253,7 @@ _HOST_SUMMARY_UNITS = {"lock_events": "1", "unlock_events": "1", "energy_residua
                        "energy_relative_residual": "1", "heat_relative_residual": "1"}
 
 
-def _summary_units(scenario) -> dict[str, str]:
+def summary_column_units(scenario) -> dict[str, str]:
     """Units of every summary column: as the scene's elements declare them, yes/no values as 1."""
     from ..machine.assemble import machine_elements
     from ..machine.core.layout import Layout

@@ -66,11 +66,11 @@ class SweepResult:
         every summary value on (run), with units."""
         import xarray as xr
 
-        from ..results.output import _summary_units, common_time
+        from ..results.output import common_time, summary_column_units
         from ..results.records import series_blocks
         from ..scenario.keys import key_units
 
-        units = _summary_units(self.scenario)
+        units = summary_column_units(self.scenario)
         data = {"label": ("run", np.asarray(self.labels, dtype=object))}
         for key, values in self.parameters.items():
             data[key] = ("run", np.asarray(values, dtype=float), {"units": key_units(key)})

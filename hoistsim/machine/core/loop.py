@@ -243,8 +243,10 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     )
 
 
-def _run(plan: Plan, solver, max_segments: int, log_size: int, columns: bool = True) -> RawRun:
-    """One run; ``columns`` False leaves out the output columns (a summary-only sweep needs none)."""
+def restart_loop(plan: Plan, solver, max_segments: int, log_size: int, columns: bool = True) -> RawRun:
+    """One run of ``plan``, traced: jitted by :func:`compiled_run`, vectorised over a sweep's runs by
+    :func:`hoistsim.running.blocks.compiled_batch`; ``columns`` False leaves out the output columns (a
+    summary-only sweep needs none)."""
     global trace_count
     trace_count += 1
     layout = plan.layout
@@ -328,5 +330,5 @@ def _initial_extremes(plan: Plan) -> dict:
 def compiled_run(solver_name: str, max_segments: int, log_size: int, columns: bool = True):
     """The jitted loop for a solver and buffer sizes; shapes of the plan select the rest."""
     solver = SOLVERS[solver_name]()
-    return jax.jit(functools.partial(_run, solver=solver, max_segments=max_segments, log_size=log_size,
+    return jax.jit(functools.partial(restart_loop, solver=solver, max_segments=max_segments, log_size=log_size,
                                      columns=columns))
