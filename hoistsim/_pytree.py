@@ -4,7 +4,9 @@ The plan of a run and its elements are built once per run of a sweep; an
 equinox module costs ~75 us to construct, a registered frozen dataclass ~1 us.
 Every field is data (a leaf or a subtree) unless it is declared with
 :func:`static`: then it is part of the structure (a shaft's name, say), so two
-values of it compile two programs.
+values of it compile two programs.  A field the constructor does not take
+(``init=False``, worked out from the others in ``__post_init__``) is neither:
+it is made again wherever the pytree is unflattened.
 """
 
 from __future__ import annotations
@@ -25,9 +27,10 @@ def static(default=dataclasses.MISSING):
 
 
 def pytree_dataclass(cls):
-    """Make ``cls`` a frozen dataclass whose fields are pytree children, except the static ones."""
+    """Make ``cls`` a frozen dataclass whose fields are pytree children, except the static ones (and those
+    worked out at construction)."""
     cls = dataclasses.dataclass(frozen=True)(cls)
-    fields = dataclasses.fields(cls)
+    fields = [f for f in dataclasses.fields(cls) if f.init]
     data = [f.name for f in fields if not f.metadata.get(_STATIC)]
     meta = [f.name for f in fields if f.metadata.get(_STATIC)]
     return jax.tree_util.register_dataclass(cls, data_fields=data, meta_fields=meta)

@@ -152,3 +152,51 @@ def test_the_core_accepts_the_solvers_the_schema_names():
     from hoistsim.scenario.schema import SOLVERS as SOLVER_NAMES
 
     assert tuple(SOLVERS) == SOLVER_NAMES
+
+
+def _private(name: str) -> bool:
+    return name.startswith("_") and not (name.startswith("__") and name.endswith("__"))
+
+
+def test_no_private_name_imported_across_modules():
+    """A name with a leading underscore is its module's own: no other module imports it (``from .loop import
+    _run``) or reads it off the module (``loop._run``).  hoistsim's private modules (``_jax``, ``_pytree``)
+    are modules, not names: importing them is fine, their own private names are not."""
+    modules = _modules()
+    found = []
+    for name, (path, is_package) in sorted(modules.items()):
+        package = name if is_package else name.rsplit(".", 1)[0]
+        tree = ast.parse(path.read_text())
+        bound = {}  # a local name -> the hoistsim module it stands for
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Import):
+                for alias in node.names:
+                    if alias.name.split(".")[0] == "hoistsim":
+                        bound[alias.asname or "hoistsim"] = alias.name if alias.asname else "hoistsim"
+            elif isinstance(node, ast.ImportFrom):
+                base = node.module or ""
+                if node.level:
+                    parts = package.split(".")
+                    base = ".".join(parts[: len(parts) - node.level + 1] + ([base] if base else []))
+                if base not in modules:
+                    continue
+                for alias in node.names:
+                    if f"{base}.{alias.name}" in modules:
+                        bound[alias.asname or alias.name] = f"{base}.{alias.name}"
+                    elif _private(alias.name) and base != name:
+                        found.append(f"{name}:{node.lineno} imports {alias.name} from {base}")
+        for node in ast.walk(tree):
+            if not isinstance(node, ast.Attribute):
+                continue
+            chain, value = [node.attr], node.value
+            while isinstance(value, ast.Attribute):
+                chain.append(value.attr)
+                value = value.value
+            if not isinstance(value, ast.Name) or value.id not in bound:
+                continue
+            module, *rest = [bound[value.id], *reversed(chain)]
+            while len(rest) > 1 and f"{module}.{rest[0]}" in modules:  # hoistsim.machine.core.loop._run
+                module, rest = f"{module}.{rest[0]}", rest[1:]
+            if len(rest) == 1 and _private(rest[0]) and module != name:
+                found.append(f"{name}:{node.lineno} reads {module}.{rest[0]}")
+    assert not found, "\n".join(found)

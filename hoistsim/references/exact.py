@@ -292,7 +292,7 @@ def solve_exact(drivetrain, force_times, force_forces, duration, *, initial_moto
 
 
 def exact_from_scenario(scenario) -> ExactSolution:
-    _holding_brake_only(scenario)
+    holding_brake_only(scenario)
     drivetrain = Machine.from_scenario(scenario).reduced()
     schedule = ForceSchedule.from_scenario(scenario)
     brake = getattr(scenario, "brake", None)
@@ -321,8 +321,9 @@ def clutch_torque(drivetrain, mode, force, motor_speed, held):
                                                      np.where(mode == SLIP_BACKWARD, -kinetic, 0.0)))
 
 
-def _holding_brake_only(scenario) -> None:
-    """The closed form knows the holding brake (the drum held, then free), the ideal mesh and constant
+def holding_brake_only(scenario) -> None:
+    """A ValueError where the closed form (and :mod:`.scipy_reference`, which solves its equations) does not
+    cover the scenario.  It knows the holding brake (the drum held, then free), the ideal mesh and constant
     friction, not a brake that slips, a pawl, a lossy mesh or friction that fades with temperature (the
     clutch's temperature itself changes nothing it solves)."""
     brake = getattr(scenario, "brake", None)

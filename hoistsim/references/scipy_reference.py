@@ -130,9 +130,9 @@ def solve_with_scipy(d, times, forces, duration, wa0=0.0, wb0=0.0, release=None,
 
 def solve_scenario_with_scipy(scenario, method="RK45", rtol=None, atol=None, dense=False):
     """:func:`solve_with_scipy` for a scenario (its tolerances unless given)."""
-    from .exact import _holding_brake_only
+    from .exact import holding_brake_only
 
-    _holding_brake_only(scenario)
+    holding_brake_only(scenario)
     drivetrain = Machine.from_scenario(scenario).reduced()
     schedule = ForceSchedule.from_scenario(scenario)
     wa0, wb0 = initial_speeds(scenario, drivetrain)

@@ -232,9 +232,8 @@ def block_plans(runs, indices: list[int]) -> BlockPlans | None:
     template_scenario = runs.scenario(indices[0])
     template, _ = build_plan(template_scenario, summary_only=True)
     sections = element_sections(template_scenario)
-    reach = runs.__dict__.get("_reached")
-    if reach is None:
-        reach = runs.__dict__["_reached"] = reached_sections(template_scenario, runs.keys)
+    # worked out for each block (some 40 us: each element built once behind a recorder), not kept on the runs
+    reach = reached_sections(template_scenario, runs.keys)
     positions = [k for k, (section, _, _) in enumerate(sections) if section in reach]
     for columns in (_stacked_columns, _listed_columns):
         rebuilt = columns(runs, indices, template, template_scenario, sections, reach, positions)
@@ -253,11 +252,10 @@ def _stacked_columns(runs, indices, template, scenario, sections, reach, positio
     swept value does not stack (tables of different lengths, words), or ``from_spec`` does not take arrays."""
     if any(reach[sections[k][0]] for k in positions):
         return None
-    stacks = runs.__dict__.setdefault("_stacked_values", {})
-    for key in runs.keys:
-        if key not in stacks:  # kept as columns as the sweep was read (a list: values that do not stack)
-            kept = runs.base._sweep_validated[key]
-            stacks[key] = kept.stacked if isinstance(kept, SweptValues) else None
+    stacks = {}
+    for key in runs.keys:  # kept as columns as the sweep was read (a list: values that do not stack)
+        kept = runs.base._sweep_validated[key]
+        stacks[key] = kept.stacked if isinstance(kept, SweptValues) else None
     if any(stacks[key] is None for key in runs.keys):
         return None
     where = runs.positions_of(np.asarray(indices))

@@ -24,7 +24,7 @@ from jax.sharding import Mesh, NamedSharding, PartitionSpec
 from .. import _jax
 from ..errors import ScenarioError
 from ..machine.assemble import build_plan, loop_sizes
-from ..machine.core.loop import SOLVERS, _run
+from ..machine.core.loop import SOLVERS, restart_loop
 from ..machine.core.plan import OK, Plan
 from ..machine.core.readout import STATUS, BatchReadout, Readout
 from ..results.periodic.analysis import periodic_regime
@@ -363,7 +363,7 @@ def compiled_batch(solver_name: str, max_segments: int, log_size: int, columns: 
     done, never waiting for the others'.
     """
     solver = SOLVERS[solver_name]()
-    batch = jax.vmap(functools.partial(_run, solver=solver, max_segments=max_segments, log_size=log_size,
+    batch = jax.vmap(functools.partial(restart_loop, solver=solver, max_segments=max_segments, log_size=log_size,
                                        columns=columns))
     if devices == 1:
         return jax.jit(batch)

@@ -17,6 +17,7 @@ from .bodies import keep_momentum
 from .dynamics import Instant, slip_sign
 from .element import SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STUCK
 from .eventlog import record
+from .guard_id import BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, SLIP, GuardId, knot_guards
 from .layout import NO_EVENT, SWITCH_KINDS
 
 # Where one coupling's sides meet, another's meet at the same instant if their relative speed is within
@@ -84,20 +85,18 @@ def apply_event(plan, segment, c, t, y, masks: dict, hit, coinciding: dict,
     observed, kind, element = jnp.zeros((), bool), NO_EVENT, -1
     for role, name, _ in switching.guards(layout):
         if role in ("observe", "limit"):
-            section, what = name.rsplit(".", 1)
-            named = layout.elements[layout.sections.index(section)].crossing_events.get(what)
-            code = layout.kind_code(what) if named is None else jnp.where(
+            named = layout.elements[layout.sections.index(name.section)].crossing_events.get(name.kind)
+            code = layout.kind_code(name.kind) if named is None else jnp.where(
                 orients[name] > 0, layout.kind_code(named[1]), layout.kind_code(named[0]))
             kind = jnp.where(masks[name], code, kind)
-            element = jnp.where(masks[name], layout.sections.index(section), element)
+            element = jnp.where(masks[name], layout.sections.index(name.section), element)
             observed = observed | masks[name]
     c = record(c, observed, t, kind, element, y, c.modes, jnp.nan)
     # A limit crossed at the same instant as the located guard: a row of its own, at that instant.
     for role, name, _ in switching.guards(layout):
         if role == "limit":
-            section, what = name.rsplit(".", 1)
-            c = record(c, coinciding[name], t, layout.kind_code(what), layout.sections.index(section), y, c.modes,
-                       jnp.nan)
+            c = record(c, coinciding[name], t, layout.kind_code(name.kind), layout.sections.index(name.section), y,
+                       c.modes, jnp.nan)
             c = eqx.tree_at(lambda k: k.observations, c, c.observations + coinciding[name])
     valley = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in switching.guards(layout) if r == "valley"],
                               jnp.zeros((), bool))
@@ -106,7 +105,7 @@ def apply_event(plan, segment, c, t, y, masks: dict, hit, coinciding: dict,
     # A cycle's end: a row of its kind, and the budgets start again.
     cycled = jnp.zeros((), bool)
     for index, kink, kind in layout.cycles:
-        names = [f"{layout.sections[index]}.{kink}{side}" for side in "+-"]
+        names = knot_guards(layout.sections[index], kink)
         crossed = functools.reduce(jnp.logical_or, [masks[n] | coinciding[n] for n in names])
         c = record(c, crossed, t, layout.kind_code(kind), index, y, c.modes, jnp.nan)
         cycled = cycled | crossed
@@ -122,13 +121,13 @@ def apply_event(plan, segment, c, t, y, masks: dict, hit, coinciding: dict,
         if not coupling.can_slip:
             continue
         name = coupling.section
-        met, up, down = masks[f"{name}.slip"], masks[f"{name}.breakaway+"], masks[f"{name}.breakaway-"]
+        met, up, down = (masks[GuardId(name, kind)] for kind in (SLIP, BREAKAWAY_FORWARD, BREAKAWAY_BACKWARD))
         modes = modes.at[k].set(jnp.where(up, SLIP_FORWARD, jnp.where(down, SLIP_BACKWARD,
                                                                        jnp.where(met, STUCK, modes[k]))))
         candidates[k] = (candidates[k] & ~up & ~down) | met
     # Sides that meet where another coupling's sides meet (one zero of speed shared by both, a shaft
     # stopping against two holds at once) are tried stuck too: a pass reports one guard.
-    meeting = functools.reduce(jnp.logical_or, [masks[f"{e.section}.slip"] for e in layout.coupling_elements
+    meeting = functools.reduce(jnp.logical_or, [masks[GuardId(e.section, SLIP)] for e in layout.coupling_elements
                                                 if e.can_slip], jnp.zeros((), bool))
     x = Instant(layout, t, y)
     for k, coupling in enumerate(layout.coupling_elements):

@@ -13,6 +13,7 @@ traced input of :class:`Plan`: a new value reuses the compiled loop.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 
 import diffrax
@@ -27,6 +28,7 @@ from .columns import row_outputs, summary_values
 from .dynamics import Instant, slip_sign
 from .element import STUCK
 from .eventlog import LOG_FIELDS, unpack
+from .guard_id import BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, MARGIN_VALLEY, SLIP_VALLEY, GuardId
 from .layout import Layout
 from .ledger import ledger_values
 from .plan import CHATTERING, KINK_BUDGET, OK, SOLVER_FAILED, TOO_MANY_SEGMENTS, Plan
@@ -62,16 +64,14 @@ class Args:
     anchors: dict  # knot coordinates where the pass started (see switching.guards)
     orients: dict  # two-way observations -> +1 or -1: the way each leaves where the pass started
     switches_from: object = None  # s: switch guards held off before this time (None: never; see _step)
+    # The elements' layout, worked out where the arguments are made, in the trace they belong to: one first
+    # worked out inside another trace (diffrax finds a pass's first step under eval_shape) would keep that
+    # trace's values (a shaft's speed ratio) and leak them into the loop.  Not a pytree field: made again
+    # wherever the arguments are (their pytree unflattened calls the constructor).
+    layout: Layout = dataclasses.field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
-        # The layout is worked out where the arguments are made, in the trace they belong to: one first
-        # worked out inside another trace (diffrax finds a pass's first step under eval_shape) would keep
-        # that trace's values (a shaft's speed ratio) and leak them into the loop.
-        self.__dict__["layout"] = Layout(self.elements)
-
-    @property
-    def layout(self) -> Layout:
-        return self.__dict__["layout"]
+        object.__setattr__(self, "layout", Layout(self.elements))
 
 
 class _Carry(eqx.Module):
@@ -193,10 +193,11 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
             name = coupling.section
             gap = coupling.gap(end)  # a contact's sides passed through each other
             wrong = slip_sign(c.modes[k]) * end.relative_speed(name) < 0 if gap is None else gap < 0
-            missed = missed | (masks[f"{name}.slip_valley"] & wrong)
+            missed = missed | (masks[GuardId(name, SLIP_VALLEY)] & wrong)
             # (one valley is located where several couplings' margins dip at once: any of them may be over)
-            margin_valley = margin_valley | masks[f"{name}.margin_valley"]
-            over = over | (by_name[f"{name}.breakaway+"] < 0.0) | (by_name[f"{name}.breakaway-"] < 0.0)
+            margin_valley = margin_valley | masks[GuardId(name, MARGIN_VALLEY)]
+            over = (over | (by_name[GuardId(name, BREAKAWAY_FORWARD)] < 0.0)
+                    | (by_name[GuardId(name, BREAKAWAY_BACKWARD)] < 0.0))
     missed = missed | (margin_valley & over)
     overtaken, limit_overtaken, coinciding = switching.crossed_together(guards, at_end, armed, masks)
     # An observation or a limit below zero at the switch located, yet not the crossing found (it crossed and
@@ -243,8 +244,10 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     )
 
 
-def _run(plan: Plan, solver, max_segments: int, log_size: int, columns: bool = True) -> RawRun:
-    """One run; ``columns`` False leaves out the output columns (a summary-only sweep needs none)."""
+def restart_loop(plan: Plan, solver, max_segments: int, log_size: int, columns: bool = True) -> RawRun:
+    """One run of ``plan``, traced: jitted by :func:`compiled_run`, vectorised over a sweep's runs by
+    :func:`hoistsim.running.blocks.compiled_batch`; ``columns`` False leaves out the output columns (a
+    summary-only sweep needs none)."""
     global trace_count
     trace_count += 1
     layout = plan.layout
@@ -328,5 +331,5 @@ def _initial_extremes(plan: Plan) -> dict:
 def compiled_run(solver_name: str, max_segments: int, log_size: int, columns: bool = True):
     """The jitted loop for a solver and buffer sizes; shapes of the plan select the rest."""
     solver = SOLVERS[solver_name]()
-    return jax.jit(functools.partial(_run, solver=solver, max_segments=max_segments, log_size=log_size,
+    return jax.jit(functools.partial(restart_loop, solver=solver, max_segments=max_segments, log_size=log_size,
                                      columns=columns))

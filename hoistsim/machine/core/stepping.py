@@ -25,11 +25,10 @@ from collections.abc import Callable
 
 import diffrax
 import equinox as eqx
-import equinox.internal as eqxi
 import jax
 import jax.numpy as jnp
-from diffrax._root_finder import use_stepsize_tol
 
+from . import private_api
 from .dynamics import vector_field
 
 # Bisection stops where the bracket is this narrow (absolute and relative to the time), or holds no float.
@@ -147,7 +146,7 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
     solver = _with_step_tolerances(solver, controller)
     stepper = _Stepper(solver, args, field)
     error_order = solver.error_order(stepper.term)
-    floor = end - END_ULPS * (end - eqxi.prevbefore(end))  # one ulp below the end, END_ULPS times over
+    floor = end - END_ULPS * (end - private_api.prevbefore(end))  # one ulp below the end, END_ULPS times over
     first, control = controller.init(stepper.term, t0, end, y0, None, args, solver.func, error_order)
     t_next = jnp.minimum(first, end)
     values = guards(t0, y0, args)
@@ -185,7 +184,7 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
 
     # The output rows are a buffer: each written in place, never copied whole.  (Under ``vmap`` a loop's
     # carry is otherwise selected lane by lane at every step: the whole grid, once a step.)
-    c = eqxi.while_loop(going, body, carry, kind="lax", buffers=lambda k: k.grid_state)
+    c = private_api.while_loop(going, body, carry, kind="lax", buffers=lambda k: k.grid_state)
     # A crossing's step was not accepted: the carry still holds its start, end and first rate, and the step
     # is taken again here for its interpolant (once a pass, not kept through every step of the loop).
     _, _, dense_shape, _, _ = jax.eval_shape(stepper.step, c.t, c.t_next, c.y, c.state)
@@ -198,7 +197,7 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
     def no_crossing():
         return jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), dense_shape), c.t, c.y, nothing
 
-    dense, t_hit, y_hit, mask = jax.lax.cond(eqxi.unvmap_any(c.hit), locate, no_crossing)
+    dense, t_hit, y_hit, mask = jax.lax.cond(private_api.unvmap_any(c.hit), locate, no_crossing)
     t_end = jnp.where(c.hit, t_hit, c.t)
     y_end = jnp.where(c.hit, y_hit, c.y)
     grid_state = c.grid_state
@@ -213,7 +212,8 @@ def _with_step_tolerances(solver, controller):
     to it (diffrax's default; ``diffeqsolve`` does the same)."""
     if not isinstance(solver, diffrax.AbstractImplicitSolver):
         return solver
-    names = [name for name in ("rtol", "atol", "norm") if getattr(solver.root_finder, name) is use_stepsize_tol]
+    names = [name for name in ("rtol", "atol", "norm")
+             if getattr(solver.root_finder, name) is private_api.use_stepsize_tol]
     return eqx.tree_at(lambda s: tuple(getattr(s.root_finder, name) for name in names), solver,
                        tuple(getattr(controller, name) for name in names))
 
@@ -274,5 +274,5 @@ def _write_rows(grid, grid_state, row, t_stop, interpolant):
         values = jax.vmap(interpolant.evaluate)(times)
         return row + jnp.sum(due), state.at[index].set(jnp.where(due[:, None], values, state[index]))
 
-    row, grid_state = eqxi.while_loop(going, write, (row, grid_state), kind="lax", buffers=lambda k: k[1])
+    row, grid_state = private_api.while_loop(going, write, (row, grid_state), kind="lax", buffers=lambda k: k[1])
     return grid_state, row

@@ -48,11 +48,15 @@ or below zero and cannot fire before it has genuinely risen again (``offsets``).
 
 from __future__ import annotations
 
+from functools import cached_property
+
 import jax
 import jax.numpy as jnp
 
 from .dynamics import Instant, rates_at, slip_sign, vector_field
 from .element import OPEN, SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STICK_TOLERANCE, STUCK, TORQUE_RESOLUTION
+from .guard_id import (BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, MARGIN_VALLEY, SLIP, SLIP_PEAK, SLIP_VALLEY, GuardId,
+                       knot_guards)
 from .layout import DISENGAGE, ENGAGE, LOCK, NO_EVENT, REVERSAL, UNLOCK, Layout
 
 # A pass that starts within this of a knot (in knots) starts at it: the next ones are a whole knot away.
@@ -65,39 +69,34 @@ def holding_capacity(coupling, x, sign):
     return coupling.capacity_toward(x, sign) * (1.0 + STICK_TOLERANCE) + TORQUE_RESOLUTION
 
 
-def _instant(t, y, args) -> Instant:
-    """The machine at (t, y) for the guards, shared by all of them at one (t, y).
+class GuardInstant:
+    """(t, y) where a pass reads its guards, all of them at once: the machine there, and the couplings'
+    margin rates, each worked out once for every guard that reads it (a smaller traced program and
+    compile time than one a guard)."""
 
-    A pass evaluates every guard with the same t, y and args; one Instant for
-    them all keeps the traced program (and its compile time) small.
-    """
-    shared = args.__dict__.get("_guard_instant")
-    if shared is not None and shared.t is t and shared.y is y:
-        return shared
-    x = Instant(args.layout, t, y, args.modes, args.segment.table, args.reply)
-    args.__dict__["_guard_instant"] = x
-    return x
+    def __init__(self, t, y, args):
+        self.t, self.y, self.args = t, y, args
 
+    @cached_property
+    def instant(self) -> Instant:
+        args = self.args
+        return Instant(args.layout, self.t, self.y, args.modes, args.segment.table, args.reply)
 
-def _margin_rates(t, y, args):
-    """d/dt of each coupling's margin were it stuck (capacity less |torque|) along the motion at (t, y):
-    the margins' derivative in the direction (1, dy/dt).  Shared by the guards at one (t, y)."""
-    shared = args.__dict__.get("_margin_rates")
-    if shared is not None and shared[0] is t and shared[1] is y:
-        return shared[2]
-    layout = args.layout
+    @cached_property
+    def margin_rates(self):
+        """d/dt of each coupling's margin were it stuck (capacity less |torque|) along the motion at (t, y):
+        the margins' derivative in the direction (1, dy/dt)."""
+        args, layout = self.args, self.args.layout
 
-    def margins(t, y):
-        x = Instant(layout, t, y, args.modes, args.segment.table, args.reply)
-        torques = [jnp.asarray(x.coupling_torque(c.section), dtype=jnp.float64) for c in layout.coupling_elements]
-        return jnp.stack([holding_capacity(c, x, jnp.sign(q)) - jnp.abs(q)
-                          for c, q in zip(layout.coupling_elements, torques)])
+        def margins(t, y):
+            x = Instant(layout, t, y, args.modes, args.segment.table, args.reply)
+            torques = [jnp.asarray(x.coupling_torque(c.section), dtype=jnp.float64) for c in layout.coupling_elements]
+            return jnp.stack([holding_capacity(c, x, jnp.sign(q)) - jnp.abs(q)
+                              for c, q in zip(layout.coupling_elements, torques)])
 
-    at = jnp.asarray(t, dtype=jnp.float64)
-    _, rates = jax.jvp(margins, (at, y), (jnp.ones_like(at), rates_at(_instant(t, y, args), y.dtype)))
-    rates = jnp.where(jnp.isfinite(rates), rates, -1.0)  # a coupling that holds whatever it carries: no valley
-    args.__dict__["_margin_rates"] = (t, y, rates)
-    return rates
+        at = jnp.asarray(self.t, dtype=jnp.float64)
+        _, rates = jax.jvp(margins, (at, self.y), (jnp.ones_like(at), rates_at(self.instant, self.y.dtype)))
+        return jnp.where(jnp.isfinite(rates), rates, -1.0)  # a coupling that holds whatever it carries: no valley
 
 
 def touching(coupling, x):
@@ -106,21 +105,24 @@ def touching(coupling, x):
     return jnp.ones((), bool) if gap is None else gap <= 0.0
 
 
-def guards(layout: Layout) -> list[tuple[str, str, object]]:
-    """(role, name, guard function) of every guard, in order: at one instant the first listed fires.
+def guards(layout: Layout) -> list[tuple[str, GuardId, object]]:
+    """(role, identity, guard function of a :class:`GuardInstant`) of every guard, in order: at one instant
+    the first listed fires.
 
     Roles: "switch" (a mode change), "observe" (a row is recorded), "limit" (a row, never lost to a
     coinciding event), "valley", "kink" (a restart).
-    Names are "<section>.<guard>" for couplings and "<section>.<kind>" for elements' observations.
+    Identities: a coupling's section and the guard's kind, an element's section and its observation's, or
+    its knot coordinate's and the side (:mod:`.guard_id`).
     """
     switch, limit, observe, valley = [], [], [], []
     for k, coupling in enumerate(layout.coupling_elements):
         if not coupling.can_slip:
             continue
         name = coupling.section
+        peak_id, dip_id, margin_id = (GuardId(name, kind) for kind in (SLIP_PEAK, SLIP_VALLEY, MARGIN_VALLEY))
 
-        def slip(t, y, args, k=k, name=name, coupling=coupling, **_):
-            x = _instant(t, y, args)
+        def slip(at, k=k, name=name, coupling=coupling):
+            x, args = at.instant, at.args
             s = slip_sign(args.modes[k])
             gap = coupling.gap(x)
             if gap is not None:  # a contact: its sides meet where the gap closes
@@ -128,59 +130,62 @@ def guards(layout: Layout) -> list[tuple[str, str, object]]:
             return jnp.where(s != 0.0, s * x.relative_speed(name) + SLIP_RESOLUTION * args.speed_scale, 1.0)
 
         def breakaway(sign, k=k, coupling=coupling, name=name):
-            def guard(t, y, args, **_):
-                x = _instant(t, y, args)
-                return jnp.where(args.modes[k] == STUCK,
+            def guard(at):
+                x = at.instant
+                return jnp.where(at.args.modes[k] == STUCK,
                                  holding_capacity(coupling, x, sign) - sign * x.coupling_torque(name), 1.0)
             return guard
 
-        def peak(t, y, args, k=k, name=name, **_):
-            x = _instant(t, y, args)
+        def peak(at, k=k, name=name, peak_id=peak_id):
+            x, args = at.instant, at.args
             growth = jnp.sign(x.relative_speed(name)) * x.relative_acceleration(name)
-            return jnp.where((args.modes[k] != STUCK) & args.observing, growth - args.offsets[f"{name}.slip_peak"], 1.0)
+            return jnp.where((args.modes[k] != STUCK) & args.observing, growth - args.offsets[peak_id], 1.0)
 
-        def dip(t, y, args, k=k, name=name, coupling=coupling, **_):
-            x = _instant(t, y, args)
+        def dip(at, k=k, name=name, coupling=coupling, dip_id=dip_id):
+            x, args = at.instant, at.args
             s = slip_sign(args.modes[k])
             # where the slip stops shrinking; for a contact, where its sides stop closing (the gap's low point)
             closing = (-x.relative_speed(name) if coupling.gap(x) is not None
                        else -s * x.relative_acceleration(name))
-            return jnp.where((s != 0.0) & args.observing, closing - args.offsets[f"{name}.slip_valley"], 1.0)
+            return jnp.where((s != 0.0) & args.observing, closing - args.offsets[dip_id], 1.0)
 
-        def margin_dip(t, y, args, k=k, name=name, **_):
-            falling = -_margin_rates(t, y, args)[k]
-            return jnp.where((args.modes[k] == STUCK) & args.observing,
-                             falling - args.offsets[f"{name}.margin_valley"], 1.0)
+        def margin_dip(at, k=k, margin_id=margin_id):
+            falling = -at.margin_rates[k]
+            return jnp.where((at.args.modes[k] == STUCK) & at.args.observing,
+                             falling - at.args.offsets[margin_id], 1.0)
 
-        switch += [("switch", f"{name}.slip", held_off(slip)),
-                   ("switch", f"{name}.breakaway+", held_off(breakaway(1.0))),
-                   ("switch", f"{name}.breakaway-", held_off(breakaway(-1.0)))]
+        switch += [("switch", GuardId(name, SLIP), held_off(slip)),
+                   ("switch", GuardId(name, BREAKAWAY_FORWARD), held_off(breakaway(1.0))),
+                   ("switch", GuardId(name, BREAKAWAY_BACKWARD), held_off(breakaway(-1.0)))]
         if coupling.observes_slip_peak:
-            observe.append(("observe", f"{name}.slip_peak", peak))
-        valley += [("valley", f"{name}.slip_valley", dip), ("valley", f"{name}.margin_valley", margin_dip)]
+            observe.append(("observe", peak_id, peak))
+        valley += [("valley", dip_id, dip), ("valley", margin_id, margin_dip)]
     for element in layout.elements:
         for kind in (k for k in element.observation_kinds if element.observes(k)):
-            def seen(t, y, args, element=element, kind=kind, **_):
-                name = f"{element.section}.{kind}"
-                value = element.observations(_instant(t, y, args))[kind] * args.orients.get(name, 1.0)
-                return jnp.where(args.observing, value - args.offsets[name], 1.0)
-            (limit if kind in element.limits else observe).append(
-                ("limit" if kind in element.limits else "observe", f"{element.section}.{kind}", seen))
+            guard_id = GuardId(element.section, kind)
+
+            def seen(at, element=element, kind=kind, guard_id=guard_id):
+                args = at.args
+                value = element.observations(at.instant)[kind] * args.orients.get(guard_id, 1.0)
+                return jnp.where(args.observing, value - args.offsets[guard_id], 1.0)
+            role = "limit" if kind in element.limits else "observe"
+            (limit if role == "limit" else observe).append((role, guard_id, seen))
     kinks = []
     for element in layout.elements:
         for kink in element.kink_names():
             # The knots either side of where the pass started (``args.anchors``): the
             # distance to each falls monotonically to zero, so none is stepped over.
-            anchor = f"{element.section}.{kink}"
+            anchor = GuardId(element.section, kink)
 
-            def ahead(t, y, args, element=element, kink=kink, anchor=anchor, **_):
-                u = element.kinks(_instant(t, y, args))[kink]
-                return jnp.where(args.kinking, jnp.floor(args.anchors[anchor] + KNOT_RESOLUTION) + 1.0 - u, 1.0)
+            def ahead(at, element=element, kink=kink, anchor=anchor):
+                u = element.kinks(at.instant)[kink]
+                return jnp.where(at.args.kinking, jnp.floor(at.args.anchors[anchor] + KNOT_RESOLUTION) + 1.0 - u, 1.0)
 
-            def behind(t, y, args, element=element, kink=kink, anchor=anchor, **_):
-                u = element.kinks(_instant(t, y, args))[kink]
-                return jnp.where(args.kinking, u - jnp.ceil(args.anchors[anchor] - KNOT_RESOLUTION) + 1.0, 1.0)
-            kinks += [("kink", f"{anchor}+", ahead), ("kink", f"{anchor}-", behind)]
+            def behind(at, element=element, kink=kink, anchor=anchor):
+                u = element.kinks(at.instant)[kink]
+                return jnp.where(at.args.kinking, u - jnp.ceil(at.args.anchors[anchor] - KNOT_RESOLUTION) + 1.0, 1.0)
+            to_ahead, to_behind = knot_guards(element.section, kink)
+            kinks += [("kink", to_ahead, ahead), ("kink", to_behind, behind)]
     return switch + limit + observe + valley + kinks
 
 
@@ -193,15 +198,16 @@ def guard_values(t, y, args):
     function), the program is traced and lowered with one copy of them
     instead of one a place.
     """
-    return jnp.stack([jnp.asarray(g(t, y, args), dtype=jnp.float64) for _, _, g in guards(args.layout)])
+    at = GuardInstant(t, y, args)
+    return jnp.stack([jnp.asarray(g(at), dtype=jnp.float64) for _, _, g in guards(args.layout)])
 
 
 def held_off(guard):
     """A switch guard that stays positive up to ``args.switches_from``: a pass solved again, up to that
     instant, to find a limit or an observation that crossed and came back within the step (loop._step)."""
-    def held(t, y, args, **kwargs):
-        value = guard(t, y, args, **kwargs)
-        return value if args.switches_from is None else jnp.where(t <= args.switches_from, 1.0, value)
+    def held(at):
+        value = guard(at)
+        return value if at.args.switches_from is None else jnp.where(at.t <= at.args.switches_from, 1.0, value)
     return held
 
 
@@ -221,7 +227,7 @@ def orients(layout: Layout, t, y, args) -> dict:
 
             rate_y = vector_field(t, y, args)
             now, rate = jax.jvp(value, (jnp.asarray(t, y.dtype), y), (jnp.ones((), y.dtype), rate_y))
-            out[f"{element.section}.{kind}"] = jnp.where(now != 0.0, jnp.sign(now), jnp.where(rate < 0.0, -1.0, 1.0))
+            out[GuardId(element.section, kind)] = jnp.where(now != 0.0, jnp.sign(now), jnp.where(rate < 0.0, -1.0, 1.0))
     return out
 
 
@@ -263,7 +269,7 @@ def crossed_together(guards, values, armed: dict, masks: dict):
 
 def kink_anchors(layout: Layout, x: Instant) -> dict:
     """Every knot coordinate at the start of a pass (see ``guards``)."""
-    return {f"{e.section}.{kink}": value for e in layout.elements for kink, value in e.kinks(x).items()}
+    return {GuardId(e.section, kink): value for e in layout.elements for kink, value in e.kinks(x).items()}
 
 
 def with_impacts(layout: Layout, y_before, y_after, modes_before, modes_after):
