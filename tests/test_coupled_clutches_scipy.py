@@ -1,10 +1,10 @@
 """Modelica's CoupledClutches integrated independently with scipy, phase by phase, against hoistsim.
 
-The machine is read from ``scenarios/coupled_clutches.yaml`` with plain yaml (nothing of hoistsim's but
-``load_scenario``/``simulate`` is used, and only to run hoistsim for the comparison).  Within a phase the
-set of stuck clutches is fixed: shafts joined by stuck clutches turn as one inertia, a slipping clutch
-passes kinetic * force * radius against its slip, an open one (force <= 0) nothing.  ``solve_ivp``
-(DOP853, rtol = atol = 1e-12) integrates each phase and its events end it:
+The machine is read from ``scenarios/coupled_clutches.yaml`` with plain YAML (ruamel.yaml's safe loader;
+nothing of hoistsim's but ``load_scenario``/``simulate`` is used, and only to run hoistsim for the
+comparison).  Within a phase the set of stuck clutches is fixed: shafts joined by stuck clutches turn as
+one inertia, a slipping clutch passes kinetic * force * radius against its slip, an open one (force <= 0)
+nothing.  ``solve_ivp`` (DOP853, rtol = atol = 1e-12) integrates each phase and its events end it:
 
 - a slipping clutch's slip through zero;
 - a stuck clutch's held torque (from the reduced equations of its stuck group) reaching static capacity;
@@ -34,8 +34,8 @@ import time
 
 import numpy as np
 import pytest
-import yaml
 from conftest import SCENARIOS
+from ruamel.yaml import YAML
 from scipy.integrate import solve_ivp
 
 SCENARIO = SCENARIOS / "coupled_clutches.yaml"
@@ -98,7 +98,7 @@ class Signal:
 
 class Machine:
     def __init__(self, path):
-        scene = yaml.safe_load(path.read_text(encoding="utf-8"))
+        scene = YAML(typ="safe").load(path.read_text(encoding="utf-8"))
         train = scene["drivetrain"]
         self.shafts = list(train["shafts"])
         self.inertia = np.array([_quantity(s["inertia"], "kg*m^2") for s in train["shafts"].values()])

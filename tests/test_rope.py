@@ -253,14 +253,14 @@ def test_a_sweep_run_that_winds_its_rope_on_entirely_fails_the_sweep_naming_the_
 
 
 def test_the_command_line_refuses_that_sweep_in_one_line_and_writes_nothing(tmp_path):
-    import yaml
     from click.testing import CliRunner
+    from ruamel.yaml import YAML
 
     from hoistsim.cli import main
 
     scenario = _wire_rope_scene(free_length="20 m", duration="1.2 s")
     path = tmp_path / "short.yaml"
-    path.write_text(yaml.safe_dump({**scenario.raw, "sweep": {"rope.free_length": ["20 m", "0.4 m"]}}))
+    YAML(typ="safe").dump({**scenario.raw, "sweep": {"rope.free_length": ["20 m", "0.4 m"]}}, path)
     out = tmp_path / "short.h5"
     result = CliRunner().invoke(main, ["run", str(path), "-o", str(out)])
     assert result.exit_code == 2, result.output
