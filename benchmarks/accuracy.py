@@ -16,7 +16,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-from scenes import scene  # noqa: E402
+from helpers import scene  # noqa: E402
 from test_hybrid import CASES  # noqa: E402
 
 from hoistsim import exact_from_scenario, simulate  # noqa: E402

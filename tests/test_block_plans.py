@@ -7,7 +7,7 @@ import math
 import jax
 import numpy as np
 import pytest
-from conftest import SCENARIOS
+from helpers import SCENARIOS
 
 from hoistsim import load_scenario, sweep
 from hoistsim.machine.assemble import build_plan

@@ -9,7 +9,7 @@ import sys
 import h5py
 import pytest
 from click.testing import CliRunner
-from conftest import ROOT, SCENARIOS
+from helpers import ROOT, SCENARIOS
 
 from hoistsim.cli import main
 

@@ -8,23 +8,18 @@ import os
 import subprocess
 import sys
 from dataclasses import dataclass
-from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from conftest import core
+from helpers import BASE, line_of
 
 from hoistsim.cli import main
 from hoistsim.running import simulation
 from hoistsim.studies import flywheel  # imported before any test patches the simulation away
 
-ROOT = Path(__file__).resolve().parents[1]
-SHIPPED = (ROOT / "scenarios" / "exercise6_direct_start.yaml").read_text(encoding="utf-8")
 TABLE = "engagement_force: 3201 N"
 MOTOR_GEOMETRY = "  rotor_mass: 40 kg\n  radius_of_gyration: 15 cm\n"
 
-
-BASE = core(SHIPPED)  # mutated by the tests
 HEATING = "clutch_heating:\n  heat_capacity: 2.4 kJ/K\n  cooling: 20 W/K\n  ambient_temperature: 25 degC\n"
 
 
@@ -44,10 +39,6 @@ class Case:
             return BASE + self.new
         assert self.old in BASE, f"{self.old!r} is not in the base scenario"
         return BASE.replace(self.old, self.new, 1)
-
-
-def _line_of(text: str, fragment: str) -> int:
-    return text[: text.index(fragment)].count("\n") + 1
 
 
 CASES = [
@@ -368,7 +359,7 @@ def test_bad_scenario_fails_cleanly(case, tmp_path):
     scenario.write_text(text, encoding="utf-8")
     output = tmp_path / "out.h5"
     result, lines = _run_cli(["run", str(scenario), "-o", str(output)])
-    line = _line_of(text, case.at) if case.at is not None else None
+    line = line_of(text, case.at) if case.at is not None else None
     _check_one_line_error(result, lines, case.key, line, case.words, str(scenario))
     assert not output.exists()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["scenario.yaml"]  # no temporary files either
@@ -467,7 +458,7 @@ def test_other_commands_report_the_same_error(case, command, tmp_path):
     scenario = tmp_path / "scenario.yaml"
     scenario.write_text(case.text(), encoding="utf-8")
     result, lines = _run_cli([*command, str(scenario)])
-    _check_one_line_error(result, lines, case.key, _line_of(case.text(), case.at), case.words, str(scenario))
+    _check_one_line_error(result, lines, case.key, line_of(case.text(), case.at), case.words, str(scenario))
 
 
 def test_debug_shows_the_exception(tmp_path):
@@ -487,7 +478,7 @@ def test_real_console_script_has_no_traceback(tmp_path):
                           capture_output=True, text=True, timeout=60, cwd=tmp_path)
     assert proc.returncode == 2, proc.stderr
     assert proc.stdout == ""
-    line = _line_of(scenario.read_text(), "static_friciton")
+    line = line_of(scenario.read_text(), "static_friciton")
     assert proc.stderr == (f"hoistsim: error: {scenario}:{line}: clutch.static_friciton: unknown key "
                            "(did you mean clutch.static_friction?)\n")
     assert not output.exists()
@@ -534,7 +525,7 @@ def test_a_bare_number_on_a_speed_is_read_as_si_and_said(tmp_path, monkeypatch):
     scenario.write_text(text, encoding="utf-8")
     result, lines = _run_cli(["check", str(scenario)])
     assert result.exit_code == 0, result.output
-    line = _line_of(text, "no_load_speed")
+    line = line_of(text, "no_load_speed")
     assert lines == [f"hoistsim: warning: {scenario}:{line}: motor.no_load_speed: the bare number 31.4 is read as "
                      "31.4 rad/s (299.8 rpm); write the unit, like '300 rpm', to say which you mean"]
     scenario.write_text(BASE, encoding="utf-8")

@@ -10,17 +10,12 @@ import h5py
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from samefiles import SWEEP_FILE, datasets, same, short_sweep
+from helpers import SHORT, SWEEP_FILE, datasets, same, short_sweep, with_force
 
 from hoistsim import sweep
 from hoistsim.cli import main
 
 distributed = pytest.importorskip("distributed")
-
-
-
-def _short(count=40):
-    return short_sweep(count)
 
 
 @pytest.fixture(scope="module")
@@ -42,7 +37,7 @@ def small_blocks(monkeypatch):
 @pytest.mark.slow
 @pytest.mark.parametrize("summary_only", [True, False])
 def test_a_sweep_on_two_workers_is_the_sweep_on_one_process(tmp_path, cluster, small_blocks, summary_only):
-    scenario = _short()
+    scenario = short_sweep(40)
     here = sweep(scenario, summary_only=summary_only, chunk_size=4, output=tmp_path / "here.h5")
     there = sweep(scenario, summary_only=summary_only, chunk_size=4, output=tmp_path / "there.h5",
                   scheduler=cluster.scheduler_address)
@@ -57,7 +52,7 @@ def test_a_sweep_on_two_workers_is_the_sweep_on_one_process(tmp_path, cluster, s
 def test_a_worker_lost_mid_sweep_loses_and_duplicates_nothing(tmp_path, cluster, small_blocks):
     """One worker's process is killed (SIGKILL) after the first block comes back: Dask runs its blocks
     elsewhere (the nanny starts a new worker), and the file is the one-process file."""
-    scenario = _short()
+    scenario = short_sweep(40)
     sweep(scenario, summary_only=True, chunk_size=4, output=tmp_path / "here.h5")
     client = distributed.Client(cluster.scheduler_address, set_as_default=False)
     killed = []
@@ -172,7 +167,7 @@ def test_a_worker_with_fewer_devices_than_the_split_says_so_in_one_line():
     from hoistsim.running import cluster
 
     with pytest.raises(cluster.ClusterError, match="start the workers with HOISTSIM_CPU_DEVICES=3$"):
-        cluster._remote_block(_short(4), 0, 4, True, 3, 3)
+        cluster._remote_block(short_sweep(4), 0, 4, True, 3, 3)
 
 
 def _structures_in_one_worker(scenario_text: str) -> tuple[int, int, list[float]]:
@@ -192,9 +187,7 @@ def _structures_in_one_worker(scenario_text: str) -> tuple[int, int, list[float]
 
 @pytest.mark.slow
 def test_a_worker_that_meets_more_structures_than_it_may_hold_lets_the_oldest_go(cluster):
-    from test_watch import SHORT, _force
-
     with distributed.Client(cluster.scheduler_address) as client:
-        held, let_go, heats = client.submit(_structures_in_one_worker, _force(SHORT, 2600), pure=False).result()
+        held, let_go, heats = client.submit(_structures_in_one_worker, with_force(SHORT, 2600), pure=False).result()
     assert held == 1 and let_go >= 2
     assert heats[0] == heats[2] and abs(heats[1] - heats[0]) < 1e-6 * heats[0]

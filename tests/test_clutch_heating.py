@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 import pytest
-from scenes import EXERCISE6
+from helpers import EXERCISE6
 from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
@@ -323,7 +323,7 @@ def test_the_closed_form_refuses_friction_that_fades():
 def test_the_duty_cycle_warms_the_clutch_start_by_start():
     """The shipped duty cycle: six starts 3 s apart, the pawl holding the load between.  Each start finds the
     clutch warmer, its friction lower and its lock-up later; the sixth passes the limit; the load only rises."""
-    from conftest import SCENARIOS
+    from helpers import SCENARIOS
 
     from hoistsim import load_scenario
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import pytest
-from scenes import scene
+from helpers import scene
 
 from hoistsim import simulate
 from hoistsim.machine.core import loop

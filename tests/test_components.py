@@ -5,8 +5,7 @@ from __future__ import annotations
 import math
 
 import pytest
-from conftest import SCENARIOS
-from scenes import scene
+from helpers import SCENARIOS, scene
 
 from hoistsim import load_scenario
 from hoistsim.components import ConeClutch

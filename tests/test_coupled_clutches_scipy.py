@@ -34,7 +34,7 @@ import time
 
 import numpy as np
 import pytest
-from conftest import SCENARIOS
+from helpers import SCENARIOS
 from ruamel.yaml import YAML
 from scipy.integrate import solve_ivp
 

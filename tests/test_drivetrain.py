@@ -13,18 +13,17 @@ from __future__ import annotations
 
 import csv
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from conftest import SCENARIOS
+from helpers import SCENARIOS, TESTS
 
 from hoistsim import load_scenario, scenario_from_dict, scenario_from_text, simulate
 from hoistsim.cli import main
 from hoistsim.errors import ScenarioError
 
-REFERENCE = Path(__file__).parent / "data" / "coupled_clutches_systemmodeler.csv"
+REFERENCE = TESTS / "data" / "coupled_clutches_systemmodeler.csv"
 PHASE = 1.57  # rad: clutch 1's force 20 sin(2 pi 0.2 t + 1.57) N, as in the reference
 
 

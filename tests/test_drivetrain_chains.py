@@ -15,8 +15,8 @@ import os
 
 import numpy as np
 import pytest
-from conftest import SCENARIOS
-from hypothesis import HealthCheck, example, given, settings
+from helpers import SCENARIOS, property_settings
+from hypothesis import example, given
 from hypothesis import strategies as st
 
 from hoistsim import load_scenario, scenario_from_dict, simulate, sweep
@@ -25,9 +25,7 @@ from hoistsim.scenario.sweep_runs import sweep_values
 
 # The same chains every run (a check that passes or fails by the code alone); HOISTSIM_PROPERTY_SEARCH=1
 # draws new ones, to search.
-SETTINGS = settings(max_examples=int(os.environ.get("HOISTSIM_PROPERTY_EXAMPLES", "40")), deadline=None,
-                    suppress_health_check=[HealthCheck.too_slow],
-                    derandomize=not os.environ.get("HOISTSIM_PROPERTY_SEARCH"))
+SETTINGS = property_settings(40, derandomize=not os.environ.get("HOISTSIM_PROPERTY_SEARCH"))
 
 STUCK, SLIP_FORWARD, SLIP_BACKWARD, OPEN = 0, 1, 2, 3
 TINY = 1e-9  # N*m, rad/s: what the switching logic itself resolves (TORQUE_RESOLUTION)

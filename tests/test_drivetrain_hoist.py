@@ -12,7 +12,7 @@ import copy
 
 import numpy as np
 import pytest
-from scenes import EXERCISE6
+from helpers import EXERCISE6
 
 from hoistsim import load_scenario, scenario_from_dict, simulate
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import jax
 import numpy as np
 import pytest
-from scenes import scene
+from helpers import scene
 
 from hoistsim import simulate
 from hoistsim.machine.assemble import build_plan, loop_sizes

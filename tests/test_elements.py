@@ -13,12 +13,11 @@ import copy
 import dataclasses
 import math
 import re
-from pathlib import Path
 
 import jax
 import numpy as np
 import pytest
-from scenes import EXERCISE6
+from helpers import EXERCISE6, ROOT
 
 from hoistsim import scenario_from_dict, simulate
 from hoistsim.machine.assemble import build_plan, loop_sizes
@@ -165,7 +164,7 @@ def test_two_couplings_holding_the_same_motion_share_it_by_order():
 
 
 def test_the_core_names_no_part_of_the_machine():
-    core = Path(__file__).resolve().parents[1] / "hoistsim" / "machine" / "core"
+    core = ROOT / "hoistsim" / "machine" / "core"
     for path in core.glob("*.py"):
         text = path.read_text(encoding="utf-8")
         found = re.findall(r"\b(clutch|brake|load|motor|drum|pinion|gear)\w*", text, flags=re.IGNORECASE)
@@ -173,7 +172,7 @@ def test_the_core_names_no_part_of_the_machine():
 
 
 def test_every_element_is_one_file_named_after_it():
-    folder = Path(__file__).resolve().parents[1] / "hoistsim" / "machine" / "elements"
+    folder = ROOT / "hoistsim" / "machine" / "elements"
     classes = [c for entry in REGISTRY.values() for c in (entry.values() if isinstance(entry, dict) else [entry])]
     for cls in classes:
         module = cls.__module__.rsplit(".", 1)[-1]

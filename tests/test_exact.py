@@ -236,7 +236,7 @@ def test_exppoly_integral_is_accurate_for_tiny_arguments():
 
 
 def test_exact_from_scenario_reads_the_scene():
-    from scenes import scene
+    from helpers import scene
 
     s = scene(force=[["0 s", "0 N"], ["0.3 s", "0 N"], ["0.3 s", "6000 N"]], motor_speed="3 rad/s",
               duration="1.5 s")
@@ -250,7 +250,7 @@ def test_exact_from_scenario_reads_the_scene():
 
 
 def test_steady_lift_starts_at_constant_speed():
-    from scenes import EXERCISE6
+    from helpers import EXERCISE6
 
     from hoistsim import scenario_from_dict
 

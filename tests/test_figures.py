@@ -12,7 +12,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from click.testing import CliRunner  # noqa: E402
-from conftest import ROOT, SCENARIOS  # noqa: E402
+from helpers import ROOT, SCENARIOS  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 
 from hoistsim.cli import main  # noqa: E402

@@ -12,12 +12,10 @@ import copy
 
 import numpy as np
 import pytest
-from conftest import SCENARIOS
+from helpers import SCENARIOS, TIGHT
 
 from hoistsim import load_scenario, scenario_from_dict, scenario_from_text, simulate
 from hoistsim.references.model import Machine
-
-TIGHT = ["simulation.rtol=1e-10", "simulation.atol=1e-12"]
 
 
 def _caught(kinetic="1200 N*m", static="1500 N*m", speed="-2.5 rad/s", duration="4 s"):
@@ -81,7 +79,7 @@ def test_a_held_drum_lets_go_when_the_brake_is_released_and_is_caught_when_appli
 
 
 def test_a_holding_brake_scene_has_no_friction_brake_columns():
-    from scenes import EXERCISE6
+    from helpers import EXERCISE6
 
     data = copy.deepcopy(EXERCISE6)
     data["brake"] = {"release_time": "0.5 s"}

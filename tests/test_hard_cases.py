@@ -8,18 +8,16 @@ and repeated here, so a change of the closed form cannot silently move it.
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
-from scenes import scene
+from helpers import TESTS, scene
 
 from hoistsim import exact_from_scenario, load_scenario, simulate
 
 # Slow: every hard case is a structure of its own, compiled for its fixture.
 pytestmark = pytest.mark.slow
 
-HARD = Path(__file__).parent / "hard"
+HARD = TESTS / "hard"
 
 EXPECTED = {  # file -> the switches it must show (and the closed form must agree)
     "stiff_motor.yaml": ["lock"],

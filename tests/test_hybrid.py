@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scenes import scene
+from helpers import scene
 
 from hoistsim import exact_from_scenario, simulate
 

@@ -15,13 +15,11 @@ import dataclasses
 
 import numpy as np
 import pytest
-from conftest import SCENARIOS
+from helpers import SCENARIOS, TIGHT
 
 from hoistsim import scenario_from_text, simulate
 from hoistsim.references.exact import solve_exact
 from hoistsim.references.model import ForceSchedule, Machine, initial_speeds
-
-TIGHT = ["simulation.rtol=1e-10", "simulation.atol=1e-12"]
 
 
 def _scene(name: str, *overrides: str):

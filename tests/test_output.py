@@ -13,8 +13,7 @@ import textwrap
 import h5py
 import numpy as np
 import pytest
-from conftest import SCENARIOS
-from scenes import scene
+from helpers import SCENARIOS, scene
 
 from hoistsim import load_scenario, simulate
 from hoistsim.results.output import write_runs

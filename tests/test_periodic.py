@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 import pytest
-from scenes import EXERCISE6
+from helpers import EXERCISE6
 from scipy.integrate import quad
 from scipy.optimize import minimize_scalar
 

@@ -7,6 +7,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 import pytest
+from helpers import SHORT, with_force
 
 from hoistsim import _jax, program_hints, program_pool, stored_programs
 from hoistsim.program_pool import ProgramPool
@@ -68,8 +69,6 @@ def test_programs_are_let_go_before_the_process_reaches_its_memory_maps_limit(po
 
 
 def test_a_watch_that_meets_more_structures_than_it_may_hold_answers_each_as_the_first_time(tmp_path, monkeypatch):
-    from test_watch import SHORT, _force
-
     from hoistsim.cli.watching import Watch
 
     monkeypatch.setenv(program_pool.MAX_PROGRAMS_VARIABLE, "1")
@@ -78,7 +77,7 @@ def test_a_watch_that_meets_more_structures_than_it_may_hold_answers_each_as_the
     said = []
     watched = Watch(scenario, output=output, echo=said.append)
     for solver in ("tsit5", "dopri5", "tsit5"):
-        scenario.write_text(_force(SHORT, 2600).replace("solver: tsit5", f"solver: {solver}"), encoding="utf-8")
+        scenario.write_text(with_force(SHORT, 2600).replace("solver: tsit5", f"solver: {solver}"), encoding="utf-8")
         assert watched.run()
         assert len(_jax.programs) == 1
     assert _jax.programs.let_go == 2

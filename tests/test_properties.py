@@ -12,20 +12,17 @@ from __future__ import annotations
 
 import copy
 import math
-import os
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from helpers import EXERCISE6, engagement_forces, property_settings
+from hypothesis import given
 from hypothesis import strategies as st
-from scenes import EXERCISE6
 
 from hoistsim import exact_from_scenario, scenario_from_dict, simulate
 from hoistsim.references.model import STICK_TOLERANCE, Machine
 
-# 100 random scenes a property in CI; HOISTSIM_PROPERTY_EXAMPLES=400 for a deeper search by hand.
-SETTINGS = settings(max_examples=int(os.environ.get("HOISTSIM_PROPERTY_EXAMPLES", "100")), deadline=None,
-                    suppress_health_check=[HealthCheck.too_slow])
+SETTINGS = property_settings(100)
 
 
 def build(force, mass, motor_rpm, drum_rpm, fs, fk_share, duration="1 s"):
@@ -37,13 +34,8 @@ def build(force, mass, motor_rpm, drum_rpm, fs, fk_share, duration="1 s"):
     return scenario_from_dict(data)
 
 
-forces = st.one_of(
-    st.floats(200.0, 15000.0).map(lambda f: f"{f} N"),
-    st.tuples(st.floats(0.02, 0.8), st.floats(500.0, 15000.0)).map(
-        lambda r: [["0 s", "0 N"], [f"{r[0]} s", f"{r[1]} N"]]),
-)
-scenes = st.builds(build, forces, st.floats(0.0, 900.0), st.floats(-50.0, 400.0), st.floats(-30.0, 50.0),
-                   st.floats(0.15, 0.4), st.floats(0.0, 1.0))
+scenes = st.builds(build, engagement_forces, st.floats(0.0, 900.0), st.floats(-50.0, 400.0),
+                   st.floats(-30.0, 50.0), st.floats(0.15, 0.4), st.floats(0.0, 1.0))
 
 
 @SETTINGS

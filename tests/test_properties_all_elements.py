@@ -8,19 +8,17 @@ balance closes to 1e-8 at rtol 1e-10.
 from __future__ import annotations
 
 import copy
-import os
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, example, given, settings
+from helpers import EXERCISE6, engagement_forces, property_settings
+from hypothesis import example, given
 from hypothesis import strategies as st
-from scenes import EXERCISE6
 
 from hoistsim import scenario_from_dict, simulate
 from hoistsim.references.model import STICK_TOLERANCE
 
-SETTINGS = settings(max_examples=int(os.environ.get("HOISTSIM_PROPERTY_EXAMPLES", "40")), deadline=None,
-                    suppress_health_check=[HealthCheck.too_slow])
+SETTINGS = property_settings(40)
 
 
 def build(force, mass, motor_rpm, drum_rpm, brake, ratchet_release, efficiency, backdrive):
@@ -39,15 +37,10 @@ def build(force, mass, motor_rpm, drum_rpm, brake, ratchet_release, efficiency, 
     return scenario_from_dict(data)
 
 
-forces = st.one_of(
-    st.floats(200.0, 15000.0).map(lambda f: f"{f} N"),
-    st.tuples(st.floats(0.02, 0.8), st.floats(500.0, 15000.0)).map(
-        lambda r: [["0 s", "0 N"], [f"{r[0]} s", f"{r[1]} N"]]),
-)
 brakes = st.tuples(st.floats(0.0, 0.6), st.floats(100.0, 3000.0), st.floats(0.2, 1.0),
                    st.one_of(st.none(), st.floats(0.05, 0.5)))
-scenes = st.builds(build, forces, st.floats(0.0, 900.0), st.floats(0.0, 400.0), st.floats(0.0, 30.0), brakes,
-                   st.one_of(st.none(), st.floats(0.0, 1.0)), st.floats(0.5, 1.0), st.floats(0.3, 1.0))
+scenes = st.builds(build, engagement_forces, st.floats(0.0, 900.0), st.floats(0.0, 400.0), st.floats(0.0, 30.0),
+                   brakes, st.one_of(st.none(), st.floats(0.0, 1.0)), st.floats(0.5, 1.0), st.floats(0.3, 1.0))
 
 
 @pytest.mark.slow

@@ -11,14 +11,11 @@ import copy
 
 import numpy as np
 import pytest
-from conftest import SCENARIOS
-from scenes import EXERCISE6
+from helpers import EXERCISE6, SCENARIOS, TIGHT
 
 from hoistsim import scenario_from_dict, scenario_from_text, simulate
 from hoistsim.errors import ScenarioError
 from hoistsim.references.model import Machine
-
-TIGHT = ["simulation.rtol=1e-10", "simulation.atol=1e-12"]
 
 
 def _runback(extra: str):

@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 import pytest
-from scenes import EXERCISE6
+from helpers import EXERCISE6
 
 from hoistsim import scenario_from_dict, simulate
 from hoistsim.machine.assemble import build_plan

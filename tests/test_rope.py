@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 import pytest
-from scenes import EXERCISE6
+from helpers import EXERCISE6
 
 from hoistsim import scenario_from_dict, simulate
 from hoistsim.references.rope_exact import RopeHoist, solve
@@ -313,7 +313,7 @@ def test_a_load_on_a_rigid_rope_rests_until_the_clutch_lifts_it_and_lands_in_a_p
 
 
 def test_the_shipped_lift_off_scene_says_what_its_header_says():
-    from conftest import SCENARIOS
+    from helpers import SCENARIOS
 
     from hoistsim import load_scenario
 

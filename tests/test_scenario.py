@@ -4,10 +4,9 @@ name the dotted key with the file and line.  No simulation here: fast."""
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import pytest
-from conftest import core
+from helpers import BASE, EXERCISE6_FILE, SCENARIOS, SHIPPED, line_of
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -16,22 +15,12 @@ from hoistsim.scenario.keys import parse_override
 from hoistsim.scenario.loading import ScenarioError, load_scenario, scenario_from_dict, scenario_from_text
 from hoistsim.scenario.sweep_runs import sweep_values
 
-ROOT = Path(__file__).resolve().parents[1]
-BASE_PATH = ROOT / "scenarios" / "exercise6_direct_start.yaml"
-SHIPPED = BASE_PATH.read_text(encoding="utf-8")
 RPM = 2.0 * math.pi / 60.0
-
-
-BASE = core(SHIPPED)  # mutated by the tests
 
 
 def edit(old: str, new: str, text: str = BASE) -> str:
     assert old in text, f"{old!r} is not in the base scenario"
     return text.replace(old, new, 1)
-
-
-def line_of(text: str, fragment: str) -> int:
-    return text[: text.index(fragment)].count("\n") + 1
 
 
 def error_for(text: str, **kwargs) -> ScenarioError:
@@ -117,9 +106,9 @@ def test_limits_are_stated_in_the_users_terms():
 
 
 def test_shipped_scenario_is_read_in_si():
-    s = load_scenario(BASE_PATH)
+    s = load_scenario(EXERCISE6_FILE)
     assert s.name == "exercise6-direct-start"
-    assert s.source == str(BASE_PATH)
+    assert s.source == str(EXERCISE6_FILE)
     assert s.text == SHIPPED
     assert s.motor.stall_torque == 500.0
     assert s.motor.no_load_speed == pytest.approx(31.41592653589793, rel=1e-12)
@@ -147,7 +136,7 @@ def test_optional_sections_default_to_absent():
     assert (s.initial.motor_speed, s.initial.drum_speed) == (0.0, 0.0)
 
 
-@pytest.mark.parametrize("path", sorted((ROOT / "scenarios").glob("*.yaml")), ids=lambda p: p.name)
+@pytest.mark.parametrize("path", sorted(SCENARIOS.glob("*.yaml")), ids=lambda p: p.name)
 def test_every_shipped_scenario_loads(path):
     s = load_scenario(path)
     assert s.resolved()["name"] == s.name
@@ -221,7 +210,7 @@ def _plain_base() -> dict:
 
 
 def test_set_overrides_a_scalar_and_is_noted_in_the_text():
-    s = load_scenario(BASE_PATH, overrides=["clutch.engagement_force=200 daN", "load.mass = 600 kg"])
+    s = load_scenario(EXERCISE6_FILE, overrides=["clutch.engagement_force=200 daN", "load.mass = 600 kg"])
     assert s.clutch.engagement_force.forces == (2000.0,)
     assert s.load.mass == 600.0
     assert s.raw["clutch"]["engagement_force"] == "200 daN"
@@ -236,7 +225,7 @@ def test_set_can_add_an_optional_section_and_a_table():
 
 
 def test_set_motor_inertia_replaces_rotor_mass_and_radius_of_gyration():
-    s = load_scenario(BASE_PATH, overrides=["motor.inertia=1.2 kg*m^2"])
+    s = load_scenario(EXERCISE6_FILE, overrides=["motor.inertia=1.2 kg*m^2"])
     assert s.motor.moment_of_inertia == 1.2 and s.motor.rotor_mass is None
 
 

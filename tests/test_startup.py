@@ -10,10 +10,9 @@ import sys
 from pathlib import Path
 
 import pytest
+from helpers import EXERCISE6_FILE, ROOT
 
-ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "hoistsim"
-SCENARIO = ROOT / "scenarios" / "exercise6_direct_start.yaml"
 # Subpackages whose __init__ imports hoistsim._jax (elements import the core first).
 GUARDED_PACKAGES = ("machine/core", "machine/elements", "results/periodic")
 
@@ -85,9 +84,9 @@ def test_help_and_compare_import_no_jax_and_check_no_solver_library(tmp_path, mo
     assert _loaded(["--help"], tmp_path) == (0, [])
     status, loaded = _loaded(["compare", tmp_path / "absent.h5"], tmp_path)
     assert status == 2 and loaded == []
-    status, loaded = _loaded(["check", SCENARIO], tmp_path)
+    status, loaded = _loaded(["check", EXERCISE6_FILE], tmp_path)
     assert status == 0 and loaded == ["jax", "pint"]
-    status, loaded = _loaded(["check", SCENARIO], tmp_path)  # every unit of it read before
+    status, loaded = _loaded(["check", EXERCISE6_FILE], tmp_path)  # every unit of it read before
     assert status == 0 and loaded == ["jax"]
 
 
@@ -95,7 +94,7 @@ def test_units_read_before_are_read_without_pint_and_to_the_same_bits(tmp_path):
     """The factors kept on disk are pint's own: a scenario read again in a new process gives the same
     numbers to the bit; a factors file that cannot be read is read again by pint."""
     program = ("import json, sys; from hoistsim.scenario.loading import load_scenario; "
-               f"s = load_scenario({str(SCENARIO)!r}, overrides=['clutch.engagement_force=3.3 kN']); "
+               f"s = load_scenario({str(EXERCISE6_FILE)!r}, overrides=['clutch.engagement_force=3.3 kN']); "
                "print(json.dumps([s.resolved(), 'pint' in sys.modules]))")
     env = dict(os.environ, HOISTSIM_CACHE_DIR=str(tmp_path / "cache"))
 
@@ -117,7 +116,7 @@ def test_units_read_before_are_read_without_pint_and_to_the_same_bits(tmp_path):
 def test_a_warm_run_loads_its_program_and_imports_no_figures_no_cluster_no_solver_library(tmp_path, monkeypatch):
     """The second run of a scene loads the stored program: it never traces, so the solver library stays out."""
     monkeypatch.setenv("HOISTSIM_CACHE_DIR", str(tmp_path / "cache"))
-    args = ["run", SCENARIO, "-o", tmp_path / "out.h5", "--set", "simulation.duration=0.2 s"]
+    args = ["run", EXERCISE6_FILE, "-o", tmp_path / "out.h5", "--set", "simulation.duration=0.2 s"]
     status, first = _loaded(args, tmp_path)
     assert status == 0 and "diffrax" in first  # the first compiled it
     status, warm = _loaded(args, tmp_path)

@@ -8,8 +8,7 @@ import math
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from conftest import SCENARIOS
-from scenes import scene
+from helpers import SCENARIOS, scene
 
 from hoistsim import load_scenario, simulate
 from hoistsim.cli import main

@@ -10,15 +10,11 @@ import textwrap
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from samefiles import SWEEP_FILE, datasets, same, short_sweep
+from helpers import SWEEP_FILE, datasets, same, short_sweep
 
 from hoistsim import sweep
 from hoistsim.cli import main
 from hoistsim.running.streaming import ResumeError, StreamedFile, partial_path
-
-
-def _short(count=10):
-    return short_sweep(count)
 
 
 class _Stop(Exception):
@@ -54,7 +50,7 @@ def _interrupted(scenario, target, chunks: int, summary_only: bool, monkeypatch)
 
 @pytest.mark.parametrize("summary_only", [pytest.param(False, marks=pytest.mark.slow), True])
 def test_a_resumed_sweep_equals_an_uninterrupted_one(tmp_path, monkeypatch, summary_only):
-    scenario = _short()
+    scenario = short_sweep(10)
     whole = sweep(scenario, summary_only=summary_only, chunk_size=4, output=tmp_path / "whole.h5")
     _interrupted(scenario, tmp_path / "resumed.h5", 2, summary_only, monkeypatch)
     assert not (tmp_path / "resumed.h5").exists() and partial_path(tmp_path / "resumed.h5").exists()
@@ -68,7 +64,7 @@ def test_a_resumed_sweep_equals_an_uninterrupted_one(tmp_path, monkeypatch, summ
 
 @pytest.mark.slow
 def test_the_streamed_file_is_the_file_written_at_once(tmp_path):
-    scenario = _short(6)
+    scenario = short_sweep(6)
     sweep(scenario, chunk_size=4, output=tmp_path / "streamed.h5")
     sweep(scenario, chunk_size=4).to_hdf5(tmp_path / "at_once.h5")  # the same chunks: the same bits
     same(datasets(tmp_path / "streamed.h5"), datasets(tmp_path / "at_once.h5"))
@@ -76,9 +72,9 @@ def test_the_streamed_file_is_the_file_written_at_once(tmp_path):
 
 def test_resume_refuses_another_scenario_in_one_line(tmp_path, monkeypatch):
     target = tmp_path / "forces.h5"
-    _interrupted(_short(), target, 1, True, monkeypatch)
+    _interrupted(short_sweep(10), target, 1, True, monkeypatch)
     with pytest.raises(ResumeError, match="holds another scenario or other options"):
-        sweep(_short(12), summary_only=True, chunk_size=4, output=target, resume=True)
+        sweep(short_sweep(12), summary_only=True, chunk_size=4, output=target, resume=True)
     result = CliRunner().invoke(main, ["run", str(SWEEP_FILE), "-o", str(target), "--summary-only", "--resume",
                                        "--set", "simulation.duration=0.4 s",
                                        "--sweep", "clutch.engagement_force=3 kN:12 kN:11"])
@@ -115,7 +111,7 @@ def test_a_sweep_keeps_its_finished_blocks_every_few_seconds_and_a_resume_redoes
         original(self, block)
 
     monkeypatch.setattr(StreamedFile, "write", four_seconds_a_block)
-    scenario, target = _short(24), tmp_path / "timed.h5"
+    scenario, target = short_sweep(24), tmp_path / "timed.h5"
     _interrupted(scenario, target, 5, True, monkeypatch)
     kept = sorted(partial_path(target).glob("chunk-*.h5"))
     assert len(kept) == 1
@@ -162,15 +158,15 @@ def test_a_sweep_killed_while_writing_a_chunk_resumes_from_the_last_whole_one(tm
     """)
     proc = subprocess.run([sys.executable, "-c", script], capture_output=True)
     assert proc.returncode == -signal.SIGKILL and not target.exists()
-    sweep(_short(), chunk_size=4, output=target, resume=True)
-    sweep(_short(), chunk_size=4, output=tmp_path / "whole.h5")
+    sweep(short_sweep(10), chunk_size=4, output=target, resume=True)
+    sweep(short_sweep(10), chunk_size=4, output=tmp_path / "whole.h5")
     same(datasets(tmp_path / "whole.h5"), datasets(target))
 
 
 def test_starting_afresh_over_an_interrupted_sweep_says_so(tmp_path, monkeypatch):
     target = tmp_path / "forces.h5"
-    _interrupted(_short(), target, 1, True, monkeypatch)
-    again = sweep(_short(), summary_only=True, chunk_size=4, output=target)
+    _interrupted(short_sweep(10), target, 1, True, monkeypatch)
+    again = sweep(short_sweep(10), summary_only=True, chunk_size=4, output=target)
     assert again.warnings == ["forces.h5: an interrupted sweep's 1 chunk file(s) were discarded (--resume keeps them)"]
     assert target.exists() and not partial_path(target).exists()
 
@@ -180,7 +176,7 @@ def test_a_streamed_sweep_reads_its_summaries_back_as_they_were(tmp_path):
     asked for, the same values and types as a sweep kept in memory (yes/no values as bools)."""
     from hoistsim.results.reading import FileSummaries
 
-    scenario = _short()
+    scenario = short_sweep(10)
     kept = sweep(scenario, summary_only=True, chunk_size=4)
     streamed = sweep(scenario, summary_only=True, chunk_size=4, output=tmp_path / "s.h5")
     assert isinstance(streamed.summaries, FileSummaries) and len(streamed.summaries) == len(kept.summaries) == 10

@@ -10,16 +10,12 @@ import h5py
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from conftest import SCENARIOS
-from scenes import scene
+from helpers import SCENARIOS, SWEEP_FILE, scene
 
 from hoistsim import exact_from_scenario, load_scenario, simulate, sweep
 from hoistsim.cli import main
 from hoistsim.machine.core import loop
 from hoistsim.scenario.sweep_runs import SweepRuns, sweep_values
-
-SWEEP_FILE = SCENARIOS / "force_sweep_engage_at_speed.yaml"
-
 
 @pytest.fixture(scope="module")
 def full():

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pickle
 
-from samefiles import SWEEP_FILE
+from helpers import SWEEP_FILE
 
 from hoistsim import load_scenario
 from hoistsim.scenario.sweep_spec import swept_field, with_swept_value

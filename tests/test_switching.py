@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scenes import scene
+from helpers import scene
 
 from hoistsim import SimulationError, exact_from_scenario, simulate
 

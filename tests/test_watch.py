@@ -13,20 +13,11 @@ from pathlib import Path
 import h5py
 import numpy as np
 import pytest
+from helpers import SCENARIOS, SHORT, with_force
 
 from hoistsim import _jax
 from hoistsim.cli.watching import Watch, watch
 from hoistsim.program_pool import ProgramPool
-
-ROOT = Path(__file__).resolve().parents[1]
-SCENE = (ROOT / "scenarios" / "exercise6_direct_start.yaml").read_text(encoding="utf-8")
-SHORT = SCENE.replace("  duration: 3 s\n", "  duration: 0.4 s\n", 1)
-
-
-def _force(text: str, newtons: int) -> str:
-    lines = [f"  engagement_force: {newtons} N" if line.strip().startswith("engagement_force:") else line
-             for line in text.splitlines()]
-    return "\n".join(lines) + "\n"
 
 
 @contextlib.contextmanager
@@ -46,13 +37,13 @@ def test_a_new_value_reruns_without_compiling_and_a_bad_edit_keeps_the_last_resu
     scenario, output = tmp_path / "scene.yaml", tmp_path / "scene.h5"
     said = []
     watched = Watch(scenario, output=output, echo=said.append)
-    scenario.write_text(_force(SHORT, 3200), encoding="utf-8")
+    scenario.write_text(with_force(SHORT, 3200), encoding="utf-8")
     assert watched.run()
     assert len(compiled) == 1
     with h5py.File(output) as f:
         first = f["runs/engagement_force"][0, -1] if "engagement_force" in f["runs"] else None
         first_heat = float(f["runs/slip_energy"][0])
-    scenario.write_text(_force(SHORT, 2600), encoding="utf-8")  # a new value: slips, never locks
+    scenario.write_text(with_force(SHORT, 2600), encoding="utf-8")  # a new value: slips, never locks
     assert watched.run()
     assert len(compiled) == 1  # the compiled loop served
     with h5py.File(output) as f:
@@ -60,14 +51,14 @@ def test_a_new_value_reruns_without_compiling_and_a_bad_edit_keeps_the_last_resu
         if first is not None:
             assert f["runs/engagement_force"][0, -1] == 2600
     kept = output.read_bytes()
-    scenario.write_text(_force(SHORT, 2600).replace("engagement_force: 2600 N", "engagement_force: [["),
+    scenario.write_text(with_force(SHORT, 2600).replace("engagement_force: 2600 N", "engagement_force: [["),
                         encoding="utf-8")
     assert not watched.run()
     assert said[-1].startswith("hoistsim: error: ") and "engagement_force" in said[-1]
     assert said[-1].endswith("(the last good results are kept)") and len(said[-1].splitlines()) == 1
     assert output.read_bytes() == kept
     assert "clutch never locks" in said[1] and said[1].startswith(tuple("0123456789"))
-    scenario.write_text(_force(SHORT, 2600).replace("solver: tsit5", "solver: dopri5"), encoding="utf-8")
+    scenario.write_text(with_force(SHORT, 2600).replace("solver: tsit5", "solver: dopri5"), encoding="utf-8")
     assert watched.run()  # another solver: another structure, compiled once
     assert len(compiled) == 2
     watched.close()
@@ -87,7 +78,7 @@ def test_the_figure_drawn_beside_the_file_is_the_one_the_file_draws(tmp_path):
     scenario, output, figure = tmp_path / "scene.yaml", tmp_path / "scene.h5", tmp_path / "scene.png"
     watched = Watch(scenario, output=output, figure=figure, echo=lambda line: None)
     for force in (3200, 2600):  # locks; slips and runs back
-        scenario.write_text(_force(SHORT, force), encoding="utf-8")
+        scenario.write_text(with_force(SHORT, force), encoding="utf-8")
         assert watched.run()
         plot_file(output, tmp_path / "plotted.png")
         assert np.array_equal(_pixels(figure), _pixels(tmp_path / "plotted.png")), force
@@ -104,7 +95,7 @@ def test_the_figure_drawn_beside_the_file_is_the_one_the_file_draws(tmp_path):
 def test_a_periodic_regime_is_drawn_from_its_file(tmp_path):
     """The periodic regime's figures are made from its file: watch writes one aside and draws both."""
     scenario, figure = tmp_path / "ripple.yaml", tmp_path / "ripple.png"
-    scenario.write_text((ROOT / "scenarios" / "motor_ripple_tredgold.yaml").read_text(encoding="utf-8"),
+    scenario.write_text((SCENARIOS / "motor_ripple_tredgold.yaml").read_text(encoding="utf-8"),
                         encoding="utf-8")
     watched = Watch(scenario, figure=figure, echo=lambda line: None)
     assert watched.run()
@@ -116,14 +107,14 @@ def test_a_periodic_regime_is_drawn_from_its_file(tmp_path):
 def test_a_save_made_while_the_first_run_runs_is_run_too(tmp_path):
     """The first run compiles for seconds before the files are watched: a save meanwhile is not lost."""
     scenario = tmp_path / "scene.yaml"
-    scenario.write_text(_force(SHORT, 3200), encoding="utf-8")
+    scenario.write_text(with_force(SHORT, 3200), encoding="utf-8")
     said, stop = [], threading.Event()
 
     class SavedDuringTheFirstRun(Watch):
         def run(self):
             ran = super().run()
             if self.runs == 1:
-                scenario.write_text(_force(SHORT, 2600), encoding="utf-8")  # the run had read the file already
+                scenario.write_text(with_force(SHORT, 2600), encoding="utf-8")  # the run had read the file already
             else:
                 stop.set()
             return ran
@@ -150,7 +141,7 @@ def test_a_sweep_is_refused_with_its_key(tmp_path):
 def test_the_command_runs_again_at_each_save_and_redraws_the_figure(tmp_path):
     """The real loop: a process watching the file through the operating system's notifications."""
     scenario, figure = tmp_path / "scene.yaml", tmp_path / "scene.png"
-    scenario.write_text(_force(SHORT, 3200), encoding="utf-8")
+    scenario.write_text(with_force(SHORT, 3200), encoding="utf-8")
     env = dict(os.environ, HOISTSIM_CACHE_DIR=str(tmp_path / "cache"), PYTHONUNBUFFERED="1")
     proc = subprocess.Popen([sys.executable, "-m", "hoistsim.cli", "watch", str(scenario), "--plot", str(figure)],
                             cwd=tmp_path, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -170,7 +161,7 @@ def test_the_command_runs_again_at_each_save_and_redraws_the_figure(tmp_path):
             time.sleep(0.02)
         drawn = figure.stat().st_ino
         time.sleep(0.2)
-        scenario.write_text(_force(SHORT, 2600), encoding="utf-8")
+        scenario.write_text(with_force(SHORT, 2600), encoding="utf-8")
         wait_for(out, 2, 30)
         assert "clutch never locks" in out[1]
         deadline = time.monotonic() + 30
