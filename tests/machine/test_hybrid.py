@@ -13,7 +13,7 @@ from helpers import scene
 
 from hoistsim import exact_from_scenario, simulate
 
-# Slow: a compiled structure per scene; the quick loop keeps tests/test_properties.py's closed-form check.
+# Slow: a compiled structure per scene; the quick loop keeps tests/machine/test_properties.py's closed-form check.
 pytestmark = pytest.mark.slow
 
 SPEED_TOL = 1e-6  # rad/s
