@@ -1,6 +1,6 @@
 """Largest error of the numerical runs against the closed-form solution.
 
-Runs the generated scenes of tests/test_hybrid.py at rtol 1e-10 (atol 1e-12)
+Runs the generated scenes of tests/machine/test_hybrid.py at rtol 1e-10 (atol 1e-12)
 and prints, per scene, the event sequence and the largest speed, event-time and
 clutch-energy errors, then the worst of each.
 
@@ -14,9 +14,10 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+TESTS = Path(__file__).resolve().parents[1] / "tests"
+sys.path[:0] = [str(TESTS), str(TESTS / "machine")]  # the tests' helpers, and test_hybrid
 
-from scenes import reduced, scene  # noqa: E402
+from helpers import reduced, scene  # noqa: E402
 from test_hybrid import CASES  # noqa: E402
 
 from hoistsim import exact_from_scenario, simulate  # noqa: E402

@@ -1,10 +1,10 @@
-"""Shared set-up: float64 JAX (hoistsim turns it on at import) and scene builders."""
+"""The session's set-up: caches kept out of the user's home, two CPU devices, one JAX compilation cache for
+every process, float64 JAX (hoistsim turns it on at import).  What the tests share in code is in helpers.py."""
 
 from __future__ import annotations
 
 import gc
 import os
-import re
 import sys
 from pathlib import Path
 
@@ -34,10 +34,7 @@ if "JAX_COMPILATION_CACHE_DIR" not in os.environ:
 
 import hoistsim._jax  # noqa: E402,F401  (float64 before any test creates an array)
 
-sys.path.insert(0, str(Path(__file__).parent))
-
-ROOT = Path(__file__).resolve().parents[1]
-SCENARIOS = ROOT / "scenarios"
+sys.path.insert(0, str(Path(__file__).parent))  # `from helpers import ...` from every folder of the tests
 
 
 def _memory_maps() -> tuple[int, int]:
@@ -66,15 +63,3 @@ def _compiled_programs_within_the_map_limit():
         _jax.programs.clear()
         jax.clear_caches()
         gc.collect()
-
-
-def core(text: str) -> str:
-    """A scenario text without its optional sections (they may come and go in the shipped files)."""
-    kept, skipping = [], False
-    for line in text.splitlines(keepends=True):
-        top = re.match(r"([A-Za-z_]\w*)[ \t]*:", line)
-        if top:
-            skipping = top.group(1) in ("initial", "brake", "bearings", "sweep")
-        if not skipping:
-            kept.append(line)
-    return "".join(kept)

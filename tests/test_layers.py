@@ -7,6 +7,8 @@ order is written here once, lowest first; a module may import from its own layer
 from __future__ import annotations
 
 import ast
+import subprocess
+import sys
 from pathlib import Path
 
 import hoistsim
@@ -120,6 +122,28 @@ def test_no_import_circles():
 def test_no_module_above_400_lines():
     long = {name: n for name, (path, _) in _modules().items() if (n := len(path.read_text().splitlines())) > 400}
     assert not long, long
+
+
+# Each module of the figures, after the results' reading: the first after whose import JAX is loaded is printed.
+FIRST_TO_LOAD_JAX = """
+import importlib, pkgutil, sys
+import hoistsim.figures
+names = ["hoistsim.results.reading"]
+names += [f"hoistsim.figures.{m.name}" for m in pkgutil.iter_modules(hoistsim.figures.__path__)]
+for name in names:
+    importlib.import_module(name)
+    if "jax" in sys.modules:
+        print(name)
+        break
+"""
+
+
+def test_reading_and_drawing_a_results_file_import_no_jax():
+    """`hoistsim plot OUT.h5` needs no machine: the results' reading and every module of the figures, imported in a
+    fresh process, leave JAX out of it."""
+    done = subprocess.run([sys.executable, "-c", FIRST_TO_LOAD_JAX], capture_output=True, text=True, check=True,
+                          cwd=PACKAGE.parent)  # the hoistsim under test first on the path
+    assert done.stdout == "", f"importing {done.stdout.strip()} loads jax"
 
 
 def test_the_scenario_the_components_and_the_displays_import_no_jax():

@@ -72,7 +72,7 @@ def draw_runs_figure(runs, output, *, frames=None, png_compression: int = 6) -> 
 
     What ``hoistsim watch`` uses to draw a run while its results file is written: the PNG's compression,
     a tenth of the figure's time, runs beside the file's writing (zlib lets go of Python's lock).  The
-    file is the one :func:`plot_file` writes (same pixels, same metadata; tests/test_watch.py).
+    file is the one :func:`plot_file` writes (same pixels, same metadata; tests/cli/test_watch.py).
     """
     import matplotlib
 

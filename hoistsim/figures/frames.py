@@ -7,7 +7,7 @@ same scene needs the same frame, so :class:`KeptFrames` keeps the last one and
 hands it back emptied of what a run drew on it (its curves, shading, events,
 legends), which matplotlib supports artist by artist (``Artist.remove``).
 The figure comes out the same, pixel for pixel, as one drawn afresh
-(tests/test_figures.py).
+(tests/figures/test_figures.py).
 """
 
 from __future__ import annotations

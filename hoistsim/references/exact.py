@@ -15,7 +15,7 @@ clutch with a piecewise-linear engagement force, the gear pair, the drum, a
 rigid hanging load, the holding brake and a flywheel on either shaft (through
 :mod:`hoistsim.references.model`'s own reduction, not the elements').  Other motor
 characteristics are checked against independent answers of their own
-(``tests/test_elements.py``).
+(``tests/machine/test_elements.py``).
 """
 
 from __future__ import annotations

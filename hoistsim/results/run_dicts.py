@@ -3,7 +3,7 @@
 ``hoistsim watch`` draws a run's figure from the run itself while its results
 file is written, instead of after it: the figure does not wait for the file.
 The rows, the instants' table and the summary values come out as reading the
-file back gives them (the same merge, the same types; tests/test_output.py
+file back gives them (the same merge, the same types; tests/results/test_output.py
 compares the two), so the figure is the one the file draws.
 """
 

@@ -2,7 +2,7 @@
 
 None of these is promised to stay where it is; an upgrade may move or drop
 one.  Each is reached through :func:`reach`, which then fails at once, naming
-the package, its version and the name that moved (tests/test_private_api.py
+the package, its version and the name that moved (tests/machine/test_private_api.py
 reaches for every one, and checks that no other module of hoistsim uses a
 private name of JAX, jaxlib, diffrax or equinox).  Following a move is a change
 to this module alone.

@@ -1,0 +1,141 @@
+"""What the tests share, in one place: where things are, the exercise-6 scenes and scenario texts they start
+from, the settings of the property searches, and two results files compared bit for bit.
+
+Every test imports it the same way from whichever folder of tests/ it is in (conftest.py puts this folder on
+the path): ``from helpers import SCENARIOS, scene``.
+"""
+
+from __future__ import annotations
+
+import copy
+import os
+import re
+from pathlib import Path
+
+import h5py
+import numpy as np
+from hypothesis import HealthCheck, settings
+from hypothesis import strategies as st
+
+from hoistsim import load_scenario, scenario_from_dict
+
+# ------------------------------------------------------------------------------------------- where things are
+TESTS = Path(__file__).resolve().parent  # hard/ (the hard cases' scenes) and data/ (outside references) too
+ROOT = TESTS.parent
+SCENARIOS = ROOT / "scenarios"
+EXERCISE6_FILE = SCENARIOS / "exercise6_direct_start.yaml"
+
+# ------------------------------------------------------------------------------------ exercise 6 as a text
+SHIPPED = EXERCISE6_FILE.read_text(encoding="utf-8")  # as a user has it
+
+
+def core(text: str) -> str:
+    """A scenario text without its optional sections (they may come and go in the shipped files)."""
+    kept, skipping = [], False
+    for line in text.splitlines(keepends=True):
+        top = re.match(r"([A-Za-z_]\w*)[ \t]*:", line)
+        if top:
+            skipping = top.group(1) in ("initial", "brake", "bearings", "sweep")
+        if not skipping:
+            kept.append(line)
+    return "".join(kept)
+
+
+BASE = core(SHIPPED)  # what the tests of bad input edit
+SHORT = SHIPPED.replace("  duration: 3 s\n", "  duration: 0.4 s\n", 1)  # a run in a blink: watch, the pool
+TIGHT = ["simulation.rtol=1e-10", "simulation.atol=1e-12"]  # --set: the tolerances of a check against a reference
+
+
+def line_of(text: str, fragment: str) -> int:
+    """The line (from 1) of a text on which ``fragment`` first stands."""
+    return text[: text.index(fragment)].count("\n") + 1
+
+
+def with_force(text: str, newtons: int) -> str:
+    """A scenario text with its clutch's engagement force set to ``newtons``."""
+    lines = [f"  engagement_force: {newtons} N" if line.strip().startswith("engagement_force:") else line
+             for line in text.splitlines()]
+    return "\n".join(lines) + "\n"
+
+
+# ------------------------------------------------------------------------------- exercise 6 as a scene
+EXERCISE6 = {
+    "name": "test-scene",
+    "motor": {"stall_torque": "500 N*m", "no_load_speed": "300 rpm", "inertia": "0.9 kg*m^2"},
+    "clutch": {
+        "inner_radius": "20 cm", "outer_radius": "24 cm", "half_angle": "25 deg",
+        "static_friction": 0.3, "kinetic_friction": 0.1, "engagement_force": "3201 N",
+    },
+    "gears": {"pinion_teeth": 17, "wheel_teeth": 90, "module": "4 mm", "pressure_angle": "20 deg"},
+    "drum": {"diameter": "40 cm", "inertia": "40 kg*m^2"},
+    "load": {"mass": "500 kg"},
+    "simulation": {"duration": "2 s", "output_interval": "5 ms", "rtol": 1e-10, "atol": 1e-12},
+}
+
+
+def scene(force="3201 N", mass="500 kg", motor_speed=None, brake=None, duration="2 s", name="test-scene",
+          **simulation):
+    """A validated scenario; ``force`` is anything the engagement_force key accepts."""
+    data = copy.deepcopy(EXERCISE6)
+    data["name"] = name
+    data["clutch"]["engagement_force"] = force
+    data["load"]["mass"] = mass
+    data["simulation"]["duration"] = duration
+    data["simulation"].update(simulation)
+    if motor_speed is not None:
+        data["initial"] = {"motor_speed": motor_speed}
+    if brake is not None:
+        data["brake"] = {"release_time": brake}
+    return scenario_from_dict(data, name=name)
+
+
+# ----------------------------------------------------------------------------------- property searches
+def property_settings(examples: int, **more) -> settings:
+    """``examples`` random scenes a property in CI; HOISTSIM_PROPERTY_EXAMPLES=400 for a deeper search by hand."""
+    return settings(max_examples=int(os.environ.get("HOISTSIM_PROPERTY_EXAMPLES", str(examples))), deadline=None,
+                    suppress_health_check=[HealthCheck.too_slow], **more)
+
+
+engagement_forces = st.one_of(  # a constant, or a ramp from nothing to a force that is then held
+    st.floats(200.0, 15000.0).map(lambda f: f"{f} N"),
+    st.tuples(st.floats(0.02, 0.8), st.floats(500.0, 15000.0)).map(
+        lambda r: [["0 s", "0 N"], [f"{r[0]} s", f"{r[1]} N"]]),
+)
+
+# -------------------------------------------------------------------- two results files, bit for bit
+# (a resumed or clustered sweep against the one-process, uninterrupted one)
+SWEEP_FILE = SCENARIOS / "force_sweep_engage_at_speed.yaml"
+CLOCKS = {"solver_wall_time"}  # the only numbers that differ between two runs of the same sweep
+
+
+def short_sweep(count: int):
+    """The engagement-force sweep, 0.4 s runs, ``count`` forces from 3 to 12 kN."""
+    return load_scenario(SWEEP_FILE, overrides=["simulation.duration=0.4 s"],
+                         sweeps=[f"clutch.engagement_force=3 kN:12 kN:{count}"])
+
+
+def datasets(path) -> dict:
+    """Every dataset of a results file but the clocks and the scenario text (which names the command)."""
+    out = {}
+    with h5py.File(path, "r") as f:
+        def visit(name, item):
+            if isinstance(item, h5py.Dataset) and name.rsplit("/", 1)[-1] not in CLOCKS and name != "scenario":
+                out[name] = item.asstr()[()] if item.dtype.kind == "O" else item[()]
+        f.visititems(visit)
+    return out
+
+
+def same(a: dict, b: dict) -> None:
+    assert sorted(a) == sorted(b)
+    for name in a:
+        if a[name].dtype.kind == "f":
+            np.testing.assert_array_equal(a[name], b[name], err_msg=name)  # NaN where NaN, bits elsewhere
+        else:
+            assert (a[name] == b[name]).all(), name
+
+
+def reduced(run):
+    """The two-shaft reduced model of a run's scenario (:mod:`hoistsim.references.model`): the oracles' numbers."""
+    from hoistsim.references.model import Machine
+
+    return Machine.from_scenario(run.scenario).reduced()
