@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import abc
 from typing import ClassVar
 
 from ..core.element import AbstractElement
@@ -46,9 +47,9 @@ class AbstractLoad(AbstractElement):
             return f"load dips {-lowest:.3g} m, ends {final:+.3g} m"
         return f"load {final:+.3g} m"
 
+    @abc.abstractmethod
     def load_speed(self, x):
         """The load's speed (m/s, positive up)."""
-        raise NotImplementedError
 
     def states(self) -> dict:
         return {"load_position": 0.0}

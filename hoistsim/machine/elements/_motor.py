@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import abc
 from typing import ClassVar
 
 from ..core.element import AbstractElement
@@ -34,9 +35,9 @@ class AbstractMotor(AbstractElement):
         # a drawn drivetrain's shaft may be named motor: its speed is in the shafts' panel, not the hoist's
         return () if (run.get("parameters") or {}).get("drivetrain") else cls.panels
 
+    @abc.abstractmethod
     def characteristic(self, speed):
         """Motor torque (N*m) at shaft speed ``speed`` (rad/s)."""
-        raise NotImplementedError
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "AbstractMotor":
@@ -44,9 +45,9 @@ class AbstractMotor(AbstractElement):
                    **cls.characteristic_from(spec))
 
     @classmethod
+    @abc.abstractmethod
     def characteristic_from(cls, spec) -> dict:
         """The characteristic's fields from the motor section."""
-        raise NotImplementedError
 
     def bodies(self) -> dict:
         return {"motor": self.initial_speed}

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import abc
 from typing import ClassVar
 
 import jax.numpy as jnp
@@ -61,9 +62,9 @@ class AbstractRope(AbstractElement):
     def headline(cls, summary: dict) -> str | None:
         return f"peak rope force {float(summary['peak_rope_force']) / 1000:.3g} kN (x{float(summary['dynamic_factor']):.3f} M g)"
 
+    @abc.abstractmethod
     def stiffness(self, x):
         """k (N/m) at this instant."""
-        raise NotImplementedError
 
     def stiffness_rate(self, x):
         """dk/dt (N/m/s): zero for a constant stiffness."""
