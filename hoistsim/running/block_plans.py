@@ -64,7 +64,7 @@ def reached_sections(scenario, keys) -> dict[str, set]:
 def applies(runs) -> bool:
     """Whether a sweep's summary-only plans can be built from a template (see the module's text)."""
     base = getattr(runs, "base", None)
-    if base is None or not runs.keys or any(key not in base._sweep_validated for key in runs.keys):
+    if base is None or not runs.keys or any(key not in base.provenance.swept for key in runs.keys):
         return False
     if base.drivetrain is not None:  # several elements to a section: each run's built in full
         return False
@@ -254,7 +254,7 @@ def _stacked_columns(runs, indices, template, scenario, sections, reach, positio
         return None
     stacks = {}
     for key in runs.keys:  # kept as columns as the sweep was read (a list: values that do not stack)
-        kept = runs.base._sweep_validated[key]
+        kept = runs.base.provenance.swept[key].validated
         stacks[key] = kept.stacked if isinstance(kept, SweptValues) else None
     if any(stacks[key] is None for key in runs.keys):
         return None
@@ -289,7 +289,7 @@ def _listed_columns(runs, indices, template, template_scenario, sections, reach,
     # the scenario itself is copied with each run's values only where a rebuilt element reads a swept
     # section from it; else each rebuilt section alone is (the pydantic copies are most of a run's cost)
     whole = any(reach[sections[k][0]] for k in positions)
-    validated = runs.base._sweep_validated
+    validated = {key: runs.base.provenance.swept[key].validated for key in runs.keys}
     for i in indices[1:]:
         values = [(key, validated[key][p]) for key, p in zip(runs.keys, runs.positions(i))]
         scenario = template_scenario

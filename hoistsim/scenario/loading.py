@@ -20,6 +20,7 @@ from ..errors import ScenarioError as ScenarioError
 from . import tables
 from . import units as u
 from .keys import Where, assign, check_key, check_tree, error_from, model_of, parse_override
+from .provenance import Provenance, SweptKey
 from .schema import SOLVERS as SOLVERS  # noqa: F401  (part of this module's interface)
 from .schema import Scenario as Scenario
 from .tables import ForceTable as ForceTable  # noqa: F401  (part of this module's interface)
@@ -104,22 +105,20 @@ def scenario_from_text(text: str, source: str = "<scenario>",
         text = text.rstrip("\n") + "\n# overrides from the command line:\n" + "".join(
             f"#   --set {k}={json.dumps(v, default=str)}\n" for k, v in pairs)
     check_tree(raw, Scenario, (), tree, source)
-    scenario = _validate(raw, tree, source, overridden={k for k, _ in pairs})
-    scenario._overridden = {k for k, _ in pairs}
+    overridden = frozenset(k for k, _ in pairs)
+    scenario = _validate(raw, tree, source, overridden=overridden)
+    swept = {}
     for key, values in (scenario.sweep or {}).items():
-        if key in scenario._overridden:
+        if key in overridden:
             raise ScenarioError(key, "is swept in the file (sweep:); --set cannot also set it", source="--set")
         # a sweep given on the command line has no line in the file
         where, lines = ("--sweep", None) if sweeps else (source, tree)
         values, labels = expand_range(key, values, Where(f"sweep.{key}", where, lines, ("sweep", key)))
-        scenario._sweep_numbers[key], scenario._sweep_validated[key] = check_sweep(scenario, raw, key, values,
-                                                                                  lines, where)
-        scenario._sweep_values[key] = values
-        scenario._sweep_labels[key] = labels
-    scenario._raw = raw
-    scenario._text = text
-    scenario._source = source
-    scenario._warnings = bare_angles(raw, Scenario, (), tree, source)
+        numbers, validated = check_sweep(scenario, raw, key, values, lines, where)
+        swept[key] = SweptKey(values=values, labels=labels, numbers=numbers, validated=validated)
+    scenario = scenario.with_provenance(Provenance(text=text, source=source, raw=raw, overridden=overridden,
+                                                   warnings=tuple(bare_angles(raw, Scenario, (), tree, source)),
+                                                   swept=swept))
     if len(scenario.sweep or ()) > 1:
         check_combinations(scenario)
     return scenario

@@ -20,6 +20,7 @@ from .schema_base import Section
 from .schema_drivetrain import DrivetrainSpec
 from .schema_motor import MotorSpec, RippleSpec
 from .schema_rope import GroundSpec, RopeSpec
+from .provenance import Provenance
 from .tables import EngagementForce
 from .units import FreeText, Text
 from .yamlsource import copy_plain
@@ -268,20 +269,23 @@ class Scenario(Section):
     simulation: SimulationSpec
     sweep: dict[str, Any] | None = None  # checked by check_sweep
 
-    _raw: dict = PrivateAttr(default_factory=dict)
-    _text: str = PrivateAttr(default="")
-    _source: str = PrivateAttr(default="<scenario>")
-    _overridden: set = PrivateAttr(default_factory=set)
-    _sweep_values: dict = PrivateAttr(default_factory=dict)  # key -> values, ranges expanded
-    _sweep_labels: dict = PrivateAttr(default_factory=dict)  # key -> each value as the user reads it
-    _sweep_numbers: dict = PrivateAttr(default_factory=dict)  # key -> each value's SI number (NaN: a table)
-    _sweep_validated: dict = PrivateAttr(default_factory=dict)  # key -> each value as validated (the key's type)
-    _warnings: list = PrivateAttr(default_factory=list)  # what was accepted but may not be meant
+    _provenance: Provenance = PrivateAttr(default_factory=Provenance)  # given by with_provenance only
+
+    @property
+    def provenance(self) -> Provenance:
+        """What loading learned of this scenario: its text and source, its plain data, its sweep."""
+        return self._provenance
+
+    def with_provenance(self, provenance: Provenance) -> Scenario:
+        """This scenario (a copy) with what loading learned of it."""
+        copied = self.model_copy()
+        copied._provenance = provenance
+        return copied
 
     @property
     def warnings(self) -> list[str]:
         """One line each: values accepted that may not say what was meant (a bare number on a speed)."""
-        return list(self._warnings)
+        return list(self._provenance.warnings)
 
     @model_validator(mode="after")
     def _a_hoist_or_a_drivetrain(self):
@@ -367,16 +371,16 @@ class Scenario(Section):
     @property
     def text(self) -> str:
         """The scenario as read, with command-line overrides noted."""
-        return self._text
+        return self._provenance.text
 
     @property
     def source(self) -> str:
-        return self._source
+        return self._provenance.source
 
     @property
     def raw(self) -> dict:
         """The scenario as plain data (before unit conversion), overrides applied."""
-        return copy_plain(self._raw)
+        return copy_plain(self._provenance.raw)
 
     def resolved(self) -> dict:
         """The scenario in SI numbers, as JSON-friendly data."""

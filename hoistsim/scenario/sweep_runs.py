@@ -28,12 +28,12 @@ class SweepRuns:
     def __init__(self, scenario: Scenario):
         self.base = scenario
         self.keys = list(scenario.sweep or {})
-        self.shape = tuple(len(scenario._sweep_values[key]) for key in self.keys)
+        self.swept = scenario.provenance.swept
+        self.shape = tuple(len(self.swept[key].values) for key in self.keys)
         # what every run shares: the base without its sweep (a run is one computation, not a sweep)
-        self._run_base = scenario.model_copy(update={"sweep": None})
-        self._run_base._raw = {k: v for k, v in scenario._raw.items() if k != "sweep"}
-        self._run_base._sweep_values, self._run_base._sweep_labels, self._run_base._sweep_numbers = {}, {}, {}
-        self._run_base._sweep_validated = {}
+        provenance = scenario.provenance
+        self._run_base = scenario.model_copy(update={"sweep": None}).with_provenance(
+            provenance.of_run({k: v for k, v in provenance.raw.items() if k != "sweep"}))
 
     def __len__(self) -> int:
         return math.prod(self.shape) if self.keys else 1
@@ -55,14 +55,13 @@ class SweepRuns:
         return list(reversed(out))
 
     def label(self, i: int) -> str:
-        labels = self.base._sweep_labels
-        return ", ".join(f"{key}={labels[key][p]}" for key, p in zip(self.keys, self.positions(i)))
+        return ", ".join(f"{key}={self.swept[key].labels[p]}" for key, p in zip(self.keys, self.positions(i)))
 
     def labels_of(self, rows: np.ndarray) -> np.ndarray:
         """:meth:`label` of many runs at once (an object array of strings)."""
         out = None
         for key, p in zip(self.keys, self.positions_of(rows)):
-            own = np.asarray([f"{key}={label}" for label in self.base._sweep_labels[key]], dtype=object)[p]
+            own = np.asarray([f"{key}={label}" for label in self.swept[key].labels], dtype=object)[p]
             out = own if out is None else out + ", " + own
         return out
 
@@ -78,7 +77,7 @@ class SweepRuns:
     @cached_property
     def parameters(self) -> dict[str, np.ndarray]:
         """Swept key -> its SI value in each run (NaN for a table that varies)."""
-        grids = np.meshgrid(*(self.base._sweep_numbers[key] for key in self.keys), indexing="ij")
+        grids = np.meshgrid(*(self.swept[key].numbers for key in self.keys), indexing="ij")
         return {key: grid.ravel() for key, grid in zip(self.keys, grids)}
 
     def scenario(self, i: int) -> Scenario:
@@ -86,13 +85,12 @@ class SweepRuns:
         if not self.keys:
             return self.base
         run = self._run_base
-        raw = dict(run._raw)
+        raw = dict(run.provenance.raw)
         for key, p in zip(self.keys, self.positions(i)):
-            value = self.base._sweep_values[key][p]
+            value = self.swept[key].values[p]
             run = with_swept_value(run, key, value, raw)
             _assign_copied(raw, key, value)
-        run._raw, run._text, run._source = raw, self.base.text, self.base.source
-        return run
+        return run.with_provenance(self._run_base.provenance.of_run(raw))
 
 
 class Labels(Sequence):

@@ -72,7 +72,7 @@ def with_swept_value(scenario: Scenario, key: str, value: Any, raw: dict | None 
         models.append(_child(models[-1], part))
         if models[-1] is None:  # the sweep adds a section
             if raw is None:
-                raw = {k: v for k, v in scenario._raw.items() if k != "sweep"}
+                raw = {k: v for k, v in scenario.provenance.raw.items() if k != "sweep"}
             one = _copy_plain(raw)
             assign(one, key, value)
             try:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import inspect
 import math
 import re
 
@@ -21,7 +22,7 @@ from helpers import EXERCISE6, ROOT
 
 from hoistsim import scenario_from_dict, simulate
 from hoistsim.machine.assemble import build_plan, loop_sizes
-from hoistsim.machine.core.element import AbstractCoupling
+from hoistsim.machine.core.element import AbstractCoupling, AbstractElement, abstract_methods
 from hoistsim.machine.core.loop import OK, compiled_run
 from hoistsim.machine.elements import REGISTRY, elements_for
 
@@ -137,6 +138,10 @@ class _SecondBrake(AbstractCoupling):
     section = "pinion_brake"
     can_slip = False
 
+    @classmethod
+    def from_spec(cls, spec, scenario):
+        return cls()
+
     def joins(self):
         return ("pinion", None)
 
@@ -178,3 +183,68 @@ def test_every_element_is_one_file_named_after_it():
         module = cls.__module__.rsplit(".", 1)[-1]
         assert (folder / f"{module}.py").exists()
         assert sum(1 for c in classes if c.__module__ == cls.__module__) == 1, module
+
+
+def test_an_element_without_from_spec_fails_where_it_is_defined():
+    with pytest.raises(TypeError, match=r"^_Unbuilt lacks from_spec: an element \(a class whose name does not start "
+                                        r"with Abstract\) must define every abstract method"):
+        class _Unbuilt(AbstractElement):
+            section = "unbuilt"
+
+            def inertias(self):
+                return (("pinion", 1.0),)
+
+
+def test_a_coupling_without_its_numbers_fails_where_it_is_defined():
+    with pytest.raises(TypeError, match=r"^_Unbounded lacks capacity: "):
+        class _Unbounded(AbstractCoupling):
+            section = "unbounded"
+
+            @classmethod
+            def from_spec(cls, spec, scenario):
+                return cls()
+
+            def joins(self):
+                return ("pinion", None)
+
+            def sliding_torque(self, x):
+                return 0.0
+
+    with pytest.raises(TypeError, match=r"^_Bare lacks capacity, from_spec, joins, sliding_torque: "):
+        class _Bare(AbstractCoupling):
+            section = "bare"
+
+
+def test_an_abstract_class_leaves_its_methods_to_the_classes_below_it():
+    class AbstractPinionHold(AbstractCoupling):  # named Abstract...: may leave methods abstract
+        def joins(self):
+            return ("pinion", None)
+
+    assert abstract_methods(AbstractPinionHold) == ["capacity", "from_spec", "sliding_torque"]
+
+    class _PinionHold(AbstractPinionHold):
+        capacity_torque: object  # N*m
+        section = "pinion_hold"
+
+        @classmethod
+        def from_spec(cls, spec, scenario):
+            return cls(capacity_torque=spec)
+
+        def capacity(self, x):
+            return self.capacity_torque
+
+        def sliding_torque(self, x):
+            return 0.0
+
+    hold = _PinionHold.from_spec(250.0, None)
+    assert abstract_methods(_PinionHold) == [] and hold.joins() == ("pinion", None)
+    # still a frozen pytree dataclass: its field a traced leaf
+    assert jax.tree_util.tree_leaves(hold) == [250.0]
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        hold.capacity_torque = 1.0
+
+
+def test_every_registered_element_is_built_from_its_section_and_the_scenario():
+    classes = [c for entry in REGISTRY.values() for c in (entry.values() if isinstance(entry, dict) else [entry])]
+    for cls in classes:
+        assert list(inspect.signature(cls.from_spec).parameters) == ["spec", "scenario"], cls.__name__

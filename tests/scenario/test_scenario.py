@@ -3,7 +3,10 @@ name the dotted key with the file and line.  No simulation here: fast."""
 
 from __future__ import annotations
 
+import copy
+import dataclasses
 import math
+import pickle
 
 import pytest
 from helpers import BASE, EXERCISE6_FILE, SCENARIOS, SHIPPED, line_of
@@ -283,6 +286,25 @@ def test_sweep_of_tables_and_numbers():
 def test_sweep_of_motor_inertia_on_a_scenario_with_rotor_mass():
     s = scenario_from_text(BASE + "sweep:\n  motor.inertia: [0.5 kg*m^2, 2 kg*m^2]\n")
     assert [r.motor.moment_of_inertia for _, r in sweep_values(s)] == [0.5, 2.0]
+
+
+def test_what_loading_learns_is_one_frozen_provenance_that_copies_and_pickles_keep():
+    s = scenario_from_text(BASE + "sweep:\n  load.mass: [100 kg, 500 kg]\n", source="s.yaml",
+                           overrides={"brake.release_time": "0.4 s"})
+    learnt = s.provenance
+    assert (learnt.source, learnt.overridden, list(learnt.swept)) == ("s.yaml", {"brake.release_time"}, ["load.mass"])
+    assert learnt.text == s.text and "--set brake.release_time" in s.text and learnt.raw == s.raw
+    mass = learnt.swept["load.mass"]
+    assert list(mass.labels) == ["100 kg", "500 kg"] and list(mass.numbers) == [100.0, 500.0]
+    assert list(mass.validated) == [100.0, 500.0]
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        learnt.text = ""
+    for kept in (s.model_copy(), copy.deepcopy(s), pickle.loads(pickle.dumps(s))):  # a sweep sent to workers
+        assert (kept.text, kept.source, kept.raw, kept.warnings) == (s.text, s.source, s.raw, s.warnings)
+        assert list(kept.provenance.swept["load.mass"].labels) == ["100 kg", "500 kg"]
+    (_, light), _ = sweep_values(s)
+    assert light.provenance.swept == {} and light.provenance.overridden == learnt.overridden
+    assert light.raw["load"]["mass"] == "100 kg" and light.raw["brake"] == {"release_time": "0.4 s"}
 
 
 # --------------------------------------------------------------------------------------

@@ -14,10 +14,10 @@ from hoistsim.scenario.swept_values import BATCH, SweptValues, collect
 def test_a_force_range_is_kept_as_columns_and_gives_back_each_value_as_validated():
     count = 2 * BATCH + 3  # batches and a partial one
     s = load_scenario(SWEEP_FILE, sweeps=[f"clutch.engagement_force=3 kN:12 kN:{count}"])
-    kept = s._sweep_validated["clutch.engagement_force"]
+    kept = s.provenance.swept["clutch.engagement_force"].validated
     assert isinstance(kept, SweptValues) and len(kept) == count
     assert kept.stacked.forces.shape == (count, 1) and kept.stacked.forces.nbytes == 8 * count
-    values = s._sweep_values["clutch.engagement_force"]
+    values = s.provenance.swept["clutch.engagement_force"].values
     for i in (0, 1, BATCH - 1, BATCH, count // 2, count - 1, -1):
         alone = swept_field(with_swept_value(s, "clutch.engagement_force", values[i]), "clutch.engagement_force")
         assert kept[i] == alone and type(kept[i]) is type(alone)

@@ -1,77 +1,21 @@
 """What a part of the machine may bring to a run: the element and coupling interfaces.
 
-An element is a frozen dataclass whose fields are its traced numbers (a new
-value never recompiles); fields declared ``static()`` are structure (a shaft's
-name).  Everything an element contributes is optional and empty by default, so
-an element the scene does not name contributes nothing at all: no body, no
-state, no term, no guard, no column.
-
-Elements speak of *shafts*: a body (a rigid shaft with a speed of its own in
-the state) or a shaft tied rigidly to one (its speed a fixed multiple of the
-body's).  Inertia and torque on a shaft are brought to its body by equal
-kinetic energy and equal power, the seed's reduced system.
-
-Contributions, all read at trace time (``x`` is the machine at one instant,
-:class:`hoistsim.machine.core.dynamics.Instant`):
-- ``bodies()``: new bodies, name -> initial speed (rad/s);
-- ``shafts()``: new shafts tied to others, name -> (shaft it turns with, speed ratio);
-- ``inertias()``: (shaft, kg*m^2) pairs;
-- ``varying_inertias(angle)``: (shaft, I, dI/dangle) triples for an inertia that
-  varies with the angle of its shaft (``angle(shaft)``, rad), only with
-  ``inertia_varies`` True; the element also gives the -1/2 I' w^2 torque that
-  goes with it (the equation of motion of a varying inertia), and the core
-  solves the bodies' response at each use instead of once per pass;
-- ``torques(x)``: (shaft, N*m) pairs, positive in the shaft's positive sense;
-- ``states()`` / ``rates(x)``: named states with initial values, and their rates;
-- ``angles()``: shafts whose angle the element reads (``x.angle(shaft)``, rad, 0 at
-  the start): the core keeps one state and one output column ``<shaft>_angle``
-  for each shaft some element asks for, and none otherwise;
-- ``ledger(x)``: energy terms by name (J), each declared in ``ledger_kinds`` as
-  "work" (done on the machine), "loss" (dissipated) or "potential" (stored),
-  or "heat of <loss>" (where a loss went: its terms sum to that loss, a ledger
-  of their own); kinetic energy is the core's;
-- ``tables()``: piecewise-linear tables of time, name -> (times field, values field);
-  their knots are segment boundaries and ``x.table(name)`` reads them;
-- ``boundaries()`` and ``boundary_events(t)``: scheduled times and the events
-  recorded at them (kinds listed in ``event_kinds``);
-- ``observations(x)``: guards whose zero is recorded as an output row (kinds in
-  ``observation_kinds``), positive before it; those named in ``crossings`` are
-  recorded where they change sign either way (a value whose sign switches the
-  element's law, found exactly instead of stepped across); those named in
-  ``limits`` are thresholds crossed (a temperature limit): recorded even where
-  another guard is located at the same instant, and located as tightly as a
-  switch; ``observes(kind)`` False leaves a kind unwatched in this element as
-  built (an optional limit not given: no guard at all); a crossing named in
-  ``crossing_events`` (kind -> (event rising through zero, event falling)) is
-  no row but an event named by the way it crossed (a rope going taut or slack);
-- ``kinks(x)``: knot coordinates (named by ``kink_names()``), continuous in the
-  state and whole numbers exactly where the element's torque has a kink (a
-  table's knot in angle): the integration stops at the next whole number either
-  way and restarts there, as at a scheduled boundary in time, so no step
-  straddles a knot;
-- ``cycles``: kinks that mark the end of a cycle of the machine (kink name ->
-  event kind): each crossing is recorded as a row of that kind, and the budgets
-  of switches, observations and kinks start again, so a machine that switches a
-  few times every cycle (periodic stick-slip) runs for as many cycles as it
-  likes while one that switches without end inside a cycle is chattering;
-  ``cycle_angle()`` says how far (rad) its shafts turn in a cycle, for sizing the loop;
-- ``extremes(x)``: running reductions for the summary, name -> (reduction, value)
-  with reduction one of "max", "min", "first" (the first time the value is true),
-  "first_value" (value a pair (condition, v): v where the condition first holds),
-  "duration" (time spent while it is true; constant between switches);
-- ``summary(x)``: values of the final state for the summary; every name of
-  ``extremes`` and ``summary`` is declared in ``summaries`` with its units
-  ("bool" for a yes/no);
-- ``outputs(x)``: time series, described in ``columns`` (name -> (units, description));
-  a column in units "1" is a flag or a mode, stored as a small integer;
-- ``speed_scale()``: a speed (rad/s) typical of the element, for the slip resolution.
-
-What the figures draw of a part is not the element's: :mod:`hoistsim.display` holds it as plain data,
-so that reading and drawing a results file needs no machine.
+An element is a frozen dataclass (a pytree) whose fields are its traced numbers, a new value never
+recompiling; fields declared ``static()`` are structure (a shaft's name).  It must say how its scenario
+section builds it (``from_spec``); everything else it may bring is a method of :class:`AbstractElement`,
+empty by default, so an element the scene does not name has no body, state, term, guard or column.
+Elements speak of *shafts*: a body (a speed of its own in the state) or a shaft turning with one, whose
+inertia and torques reach the body by equal kinetic energy and power.  ``x`` is the machine at one
+instant (:class:`hoistsim.machine.core.dynamics.Instant`); what it brings is read at trace time.  A class
+is abstract (named ``Abstract…``) or concrete, and a concrete one that lacks an abstract method fails
+where it is defined, not where a run first calls it.
+What the figures draw of a part is not the element's: :mod:`hoistsim.display` holds it as plain data, so
+that reading and drawing a results file needs no machine.
 """
 
 from __future__ import annotations
 
+import abc
 from typing import ClassVar
 
 from ..._pytree import pytree_dataclass
@@ -100,8 +44,14 @@ TORQUE_RESOLUTION = 1e-9
 SLIP_RESOLUTION = 4 * 2.220446049250313e-16
 
 
+def abstract_methods(cls: type) -> list[str]:
+    """The abstract methods ``cls`` has no body for, its own or inherited (what a concrete class must define)."""
+    return sorted(name for name in dir(cls) if getattr(getattr(cls, name, None), "__isabstractmethod__", False))
+
+
 class AbstractElement:
-    """A part of the machine, selected by its scenario section (see the module docstring)."""
+    """A part of the machine, built from its scenario section by ``from_spec``; each method below is what it
+    may bring, and brings nothing unless it says otherwise."""
 
     section: ClassVar[str]
     columns: ClassVar[dict[str, tuple[str, str]]] = {}
@@ -114,110 +64,139 @@ class AbstractElement:
     # of those, thresholds that make the scenario wrong: kind -> (the key to blame, the message, with {time})
     errors: ClassVar[dict[str, tuple[str, str]]] = {}
     summaries: ClassVar[dict[str, str]] = {}  # summary name -> units
-    ledger_kinds: ClassVar[dict[str, str]] = {}  # energy term -> "work", "loss", "potential" or "heat of <loss>"
-    cycles: ClassVar[dict[str, str]] = {}  # kink -> event kind recorded where it is crossed
+    # energy term -> "work" (done on the machine), "loss" (dissipated), "potential" (stored) or "heat of <loss>"
+    # (where a loss went: a ledger of its own, its terms summing to that loss); the kinetic energy is the core's
+    ledger_kinds: ClassVar[dict[str, str]] = {}
+    # kink -> event kind recorded where it is crossed: the end of a cycle of the machine, where the budgets of
+    # switches, observations and kinks start again (a machine that switches a few times a cycle runs for as
+    # many cycles as it likes; one that switches without end inside a cycle is chattering)
+    cycles: ClassVar[dict[str, str]] = {}
     inertia_varies: ClassVar[bool] = False  # brings varying_inertias
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
+        # abstract or concrete (equinox's rule): a concrete class that lacks a method fails here, as it is
+        # defined, not in the middle of a run that first calls it
+        missing = abstract_methods(cls)
+        if missing and not cls.__name__.startswith("Abstract"):
+            raise TypeError(f"{cls.__name__} lacks {', '.join(missing)}: an element (a class whose name does not "
+                            "start with Abstract) must define every abstract method of the classes it derives from")
         pytree_dataclass(cls)
 
+    @classmethod
+    @abc.abstractmethod
+    def from_spec(cls, spec, scenario) -> AbstractElement:
+        """The element its section builds: ``spec`` the section (validated, SI), ``scenario`` the whole."""
+
     def bodies(self) -> dict:
+        """New bodies: name -> initial speed (rad/s)."""
         return {}
 
     def shafts(self) -> dict:
+        """New shafts turning with others: name -> (the shaft it turns with, its speed over that one's)."""
         return {}
 
     def inertias(self) -> tuple:
+        """Inertias on shafts: (shaft, kg*m^2) pairs."""
         return ()
 
     def varying_inertias(self, angle) -> tuple:
+        """(shaft, I in kg*m^2, dI/d angle in kg*m^2/rad) for an inertia varying with ``angle(shaft)`` (rad)."""
+        # only with inertia_varies: the element gives the -1/2 I' w^2 torque that goes with it (the equation
+        # of motion of a varying inertia), and the core solves the bodies' response at each use
         return ()
 
     def torques(self, x) -> tuple:
+        """Torques on shafts: (shaft, N*m) pairs, positive in the shaft's positive sense."""
         return ()
 
     def states(self) -> dict:
+        """States of its own: name -> initial value."""
         return {}
 
     def rates(self, x) -> dict:
+        """The rates of its states: name -> d(state)/dt (the state's units per s)."""
         return {}
 
     def angles(self) -> tuple:
+        """Shafts whose angle it reads (``x.angle(shaft)``, rad from the start): a state and column each."""
+        # one state and one output column <shaft>_angle for each shaft some element asks for, none otherwise
         return ()
 
     def ledger(self, x) -> dict:
+        """Energy terms: name -> J so far, each declared in ``ledger_kinds``."""
         return {}
 
     def tables(self) -> dict:
+        """Piecewise-linear tables of time, read by ``x.table(name)``: name -> (times field, values field)."""
+        # their knots are segment boundaries
         return {}
 
     def boundaries(self) -> tuple:
+        """Scheduled times (s): segment boundaries."""
         return ()
 
     def boundary_events(self, t) -> tuple:
+        """The events at a boundary at ``t`` (s): (kind in ``event_kinds``, whether it happens at t) pairs."""
         return ()
 
     def observations(self, x) -> dict:
+        """Guards, positive before the zero recorded as a row: kind in ``observation_kinds`` -> value."""
+        # a kind in crossings is recorded where its sign changes either way (a value whose sign switches the
+        # element's law, found exactly instead of stepped across), and one in crossing_events is no row but the
+        # event named by the way it crossed (a rope going taut or slack); one in limits is a threshold crossed
+        # (a temperature limit), recorded even where another guard is located at the same instant, and located
+        # as tightly as a switch
         return {}
 
     def observes(self, kind: str) -> bool:
+        """Whether a kind of ``observation_kinds`` is watched as built (an optional limit not given: no guard)."""
         return True
 
     def kink_names(self) -> tuple:
+        """The names of what ``kinks`` counts."""
         return ()
 
     def kinks(self, x) -> dict:
+        """Knots of its torque in the state: name -> a count, continuous and whole exactly at each knot."""
+        # a table's knot in angle: the integration stops at the next whole number either way and restarts
+        # there, as at a scheduled boundary in time, so no step straddles a knot
         return {}
 
     def cycle_angle(self):
+        """How far its shafts turn in a cycle of ``cycles`` (rad), for sizing the loop; None: no cycle."""
         return None
 
     def extremes(self, x) -> dict:
+        """Running reductions for the summary: name (in ``summaries``) -> (reduction, value)."""
+        # reduction "max", "min", "first" (the first time the value is true), "first_value" (value a pair
+        # (condition, v): v where the condition first holds) or "duration" (time spent while it is true;
+        # constant between switches)
         return {}
 
     def summary(self, x) -> dict:
+        """Values of the final state for the summary: name (in ``summaries``, "bool" a yes/no) -> value."""
         return {}
 
     def outputs(self, x) -> dict:
+        """Output columns at this instant: name (in ``columns``: units, description) -> value."""
+        # a column in units "1" is a flag or a mode, stored as a small integer
         return {}
 
     def speed_scale(self):
+        """A speed typical of the element (rad/s), for the slip resolution; None: none."""
         return None
 
 
 class AbstractCoupling(AbstractElement):
     """A friction coupling between two shafts, or a shaft and the ground.
 
-    Its modes (stuck, slipping either way, open), the guards that switch them
-    and the momentum-keeping reset at a lock are the core's, written once for
-    every coupling; a coupling supplies only its numbers:
-    - ``joins()``: the shafts it ties, (a, b), b None for the ground; it
-      transmits a torque from a to b, positive when a drives b;
-    - ``capacity(x)``: the largest torque it carries stuck (N*m, inf for no limit);
-      ``capacity_toward(x, sign)`` where that differs with the torque's direction;
-    - ``sliding_torque(x)``: the torque it passes while slipping (N*m, >= 0);
-    - ``is_open(segment)``: whether it carries nothing over a whole segment.
-    ``can_slip`` False: it is stuck or open, never slipping (no slip guards).
-    ``pressed_by``: a shaft whose torque presses this coupling's faces (the
-    torque a mesh's teeth pass presses their flanks): the torque its body
-    passes into it, ``x.torque_into(shaft)``.  The sliding torque then grows
-    by ``sliding_per_load(x, side)`` times that torque's magnitude, ``side``
-    +1 where it pushes the way the coupling slips, -1 the other way (the core
-    solves for the two together).
-    ``reports_switches`` False: its mode changes are not events of their own
-    (its scheduled events say what happened); ``switch_names`` renames the
-    core's kinds for it (a body on a support: unlock -> ``lift_off``).
-    ``gap(x)``: for a contact (a body resting on a support), how far apart its
-    sides are (m or rad, at or below zero where they touch); None for a
-    coupling whose sides always touch.  A contact's sides meet where the gap
-    closes, not where their speeds do (a body at the top of its flight is not
-    caught in mid-air), with the momentum-keeping reset of a lock: a plastic
-    impact, whose kinetic energy the core adds to the state ``impact_state``
-    (a loss of the ledger).
+    Its modes (stuck, slipping either way, open), the guards that switch them and the momentum-keeping
+    reset at a lock are the core's, written once for every coupling; a coupling supplies only its numbers.
     """
 
-    can_slip: ClassVar[bool] = True
+    can_slip: ClassVar[bool] = True  # False: stuck or open, never slipping (no slip guards)
+    # False: its mode changes are no events of their own (its scheduled events say what happened)
     reports_switches: ClassVar[bool] = True
     # Stuck together with others that already hold the same motion (two holds on one shaft), the torque is
     # statically indeterminate: the couplings take it in their order, those that yield after the rest.
@@ -225,29 +204,41 @@ class AbstractCoupling(AbstractElement):
     # its slip's peaks are rows (the peak slip speed of a friction coupling); False where the slip is a
     # shaft turning freely (a pawl clicking over, a mesh rolling): its peaks say nothing its speed does not
     observes_slip_peak: ClassVar[bool] = True
+    # a shaft whose torque presses the faces (a mesh's teeth pass it into their flanks): the torque its body
+    # passes into the coupling, x.torque_into(shaft), which the core solves for with the sliding torque
     pressed_by: ClassVar[str | None] = None
     switch_names: ClassVar[dict[str, str]] = {}  # the core's switch kind -> this coupling's event kind
-    impact_state: ClassVar[str | None] = None  # a contact's state that takes the kinetic energy its impacts lose
+    # A contact (one with a gap) meets where the gap closes, not where the speeds do (a body at the top of
+    # its flight is not caught in mid-air), with the reset of a lock: a plastic impact, whose kinetic energy
+    # the core adds to this state (a loss of the ledger).
+    impact_state: ClassVar[str | None] = None
 
+    @abc.abstractmethod
     def joins(self) -> tuple:
-        raise NotImplementedError
+        """The shafts it ties, (a, b), b None for the ground; the torque it passes is positive a driving b."""
 
+    @abc.abstractmethod
     def capacity(self, x):
-        raise NotImplementedError
+        """The largest torque it carries stuck (N*m; inf: no limit)."""
 
     def capacity_toward(self, x, sign):
         """The capacity against a torque that pushes side a forwards (``sign`` +1) or backwards (-1):
         ``capacity(x)`` both ways, unless the coupling holds one way only (a pawl)."""
         return self.capacity(x)
 
+    @abc.abstractmethod
     def sliding_torque(self, x):
-        raise NotImplementedError
+        """The torque it passes while slipping (N*m, >= 0)."""
 
     def sliding_per_load(self, x, side):
+        """The sliding torque's growth per N*m of ``pressed_by``'s torque, ``side`` +1 pushing the way it slips."""
         return 0.0
 
     def is_open(self, segment):
+        """Whether it carries nothing over a whole segment."""
         return False
 
     def gap(self, x):
+        """For a contact, how far apart its sides are (m or rad, <= 0 touching); None: its sides always touch."""
         return None
+

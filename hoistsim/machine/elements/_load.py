@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import abc
 from typing import ClassVar
 
 from ..core.element import AbstractElement
@@ -26,9 +27,9 @@ class AbstractLoad(AbstractElement):
         "load_velocity": ("m/s", "rope speed, positive up"),
     }
 
+    @abc.abstractmethod
     def load_speed(self, x):
         """The load's speed (m/s, positive up)."""
-        raise NotImplementedError
 
     def states(self) -> dict:
         return {"load_position": 0.0}

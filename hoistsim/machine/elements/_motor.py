@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import abc
 from typing import ClassVar
 
 from ..core.element import AbstractElement
@@ -27,9 +28,9 @@ class AbstractMotor(AbstractElement):
         "motor_work": ("J", "work done by the motor so far"),
     }
 
+    @abc.abstractmethod
     def characteristic(self, speed):
         """Motor torque (N*m) at shaft speed ``speed`` (rad/s)."""
-        raise NotImplementedError
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "AbstractMotor":
@@ -37,9 +38,9 @@ class AbstractMotor(AbstractElement):
                    **cls.characteristic_from(spec))
 
     @classmethod
+    @abc.abstractmethod
     def characteristic_from(cls, spec) -> dict:
         """The characteristic's fields from the motor section."""
-        raise NotImplementedError
 
     def bodies(self) -> dict:
         return {"motor": self.initial_speed}

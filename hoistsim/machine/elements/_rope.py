@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import abc
 from typing import ClassVar
 
 import jax.numpy as jnp
@@ -44,9 +45,9 @@ class AbstractRope(AbstractElement):
         "rope_taut": ("1", "1 while the rope pulls, 0 while it is slack"),
     }
 
+    @abc.abstractmethod
     def stiffness(self, x):
         """k (N/m) at this instant."""
-        raise NotImplementedError
 
     def stiffness_rate(self, x):
         """dk/dt (N/m/s): zero for a constant stiffness."""

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import abc
+
 from ..core.element import AbstractElement
 
 
@@ -9,8 +11,9 @@ class AbstractShaftWork(AbstractElement):
     """A torque ``torque(x)`` on the shaft ``self.shaft``, whose work on it is the state
     ``<section>_work`` and a work term of the energy ledger (subclasses declare ``shaft`` and ``section``)."""
 
+    @abc.abstractmethod
     def torque(self, x):
-        raise NotImplementedError
+        """The torque on the shaft (N*m), positive in its positive sense."""
 
     @property
     def work_state(self) -> str:

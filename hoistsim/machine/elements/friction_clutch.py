@@ -41,6 +41,8 @@ class FrictionClutch(AbstractSlipHeat):
     crossings: ClassVar[tuple] = ("clutch_force",)
     crossing_events: ClassVar[dict] = {"clutch_force": ("engage", "disengage")}
 
+    # A drawn part's builder, called by Drivetrain.from_spec with the clutch's name: not yet the registry's
+    # (spec, scenario), which it takes once the registry builds drawn parts too.
     @classmethod
     def from_spec(cls, name: str, spec) -> "FrictionClutch":
         a, b = spec.between

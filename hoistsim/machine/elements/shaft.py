@@ -41,3 +41,10 @@ class Shaft(AbstractElement):
 
     def outputs(self, x) -> dict:
         return {f"{self.section}_speed": x.speed(self.section)}
+
+    # A drawn part: Drivetrain.from_spec builds it with its constructor (its name and its gear train are the
+    # drivetrain's to say), not the registry from a section of its own; it takes (spec, scenario) once the
+    # registry builds drawn parts too.
+    @classmethod
+    def from_spec(cls, spec, scenario) -> Shaft:
+        raise TypeError("a shaft is built by its drivetrain (Drivetrain.from_spec), not from a section of its own")

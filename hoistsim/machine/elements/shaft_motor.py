@@ -17,6 +17,8 @@ class ShaftMotor(AbstractShaftWork):
     shaft: str = static("")
     section: str = static("")  # the motor's name in drivetrain.motors
 
+    # A drawn part's builder, called by Drivetrain.from_spec with the motor's name: not yet the registry's
+    # (spec, scenario), which it takes once the registry builds drawn parts too.
     @classmethod
     def from_spec(cls, name: str, spec, variants: dict) -> "ShaftMotor":
         kind = variants[spec.characteristic]

@@ -33,3 +33,11 @@ class ShaftTorque(AbstractShaftWork):
 
     def outputs(self, x) -> dict:
         return {self.section: self.torque(x)}
+
+    # A drawn part: Drivetrain.from_spec builds it with its constructor (its name is its place in
+    # drivetrain.torques), not the registry from a section of its own; it takes (spec, scenario) once the
+    # registry builds drawn parts too.
+    @classmethod
+    def from_spec(cls, spec, scenario) -> ShaftTorque:
+        raise TypeError("an external torque is built by its drivetrain (Drivetrain.from_spec), not from a section "
+                        "of its own")
