@@ -17,6 +17,7 @@ from ..errors import ScenarioError
 from . import tables
 from . import units as u
 from .schema_base import Section
+from .schema_clutch import ConeSpec, FrictionSpec
 from .schema_drivetrain import DrivetrainSpec
 from .schema_motor import MotorSpec, RippleSpec
 from .schema_rope import GroundSpec, RopeSpec
@@ -32,27 +33,13 @@ SOLVERS = ("tsit5", "dopri5", "dopri8", "bosh3", "heun", "kvaerno3", "kvaerno5")
 # the schema: one model per section
 
 
-class ClutchSpec(Section):
-    inner_radius: u.quantity(u.LENGTH, gt=0.0)
-    outer_radius: u.quantity(u.LENGTH, gt=0.0)
-    half_angle: u.quantity(u.ANGLE, " (the cone half-angle beta = 90 deg - delta)", gt=0.0, lt=math.pi / 2)
-    static_friction: u.quantity(u.DIMENSIONLESS, gt=0.0)
-    kinetic_friction: u.quantity(u.DIMENSIONLESS, ge=0.0)
-    surfaces: u.whole("friction surfaces") = 1
+class ClutchSpec(FrictionSpec, ConeSpec):
+    """The hoist's cone clutch: a cone's faces and their friction (the keys a drawn clutch has too), pressed by
+    an engagement force that is a table of time, with its halves' inertias on the motor and pinion shafts."""
+
     engagement_force: EngagementForce
-    mean_radius: Literal["uniform_wear", "uniform_pressure"] = "uniform_wear"
     driving_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0  # clutch half on the motor shaft
     driven_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0  # clutch half on the pinion shaft
-
-    @model_validator(mode="after")
-    def _consistent(self):
-        if self.kinetic_friction > self.static_friction:
-            raise ScenarioError("clutch.kinetic_friction", f"must not exceed static_friction "
-                                f"({self.static_friction:g}), got {self.kinetic_friction:g}")
-        if self.inner_radius >= self.outer_radius:
-            raise ScenarioError("clutch.inner_radius", f"must be less than outer_radius "
-                                f"({self.outer_radius:g} m), got {self.inner_radius:g} m")
-        return self
 
 
 class GearSpec(Section):

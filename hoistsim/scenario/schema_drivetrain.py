@@ -12,14 +12,13 @@ from __future__ import annotations
 
 import math
 import re
-from typing import Literal
 
-from pydantic import model_validator
+from pydantic import Field, model_validator
 
-from ..components import ConeClutch
 from ..errors import ScenarioError
 from . import units as u
 from .schema_base import Section
+from .schema_clutch import ConeSpec, FrictionSpec
 from .schema_motor import MotorSpec
 from .signals import signal
 from .units import Text
@@ -38,32 +37,34 @@ class TorqueSpec(Section):
     torque: signal(u.TORQUE)  # positive in the shaft's positive sense
 
 
-class ConeSpec(Section):
-    """A cone's faces: the hoist's cone clutch geometry, whose wedge sets the effective radius."""
+class FrictionClutchSpec(FrictionSpec):
+    """Faces (static_friction, kinetic_friction, surfaces: :class:`.schema_clutch.FrictionSpec`) on a lever: an
+    effective radius, or a cone's, pressed by a force that is a time signal."""
 
-    inner_radius: u.quantity(u.LENGTH, gt=0.0)
-    outer_radius: u.quantity(u.LENGTH, gt=0.0)
-    half_angle: u.quantity(u.ANGLE, " (the cone half-angle beta = 90 deg - delta)", gt=0.0, lt=math.pi / 2)
-    mean_radius: Literal["uniform_wear", "uniform_pressure"] = "uniform_wear"
-
-
-class FrictionClutchSpec(Section):
     between: tuple[Text, Text]  # [shaft a, shaft b or ground]: its torque passes from a to b
-    static_friction: u.quantity(u.DIMENSIONLESS, gt=0.0)
-    kinetic_friction: u.quantity(u.DIMENSIONLESS, ge=0.0)
     effective_radius: u.quantity(u.LENGTH, gt=0.0) | None = None  # or a cone's, from its geometry
     cone: ConeSpec | None = None
-    surfaces: u.whole("friction surfaces") = 1
     force: signal(u.FORCE)  # N pressing the faces; at or below zero the clutch is open
+    name: str = Field("", exclude=True)  # its key in drivetrain.clutches (set there, never written)
 
     @property
     def torque_per_newton(self) -> float:
         """m: the torque each newton of force gives, per unit friction coefficient (a cone's wedge in it)."""
         if self.cone is None:
             return self.effective_radius * self.surfaces
-        cone = self.cone
-        return ConeClutch(cone.inner_radius, cone.outer_radius, cone.half_angle, self.static_friction,
-                          self.kinetic_friction, self.surfaces, cone.mean_radius).torque_per_newton
+        return self.cone.torque_per_newton(self.surfaces)
+
+    def halves(self) -> tuple[float, float]:
+        """kg*m^2: the inertia of its half on shaft a and on shaft b (a drawn clutch's halves are its shafts')."""
+        return 0.0, 0.0
+
+    def fade(self) -> dict | None:
+        """Its friction against its faces' temperature (tables on common knots), None for constant friction."""
+        return None
+
+    def output_names(self) -> dict[str, str]:
+        """Its outputs' names by their role where they are not ``<name>_<role>`` (a template's)."""
+        return {}
 
 
 class GearStageSpec(Section):
@@ -115,6 +116,22 @@ class DrivetrainSpec(Section):
     motors: dict[str, ShaftMotorSpec] = {}
     load: LoadOnShaftSpec | None = None
 
+    @model_validator(mode="before")
+    @classmethod
+    def _clutches_named_by_their_keys(cls, data):
+        """Each clutch knows its name, its key: what its outputs and events are called."""
+        clutches = data.get("clutches") if isinstance(data, dict) else None
+        if not isinstance(clutches, dict):
+            return data
+        named = {}
+        for key, entry in clutches.items():
+            if isinstance(entry, dict):
+                if "name" in entry:
+                    raise ScenarioError(f".clutches.{key}.name", "unknown key: a clutch is named by its key")
+                entry = {**entry, "name": key}
+            named[key] = entry
+        return {**data, "clutches": named}
+
     @model_validator(mode="after")
     def _named_and_joined(self):
         if not self.shafts:
@@ -141,15 +158,9 @@ class DrivetrainSpec(Section):
                                         f"(shafts: {known}; `ground` as the second for a brake)")
             if a == b:
                 raise ScenarioError(f"drivetrain.clutches.{name}.between", f"joins shaft {a!r} to itself")
-            if clutch.kinetic_friction > clutch.static_friction:
-                raise ScenarioError(f"drivetrain.clutches.{name}.kinetic_friction", "must not exceed "
-                                    f"static_friction ({clutch.static_friction:g}), got {clutch.kinetic_friction:g}")
             if (clutch.effective_radius is None) == (clutch.cone is None):
                 raise ScenarioError(f"drivetrain.clutches.{name}.effective_radius", "give either effective_radius "
                                     "or cone (inner_radius, outer_radius, half_angle), one of them")
-            if clutch.cone is not None and clutch.cone.inner_radius >= clutch.cone.outer_radius:
-                raise ScenarioError(f"drivetrain.clutches.{name}.cone.inner_radius", "must be less than "
-                                    f"outer_radius ({clutch.cone.outer_radius:g} m)")
         self._parts_named()
         groups = gear_groups(self)
         for name, stage in self.gears.items():

@@ -178,10 +178,10 @@ def test_a_changed_source_is_never_served_a_stored_program(tmp_path):
             return float(f["runs/slip_energy"][0])
 
     original = heat("original")
-    clutch = package / "machine" / "elements" / "cone_clutch.py"
+    clutch = package / "machine" / "elements" / "friction_clutch.py"
     text = clutch.read_text(encoding="utf-8")
-    edited = text.replace("return self.friction(x)[1] * self.clutch_constant", "return 0.5 * self.friction(x)[1] * "
-                          "self.clutch_constant")
+    edited = text.replace("return self.friction(x)[1] * self.torque_per_newton", "return 0.5 * self.friction(x)[1] * "
+                          "self.torque_per_newton")
     assert edited != text
     clutch.write_text(edited, encoding="utf-8")
     halved = heat("halved")

@@ -10,16 +10,18 @@ from __future__ import annotations
 
 from ..core.element import AbstractCoupling as AbstractCoupling
 from ..core.element import AbstractElement as AbstractElement
+from ...scenario.hoist_template import clutch_as_drawn
+from ._drawn import Drawn as Drawn
 from ._motor_variants import MOTOR_VARIANTS
 from .bearings import DrumShaftLoads as DrumShaftLoads
 from .clutch_heating import ClutchHeating as ClutchHeating
-from .cone_clutch import ConeClutch as ConeClutch
 from .constant_torque_motor import ConstantTorqueMotor as ConstantTorqueMotor
 from .drivetrain import Drivetrain as Drivetrain
 from .drum import Drum as Drum
 from .elastic_load import ElasticLoad as ElasticLoad
 from .flywheel import Flywheel as Flywheel
 from .friction_brake import FrictionBrake as FrictionBrake
+from .friction_clutch import FrictionClutch as FrictionClutch
 from .gear_pair import GearPair as GearPair
 from .ground import Ground as Ground
 from .holding_brake import HoldingBrake as HoldingBrake
@@ -43,7 +45,7 @@ REGISTRY: dict[str, object] = {
     "motor.ripple": MotorRipple,
     "gears": GearPair,
     "gears.mesh": MeshFriction,  # a lossy mesh's friction: scenario.gears.mesh, given with an efficiency
-    "clutch": ConeClutch,
+    "clutch": Drawn(FrictionClutch, clutch_as_drawn),  # the cone clutch: a friction clutch, drawn by the template
     "clutch_heating": ClutchHeating,
     "drum": Drum,
     "drum.resisting_ripple": ResistingRipple,

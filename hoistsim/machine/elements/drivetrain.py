@@ -29,7 +29,7 @@ class Drivetrain:
         motors = [ShaftMotor.from_spec(name, m, MOTOR_VARIANTS) for name, m in spec.motors.items()]
         torques = [ShaftTorque(**signal_fields(t.torque, "torque"), shaft=t.shaft, section=f"torque{i + 1}")
                    for i, t in enumerate(spec.torques)]
-        clutches = [FrictionClutch.from_spec(name, c) for name, c in spec.clutches.items()]
+        clutches = [FrictionClutch.from_spec(c, scenario) for c in spec.clutches.values()]
         meshes = [MeshFriction.in_stage(name, stage, beyond_stage(spec, name))
                   for name, stage in spec.gears.items() if stage.lossy]
         load = [] if spec.load is None else [RigidLoad.on_shaft(spec.load, scenario)]

@@ -1,4 +1,4 @@
-"""A friction clutch of a drawn drivetrain: between two shafts, or a shaft and the ground (a brake)."""
+"""A friction clutch: between two shafts, or a shaft and the ground (a brake); the hoist's cone clutch is one."""
 
 from __future__ import annotations
 
@@ -8,14 +8,29 @@ import jax.numpy as jnp
 import numpy as np
 
 from ..._pytree import static
-from ..core.element import STUCK
+from ..core.element import SLIP_BACKWARD, SLIP_FORWARD, STUCK
 from ._signal import harmonics_at, signal_fields
 from ._slip_heat import AbstractSlipHeat
+
+# what each of its outputs is, by its role (named <name>_<role> unless its drawing names it otherwise)
+_COLUMNS = {
+    "torque": ("N*m", "torque clutch {name} passes from the {a} shaft to {b}, positive when the {a} shaft drives"),
+    "slip": ("rad/s", "speed of the {a} shaft less that of {b}"),
+    "locked": ("1", "1 while clutch {name} sticks, 0 while it slips or is open"),
+    "force": ("N", "force pressing clutch {name} (at or below zero it is open)"),
+    "energy": ("J", "energy dissipated in clutch {name} so far"),
+    "capacity": ("N*m", "static torque capacity of clutch {name} at the force pressing it"),
+    "mode": ("1", "0 locked, 1 slipping forwards, 2 slipping backwards, 3 open"),
+}
+_SUMMARIES = {"lockup_time": "s", "slip_duration": "s", "peak_torque": "N*m", "peak_slip_speed": "rad/s",
+              "slip_energy": "J"}
 
 
 class FrictionClutch(AbstractSlipHeat):
     """Faces pressed by a force F(t), a time signal: static capacity mu_s c F and sliding torque mu_k c F,
-    c = effective radius times surfaces (Modelica's ``cgeo``), nothing where F <= 0.
+    c = effective radius times surfaces (Modelica's ``cgeo``; a cone's n r_m / sin(beta)), nothing where
+    F <= 0.  Its halves' inertias sit on the shafts it joins; its friction coefficients may depend on its
+    faces' temperature (the state ``<name>_temperature``, a clutch heating's), as tables.
 
     A force given as a table is open over any segment where it stays at or below zero (where it
     crosses zero between two rows is a segment boundary, like the rows); a force in
@@ -32,23 +47,40 @@ class FrictionClutch(AbstractSlipHeat):
     force_amplitudes: object  # N
     force_frequencies: object  # Hz
     force_phases: object  # rad
+    driving_inertia: object = 0.0  # kg*m^2, its half on shaft a
+    driven_inertia: object = 0.0  # kg*m^2, its half on shaft b
+    # friction against the faces' temperature (both tables on the knots of either), in place of the constants
+    # where ``fades``
+    friction_temperatures: object = None  # K
+    static_frictions: object = None
+    kinetic_frictions: object = None
     driving: str = static("")  # shaft a
     driven: str | None = static(None)  # shaft b, None for the ground
-    section: str = static("")  # the clutch's name in drivetrain.clutches
+    section: str = static("")  # the clutch's name
     in_harmonics: bool = static(False)
+    fades: bool = static(False)
+    names: tuple = static(())  # (role, name) of each output its drawing names otherwise than <name>_<role>
 
     observation_kinds: ClassVar[tuple] = ("clutch_force",)
     crossings: ClassVar[tuple] = ("clutch_force",)
     crossing_events: ClassVar[dict] = {"clutch_force": ("engage", "disengage")}
 
-    # A drawn part's builder, called by Drivetrain.from_spec with the clutch's name: not yet the registry's
-    # (spec, scenario), which it takes once the registry builds drawn parts too.
     @classmethod
-    def from_spec(cls, name: str, spec) -> "FrictionClutch":
+    def from_spec(cls, spec, scenario) -> "FrictionClutch":
         a, b = spec.between
+        driving_inertia, driven_inertia = spec.halves()
+        fade = spec.fade()
+        fading = {} if fade is None else {"friction_temperatures": fade["temperatures"], "fades": True,
+                                          "static_frictions": fade["static"], "kinetic_frictions": fade["kinetic"]}
         return cls(static_friction=spec.static_friction, kinetic_friction=spec.kinetic_friction,
-                   torque_per_newton=spec.torque_per_newton, **signal_fields(spec.force, "force"), driving=a,
-                   driven=None if b == "ground" else b, section=name, in_harmonics=spec.force.has_harmonics)
+                   torque_per_newton=spec.torque_per_newton, **signal_fields(spec.force, "force"),
+                   driving_inertia=driving_inertia, driven_inertia=driven_inertia, driving=a,
+                   driven=None if b == "ground" else b, section=spec.name, in_harmonics=spec.force.has_harmonics,
+                   names=tuple(sorted(spec.output_names().items())), **fading)
+
+    def named(self, role: str) -> str:
+        """The name of the output of a role: its drawing's, or ``<name>_<role>``."""
+        return dict(self.names).get(role, f"{self.section}_{role}")
 
     @property
     def heat_state(self) -> str:
@@ -56,20 +88,20 @@ class FrictionClutch(AbstractSlipHeat):
 
     @property
     def summaries(self) -> dict:
-        return {f"{self.section}_lockup_time": "s", f"{self.section}_slip_energy": "J"}
+        return {self.named(role): units for role, units in _SUMMARIES.items()}
 
     @property
     def columns(self) -> dict:
-        name, b = self.section, self.driven or "the ground"
-        return {f"{name}_torque": ("N*m", f"torque clutch {name} passes from {self.driving} to {b}"),
-                f"{name}_slip": ("rad/s", f"speed of {self.driving} less that of {b}"),
-                f"{name}_locked": ("1", f"1 while clutch {name} sticks"),
-                f"{name}_force": ("N", f"force pressing clutch {name}"),
-                f"{name}_energy": ("J", f"energy dissipated in clutch {name} so far"),
-                f"{name}_mode": ("1", "0 locked, 1 slipping forwards, 2 slipping backwards, 3 open")}
+        b = f"the {self.driven} shaft" if self.driven else "the ground"
+        return {self.named(role): (units, text.format(name=self.section, a=self.driving, b=b))
+                for role, (units, text) in _COLUMNS.items()}
 
     def joins(self) -> tuple:
         return (self.driving, self.driven)
+
+    def inertias(self) -> tuple:
+        halves = ((self.driving, self.driving_inertia),)
+        return halves + ((self.driven, self.driven_inertia),) if self.driven else halves
 
     def tables(self) -> dict:
         return {f"{self.section}.force": ("force_times", "force_values")}
@@ -82,11 +114,28 @@ class FrictionClutch(AbstractSlipHeat):
         """The force that presses the faces: F, or 0 where F <= 0 (the clutch is open)."""
         return jnp.maximum(self.force(x), 0.0)
 
+    def friction(self, x):
+        """(static, kinetic) friction coefficients now: the constants, or the tables at the faces' temperature."""
+        if not self.fades:
+            return self.static_friction, self.kinetic_friction
+        temperature = x.state(f"{self.section}_temperature")
+        return (jnp.interp(temperature, self.friction_temperatures, self.static_frictions),
+                jnp.interp(temperature, self.friction_temperatures, self.kinetic_frictions))
+
     def capacity(self, x):
-        return self.static_friction * self.torque_per_newton * self.pressing(x)
+        return self.friction(x)[0] * self.torque_per_newton * self.pressing(x)
 
     def sliding_torque(self, x):
-        return self.kinetic_friction * self.torque_per_newton * self.pressing(x)
+        return self.friction(x)[1] * self.torque_per_newton * self.pressing(x)
+
+    def kink_names(self) -> tuple:
+        return ("friction_knots",) if self.fades else ()
+
+    def kinks(self, x) -> dict:
+        # the friction's slope changes at each knot of its tables: no step straddles one
+        if not self.fades:
+            return {}
+        return {"friction_knots": knots_passed(x.state(f"{self.section}_temperature"), self.friction_temperatures)}
 
     def boundaries(self) -> tuple:
         """Where the force table crosses zero between two knots: a segment boundary, like the knots, so
@@ -116,13 +165,34 @@ class FrictionClutch(AbstractSlipHeat):
         return {"clutch_force": self.force(x)}
 
     def extremes(self, x) -> dict:
-        return {f"{self.section}_lockup_time": ("first", x.mode(self.section) == STUCK)}
+        mode = x.mode(self.section)
+        return {
+            self.named("lockup_time"): ("first", mode == STUCK),
+            self.named("slip_duration"): ("duration", (mode == SLIP_FORWARD) | (mode == SLIP_BACKWARD)),
+            self.named("peak_torque"): ("max", jnp.abs(x.coupling_torque(self.section))),
+            self.named("peak_slip_speed"): ("max", jnp.abs(x.relative_speed(self.section))),
+        }
 
     def summary(self, x) -> dict:
-        return {f"{self.section}_slip_energy": x.state(self.heat_state)}
+        return {self.named("slip_energy"): x.state(self.heat_state)}
 
     def outputs(self, x) -> dict:
         name, mode = self.section, x.mode(self.section)
-        return {f"{name}_torque": x.coupling_torque(name), f"{name}_slip": x.relative_speed(name),
-                f"{name}_locked": (mode == STUCK).astype(jnp.int8), f"{name}_force": self.force(x),
-                f"{name}_energy": x.state(self.heat_state), f"{name}_mode": mode.astype(jnp.int8)}
+        return {self.named("torque"): x.coupling_torque(name), self.named("slip"): x.relative_speed(name),
+                self.named("locked"): (mode == STUCK).astype(jnp.int8), self.named("force"): self.force(x),
+                self.named("energy"): x.state(self.heat_state), self.named("capacity"): self.capacity(x),
+                self.named("mode"): mode.astype(jnp.int8)}
+
+
+# Beyond the tables' last knot the knot coordinate grows by one every this many kelvin: steadily, so that no
+# crossing is missed, and slowly, so that the whole numbers it passes there (no knots) are 1e6 K apart.
+BEYOND_THE_TABLE = 1e6  # K
+
+
+def knots_passed(temperature, knots):
+    """The tables' knots counted along the temperature: a whole number exactly at each knot, rising
+    steadily with the temperature everywhere (below the first knot, -1 at absolute zero)."""
+    inside = jnp.interp(temperature, knots, jnp.arange(knots.shape[0], dtype=knots.dtype))
+    below = (temperature - knots[0]) / knots[0]
+    above = knots.shape[0] - 1 + (temperature - knots[-1]) / BEYOND_THE_TABLE
+    return jnp.where(temperature < knots[0], below, jnp.where(temperature > knots[-1], above, inside))

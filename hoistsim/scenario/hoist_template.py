@@ -1,0 +1,72 @@
+"""The hoist's sections written out as a drawn drivetrain's parts: the machine is built from those.
+
+The hoist's keys are read and checked as they are (:mod:`.schema`); a part the template draws is then the
+drawn drivetrain's part of its kind, on the template's shafts (``motor``, ``pinion``, ``drum``), with what the
+hoist's part has beside (a clutch's halves' inertias, its friction against temperature) and its outputs
+under the names the hoist's users know (``slip_speed``, ``engagement_force``, ``lockup_time``, ...).  Made
+from values checked already (no validation again: a sweep's values may be a column of runs).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .schema_clutch import ConeSpec
+from .schema_drivetrain import FrictionClutchSpec
+from .signals import TimeSignal
+
+# The cone clutch's outputs by their role, as the hoist names them (a drawn clutch's are <name>_<role>).
+CLUTCH_NAMES = {"torque": "clutch_torque", "slip": "slip_speed", "locked": "clutch_locked", "force": "engagement_force",
+                "energy": "clutch_energy", "capacity": "clutch_capacity", "mode": "clutch_mode",
+                "lockup_time": "lockup_time", "slip_duration": "slip_duration", "peak_torque": "peak_clutch_torque",
+                "peak_slip_speed": "peak_slip_speed", "slip_energy": "slip_energy"}
+
+
+class TemplateClutchSpec(FrictionClutchSpec):
+    """The hoist's cone clutch as the template draws it: a friction clutch from the motor shaft to the pinion
+    shaft, pressed by the engagement force, with its halves' inertias, its friction against the faces'
+    temperature where ``clutch_heating`` gives tables, and the hoist's names for its outputs."""
+
+    driving_inertia: float = 0.0
+    driven_inertia: float = 0.0
+    friction_fade: dict | None = None
+
+    def halves(self) -> tuple[float, float]:
+        return self.driving_inertia, self.driven_inertia
+
+    def fade(self) -> dict | None:
+        return self.friction_fade
+
+    def output_names(self) -> dict[str, str]:
+        return CLUTCH_NAMES
+
+
+def clutch_as_drawn(spec, scenario) -> TemplateClutchSpec:
+    """The hoist's ``clutch:`` (and ``clutch_heating:``'s friction tables) as the drivetrain's clutch ``clutch``."""
+    table = spec.engagement_force
+    heating = scenario.clutch_heating
+    cone = ConeSpec.model_construct(inner_radius=spec.inner_radius, outer_radius=spec.outer_radius,
+                                    half_angle=spec.half_angle, mean_radius=spec.mean_radius)
+    force = TimeSignal.model_construct(times=table.times, values=table.forces, amplitudes=(), frequencies=(),
+                                       phases=())
+    return TemplateClutchSpec.model_construct(
+        name="clutch", between=("motor", "pinion"), static_friction=spec.static_friction,
+        kinetic_friction=spec.kinetic_friction, surfaces=spec.surfaces, effective_radius=None, cone=cone, force=force,
+        driving_inertia=spec.driving_inertia, driven_inertia=spec.driven_inertia,
+        friction_fade=fade_tables(heating, spec) if heating is not None and heating.fades else None)
+
+
+def fade_tables(heating, spec) -> dict:
+    """The clutch's friction against temperature: clutch_heating's tables (a table not given is the clutch's
+    constant), both on the knots of either, which leaves each unchanged (linear between)."""
+    given = [table for table in (heating.static_friction, heating.kinetic_friction) if table is not None]
+    knots = np.asarray(sorted({row[0] for table in given for row in table}), float)
+
+    def on_knots(table, constant):
+        if table is None:
+            return np.full(knots.shape, float(constant))
+        temperatures, values = (np.asarray(column, float) for column in zip(*table))
+        return np.interp(knots, temperatures, values)
+
+    return {"temperatures": knots, "static": on_knots(heating.static_friction, spec.static_friction),
+            "kinetic": on_knots(heating.kinetic_friction, spec.kinetic_friction)}
