@@ -26,6 +26,7 @@ from ..errors import ScenarioError
 from ..machine.assemble import build_plan, loop_sizes
 from ..machine.core.loop import SOLVERS, restart_loop
 from ..machine.core.plan import OK, Plan
+from ..machine.core.schedule import scheduled_times
 from ..machine.core.readout import STATUS, BatchReadout, Readout
 from ..results.periodic.analysis import periodic_regime
 from ..results.run_result import Summaries, summary_columns
@@ -317,22 +318,20 @@ def _padded_tables(plans: list[Plan]) -> list[Plan]:
     """Every element's tables padded to the longest in the group (one compiled shape).
 
     A table's last row is repeated (:func:`hoistsim.running.block_plans.padded`), and the duration added as a
-    boundary for each row added, so every run keeps its own values and boundaries.
+    boundary for each boundary the padded elements schedule beyond their own (a row added, and whatever an
+    element schedules for it: a clutch's force table its zero crossings), so every run keeps its own values
+    and boundaries.
     """
     columns = [padded([plan.elements[k] for plan in plans]) for k in range(len(plans[0].elements))]
     out = []
     for r, plan in enumerate(plans):
         elements = tuple(column[r] for column in columns)
-        extra = _table_rows(elements) - _table_rows(plan.elements)
+        extra = len(scheduled_times(elements)) - len(scheduled_times(plan.elements))
         if extra:
             boundaries = np.concatenate([plan.boundaries, np.full(extra, plan.duration)])
             plan = dataclasses.replace(plan, elements=elements, boundaries=boundaries)
         out.append(plan)
     return out
-
-
-def _table_rows(elements) -> int:
-    return sum(int(np.shape(getattr(e, times))[0]) for e in elements for times, _ in e.tables().values())
 
 
 def chunk_for(scenario: Scenario, summary_only: bool, runs: int) -> int:

@@ -104,9 +104,9 @@ def _child(parent, part: str):
     return getattr(parent, part)
 
 
-def _with_child(parent, part: str, new, check: bool):
-    """``parent`` copied with what ``part`` names replaced by ``new`` (a section's checks run again if
-    ``check``)."""
+def _with_child(parent, part: str, new, check: bool, where: str):
+    """``parent`` (the section at ``where``) copied with what ``part`` names replaced by ``new`` (its checks
+    run again if ``check``)."""
     if isinstance(parent, dict):
         return {**parent, part: new}
     if isinstance(parent, (list, tuple)):
@@ -115,9 +115,20 @@ def _with_child(parent, part: str, new, check: bool):
         return type(parent)(members)
     copied = parent.model_copy(update={part: new})
     if check:
-        for validate in type(copied).__pydantic_decorators__.model_validators.values():
-            validate.func(copied)  # the section's checks across its keys (each returns the model)
+        _checked(copied, where)
     return copied
+
+
+def _checked(section, where: str) -> None:
+    """A section's checks across its keys, run again on a copy; a key a check names within the section
+    (``.kinetic_friction``) is named from the top (``clutch.kinetic_friction``: the section is at ``where``)."""
+    for validate in type(section).__pydantic_decorators__.model_validators.values():
+        try:
+            validate.func(section)  # each returns the model (a check before the values: given it, it passes it on)
+        except ScenarioError as exc:
+            if not exc.key.startswith("."):
+                raise
+            raise ScenarioError(where + exc.key, exc.message, source=exc.source, line=exc.line) from None
 
 
 def _copied_with(models: list, key: str, new: Any, check: bool) -> Scenario:
@@ -126,10 +137,9 @@ def _copied_with(models: list, key: str, new: Any, check: bool) -> Scenario:
     *path, leaf = key.split(".")
     new = models[-1].model_copy(update={leaf: new, **{other: None for other in ALTERNATIVES.get(key, ())}})
     if check:
-        for validate in type(new).__pydantic_decorators__.model_validators.values():
-            validate.func(new)  # the section's checks across its keys (each returns the model)
-    for model, part in zip(reversed(models[:-1]), reversed(path)):  # each holder, and the name it holds it by
-        new = _with_child(model, part, new, check)
+        _checked(new, ".".join(path))
+    for depth in range(len(path), 0, -1):  # each holder, and the name it holds the section by
+        new = _with_child(models[depth - 1], path[depth - 1], new, check, ".".join(path[:depth - 1]))
     return new
 
 

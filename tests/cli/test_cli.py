@@ -207,7 +207,7 @@ def test_a_program_compiled_again_after_an_edit_that_leaves_it_the_same_is_store
     notices, heats = [], []
     for run in range(3):
         if run == 1:
-            clutch = package / "machine" / "elements" / "cone_clutch.py"
+            clutch = package / "machine" / "elements" / "friction_clutch.py"
             clutch.write_text(clutch.read_text(encoding="utf-8") + "\n# an edit that changes no equation\n",
                               encoding="utf-8")
         with _short_runback(tmp_path / f"run{run}.h5", env, tmp_path, notices) as f:
