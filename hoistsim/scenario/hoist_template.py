@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from .schema_clutch import ConeSpec
-from .schema_drivetrain import FrictionClutchSpec
+from .schema_drivetrain import FrictionClutchSpec, ShaftMotorSpec, ShaftSpec
 from .signals import TimeSignal
 
 # The cone clutch's outputs by their role, as the hoist names them (a drawn clutch's are <name>_<role>).
@@ -20,6 +20,27 @@ CLUTCH_NAMES = {"torque": "clutch_torque", "slip": "slip_speed", "locked": "clut
                 "energy": "clutch_energy", "capacity": "clutch_capacity", "mode": "clutch_mode",
                 "lockup_time": "lockup_time", "slip_duration": "slip_duration", "peak_torque": "peak_clutch_torque",
                 "peak_slip_speed": "peak_slip_speed", "slip_energy": "slip_energy"}
+
+
+class TemplateShaftSpec(ShaftSpec):
+    """A shaft the hoist's template draws: its speed at the start is no speed scale of the machine (the
+    hoist's slip resolution has always come from its motor's speeds, or failing that all its bodies')."""
+
+    def sets_speed_scale(self) -> bool:
+        return False
+
+
+def motor_shaft_as_drawn(spec, scenario) -> TemplateShaftSpec:
+    """The motor shaft: a body turning at ``initial.motor_speed``, its inertia the motor's rotor's (and what
+    else the scene keys to it)."""
+    return TemplateShaftSpec.model_construct(name="motor", inertia=0.0, speed=scenario.initial.motor_speed)
+
+
+def motor_as_drawn(spec, scenario) -> ShaftMotorSpec:
+    """The hoist's ``motor:`` as the drivetrain's motor ``motor`` on the motor shaft (outputs motor_torque,
+    motor_work)."""
+    return ShaftMotorSpec.model_construct(**{name: getattr(spec, name) for name in type(spec).model_fields},
+                                          shaft="motor", name="motor")
 
 
 class TemplateClutchSpec(FrictionClutchSpec):

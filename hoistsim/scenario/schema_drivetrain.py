@@ -30,6 +30,11 @@ _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 class ShaftSpec(Section):
     inertia: u.quantity(u.INERTIA, ge=0.0)  # zero: only with something of inertia tied to it
     speed: u.quantity(u.ANGULAR_SPEED) = 0.0  # at t = 0
+    name: str = Field("", exclude=True)  # its key in drivetrain.shafts (set there, never written)
+
+    def sets_speed_scale(self) -> bool:
+        """Whether its speed at the start is one of the machine's speed scales (the slip resolution's)."""
+        return True
 
 
 class TorqueSpec(Section):
@@ -100,6 +105,7 @@ class ShaftMotorSpec(MotorSpec):
     """A motor on a shaft: the hoist motor's characteristics and inertia (the rotor turns with the shaft)."""
 
     shaft: Text
+    name: str = Field("", exclude=True)  # its key in drivetrain.motors (set there, never written)
 
 
 class LoadOnShaftSpec(Section):
@@ -118,19 +124,24 @@ class DrivetrainSpec(Section):
 
     @model_validator(mode="before")
     @classmethod
-    def _clutches_named_by_their_keys(cls, data):
-        """Each clutch knows its name, its key: what its outputs and events are called."""
-        clutches = data.get("clutches") if isinstance(data, dict) else None
-        if not isinstance(clutches, dict):
+    def _parts_named_by_their_keys(cls, data):
+        """Each shaft, clutch and motor knows its name, its key: what its outputs and events are called."""
+        if not isinstance(data, dict):
             return data
-        named = {}
-        for key, entry in clutches.items():
-            if isinstance(entry, dict):
-                if "name" in entry:
-                    raise ScenarioError(f".clutches.{key}.name", "unknown key: a clutch is named by its key")
-                entry = {**entry, "name": key}
-            named[key] = entry
-        return {**data, "clutches": named}
+        data = dict(data)
+        for kind in ("shafts", "clutches", "motors"):
+            parts = data.get(kind)
+            if not isinstance(parts, dict):
+                continue
+            named = {}
+            for key, entry in parts.items():
+                if isinstance(entry, dict):
+                    if "name" in entry:
+                        raise ScenarioError(f".{kind}.{key}.name", f"unknown key: a part of {kind} is named by its key")
+                    entry = {**entry, "name": key}
+                named[key] = entry
+            data[kind] = named
+        return data
 
     @model_validator(mode="after")
     def _named_and_joined(self):

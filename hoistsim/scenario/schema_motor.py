@@ -63,16 +63,16 @@ class MotorSpec(Section):
         linear = {"stall_torque", "no_load_speed"} & set(given)
         others = [name for name in given if name not in linear]
         if linear and others:
-            raise ScenarioError(f"motor.{others[0]}", "give one characteristic: stall_torque + no_load_speed "
+            raise ScenarioError(f".{others[0]}", "give one characteristic: stall_torque + no_load_speed "
                                 f"(linear), torque_speed (a table) or torque (constant); got {', '.join(given)}")
         if len(others) > 1:
-            raise ScenarioError(f"motor.{others[1]}", "give one characteristic: stall_torque + no_load_speed "
+            raise ScenarioError(f".{others[1]}", "give one characteristic: stall_torque + no_load_speed "
                                 f"(linear), torque_speed (a table) or torque (constant); got {', '.join(given)}")
         if not given:
-            raise ScenarioError("motor.stall_torque", "required: a characteristic, stall_torque + no_load_speed "
+            raise ScenarioError(".stall_torque", "required: a characteristic, stall_torque + no_load_speed "
                                 "(linear), torque_speed (a table) or torque (constant)")
         if linear and len(linear) == 1:
-            missing = "motor.no_load_speed" if self.no_load_speed is None else "motor.stall_torque"
+            missing = ".no_load_speed" if self.no_load_speed is None else ".stall_torque"
             raise ScenarioError(missing, "required with a linear characteristic (stall_torque + no_load_speed)")
         return self
 
@@ -87,10 +87,10 @@ class MotorSpec(Section):
     def _one_inertia(self):
         by_geometry = self.rotor_mass is not None or self.radius_of_gyration is not None
         if self.inertia is not None and by_geometry:
-            raise ScenarioError("motor.inertia", "give either inertia or rotor_mass + radius_of_gyration, not both")
+            raise ScenarioError(".inertia", "give either inertia or rotor_mass + radius_of_gyration, not both")
         if self.inertia is None and not (self.rotor_mass is not None and self.radius_of_gyration is not None):
-            missing = "motor.inertia" if not by_geometry else (
-                "motor.radius_of_gyration" if self.rotor_mass is not None else "motor.rotor_mass")
+            missing = ".inertia" if not by_geometry else (
+                ".radius_of_gyration" if self.rotor_mass is not None else ".rotor_mass")
             raise ScenarioError(missing, "required: the motor's inertia, or its rotor_mass and radius_of_gyration")
         return self
 

@@ -95,7 +95,7 @@ def test_torque_speed_table_on_the_line_is_the_linear_motor():
 def test_table_is_continued_linearly_beyond_its_ends():
     from hoistsim.machine.elements import TableMotor
 
-    motor = TableMotor(inertia=1.0, initial_speed=0.0, table_speeds=np.array([10.0, 20.0, 30.0]),
+    motor = TableMotor(inertia=1.0, table_speeds=np.array([10.0, 20.0, 30.0]),
                        table_torques=np.array([100.0, 80.0, 20.0]))
     speeds = np.array([-10.0, 0.0, 15.0, 25.0, 40.0])
     np.testing.assert_allclose(np.asarray(motor.characteristic(speeds)), [140.0, 120.0, 90.0, 50.0, -40.0])

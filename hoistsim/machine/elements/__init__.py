@@ -1,18 +1,18 @@
 """The parts of the machine, one file each, and the registry that builds a scene's elements.
 
-A scenario section that is present builds its element; a section that is
+A scenario section that is present builds its element (or elements); a section that is
 absent builds nothing, so the scene has none of its bodies, states, terms,
-guards or columns.  Variants of a section (the motor's characteristics) are
-alternatives picked by the keys given, each in its own file.
+guards or columns.  Variants of a section (the load on a rigid or an elastic rope) are
+alternatives picked by the keys given, each in its own file.  A hoist section that the hoist's
+template writes out as a drawn drivetrain's part (:class:`Drawn`) builds that part's element.
 """
 
 from __future__ import annotations
 
 from ..core.element import AbstractCoupling as AbstractCoupling
 from ..core.element import AbstractElement as AbstractElement
-from ...scenario.hoist_template import clutch_as_drawn
+from ...scenario.hoist_template import clutch_as_drawn, motor_as_drawn, motor_shaft_as_drawn
 from ._drawn import Drawn as Drawn
-from ._motor_variants import MOTOR_VARIANTS
 from .bearings import DrumShaftLoads as DrumShaftLoads
 from .clutch_heating import ClutchHeating as ClutchHeating
 from .constant_torque_motor import ConstantTorqueMotor as ConstantTorqueMotor
@@ -27,6 +27,7 @@ from .ground import Ground as Ground
 from .holding_brake import HoldingBrake as HoldingBrake
 from .linear_motor import LinearMotor as LinearMotor
 from .mesh_friction import MeshFriction as MeshFriction
+from .motor import Motor as Motor
 from .motor_ripple import MotorRipple as MotorRipple
 from .motor_table import TableMotor as TableMotor
 from .periodic_regime import PeriodicRegime as PeriodicRegime
@@ -34,14 +35,16 @@ from .ratchet import Ratchet as Ratchet
 from .resisting_ripple import ResistingRipple as ResistingRipple
 from .rigid_load import RigidLoad as RigidLoad
 from .rope import Rope as Rope
+from .shaft import Shaft as Shaft
 from .slider_crank import SliderCrank as SliderCrank
 from .wire_rope import WireRope as WireRope
 
-# Scenario section (dotted within another) -> its element, or the variant's name -> element for a
-# section with variants.
+# Scenario section (dotted within another) -> its element, the variant's name -> element for a section
+# with variants, or a tuple of them for a section that builds several.
 # The order is the order of bodies, states and output columns.
 REGISTRY: dict[str, object] = {
-    "motor": MOTOR_VARIANTS,
+    # the motor shaft and the motor on it, drawn by the template
+    "motor": (Drawn(Shaft, motor_shaft_as_drawn), Drawn(Motor, motor_as_drawn)),
     "motor.ripple": MotorRipple,
     "gears": GearPair,
     "gears.mesh": MeshFriction,  # a lossy mesh's friction: scenario.gears.mesh, given with an efficiency
@@ -71,7 +74,8 @@ def _variant(section: str, spec, scenario) -> str:
 
 
 def element_sections(scenario) -> list[tuple[str, object, type]]:
-    """(section, its spec, the element class it builds) for each section the scenario has, in registry order."""
+    """(section, its spec, what builds the element) for each element the scenario's sections build, in
+    registry order (a section that builds several: a row each)."""
     out = []
     for section, entry in REGISTRY.items():
         spec = scenario
@@ -79,7 +83,8 @@ def element_sections(scenario) -> list[tuple[str, object, type]]:
             spec = getattr(spec, part, None)
         if spec is None:
             continue
-        out.append((section, spec, entry[_variant(section, spec, scenario)] if isinstance(entry, dict) else entry))
+        for one in entry if isinstance(entry, tuple) else (entry,):
+            out.append((section, spec, one[_variant(section, spec, scenario)] if isinstance(one, dict) else one))
     return out
 
 

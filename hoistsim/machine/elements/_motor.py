@@ -1,70 +1,36 @@
-"""What every motor characteristic shares: the motor shaft, its inertia, its work."""
+"""What every motor characteristic shares: the rotor's inertia and a torque at a speed."""
 
 from __future__ import annotations
 
 import abc
-from typing import ClassVar
 
-from ..core.element import AbstractElement
+from ..._pytree import pytree_dataclass
+from ..core.element import abstract_methods
 
 
-class AbstractMotor(AbstractElement):
-    """The drive motor on its own shaft (the body ``motor``); subclasses give the torque-speed law.
-
-    Brings the body with its inertia and initial speed, the torque
-    ``characteristic(speed)``, the work it does (a state, the ledger's work in)
-    and its output columns.
-    """
+@pytree_dataclass
+class AbstractMotor:
+    """A motor's characteristic, the law of the motor element (:mod:`.motor`): its torque at a shaft speed
+    and its rotor's inertia; subclasses give the law, each a pytree of its numbers."""
 
     inertia: object  # kg*m^2, rotor and whatever else turns with it
-    initial_speed: object  # rad/s
 
-    section: ClassVar[str] = "motor"
-    summaries: ClassVar[dict] = {"final_motor_speed": "rad/s"}
-    ledger_kinds: ClassVar[dict] = {"motor_work": "work"}
-    columns: ClassVar[dict] = {
-        "motor_speed": ("rad/s", "motor shaft speed (side a of the clutch)"),
-        "motor_torque": ("N*m", "motor torque from its characteristic"),
-        "motor_work": ("J", "work done by the motor so far"),
-    }
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        missing = abstract_methods(cls)
+        if missing and not cls.__name__.startswith("Abstract"):
+            raise TypeError(f"{cls.__name__} lacks {', '.join(missing)}: a motor characteristic must define them")
+        pytree_dataclass(cls)
 
     @abc.abstractmethod
     def characteristic(self, speed):
         """Motor torque (N*m) at shaft speed ``speed`` (rad/s)."""
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "AbstractMotor":
-        return cls(inertia=spec.moment_of_inertia, initial_speed=scenario.initial.motor_speed,
-                   **cls.characteristic_from(spec))
-
-    @classmethod
     @abc.abstractmethod
     def characteristic_from(cls, spec) -> dict:
-        """The characteristic's fields from the motor section."""
+        """The characteristic's fields from the motor's keys."""
 
-    def bodies(self) -> dict:
-        return {"motor": self.initial_speed}
-
-    def inertias(self) -> tuple:
-        return (("motor", self.inertia),)
-
-    def torques(self, x) -> tuple:
-        return (("motor", self.characteristic(x.speed("motor"))),)
-
-    def states(self) -> dict:
-        return {"motor_work": 0.0}
-
-    def rates(self, x) -> dict:
-        speed = x.speed("motor")
-        return {"motor_work": self.characteristic(speed) * speed}
-
-    def ledger(self, x) -> dict:
-        return {"motor_work": x.state("motor_work")}
-
-    def outputs(self, x) -> dict:
-        speed = x.speed("motor")
-        return {"motor_speed": speed, "motor_torque": self.characteristic(speed),
-                "motor_work": x.state("motor_work")}
-
-    def summary(self, x) -> dict:
-        return {"final_motor_speed": x.speed("motor")}
+    def speed_scale(self):
+        """A speed (rad/s) typical of the motor, for the slip resolution (None: none of its own)."""
+        return None

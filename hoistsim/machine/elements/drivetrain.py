@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-from ...scenario.schema_drivetrain import beyond_stage, gear_groups
-from ._motor_variants import MOTOR_VARIANTS
+from ...scenario.schema_drivetrain import beyond_stage
 from ._signal import signal_fields
 from .friction_clutch import FrictionClutch
 from .mesh_friction import MeshFriction
+from .motor import Motor
 from .rigid_load import RigidLoad
 from .shaft import Shaft
-from .shaft_motor import ShaftMotor
 from .shaft_torque import ShaftTorque
 
 
@@ -20,13 +19,9 @@ class Drivetrain:
 
     @staticmethod
     def from_spec(spec, scenario) -> tuple:
-        groups = gear_groups(spec)
-        shafts = [Shaft(inertia=s.inertia, initial_speed=spec.shafts[groups[name][0]].speed * groups[name][1],
-                        speed_ratio=groups[name][1], section=name,
-                        geared_to="" if groups[name][0] == name else groups[name][0])
-                  for name, s in spec.shafts.items()]
+        shafts = [Shaft.from_spec(s, scenario) for s in spec.shafts.values()]
         shafts.sort(key=lambda shaft: bool(shaft.geared_to))  # the bodies first, then what is geared to them
-        motors = [ShaftMotor.from_spec(name, m, MOTOR_VARIANTS) for name, m in spec.motors.items()]
+        motors = [Motor.from_spec(m, scenario) for m in spec.motors.values()]
         torques = [ShaftTorque(**signal_fields(t.torque, "torque"), shaft=t.shaft, section=f"torque{i + 1}")
                    for i, t in enumerate(spec.torques)]
         clutches = [FrictionClutch.from_spec(c, scenario) for c in spec.clutches.values()]

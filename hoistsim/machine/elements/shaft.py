@@ -1,10 +1,12 @@
-"""A shaft of a drawn drivetrain: a body with its inertia and initial speed."""
+"""A shaft: a body with its inertia and initial speed, or a shaft geared to one (a drawn drivetrain's, the hoist's
+motor shaft)."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from ..._pytree import static
+from ...scenario.schema_drivetrain import gear_groups
 from ..core.element import AbstractElement
 
 SPEED_SCALE_FLOOR = 1.0  # rad/s
@@ -18,12 +20,25 @@ class Shaft(AbstractElement):
     inertia: object  # kg*m^2
     initial_speed: object  # rad/s
     speed_ratio: object = 1.0  # its speed over that of the shaft it is geared to
-    section: str = static("")  # the shaft's name in drivetrain.shafts
+    section: str = static("")  # the shaft's name
     geared_to: str = static("")  # the first shaft of its gear train ("" : it is that shaft)
+    scaled: bool = static(True)  # its speed at the start is one of the machine's speed scales
+
+    @classmethod
+    def from_spec(cls, spec, scenario) -> Shaft:
+        drawn = scenario.drivetrain
+        root, ratio = gear_groups(drawn)[spec.name] if drawn is not None else (spec.name, 1.0)
+        speed = spec.speed * ratio if root == spec.name else drawn.shafts[root].speed * ratio
+        return cls(inertia=spec.inertia, initial_speed=speed, speed_ratio=ratio, section=spec.name,
+                   geared_to="" if root == spec.name else root, scaled=spec.sets_speed_scale())
 
     @property
     def columns(self) -> dict:
         return {f"{self.section}_speed": ("rad/s", f"speed of shaft {self.section}")}
+
+    @property
+    def summaries(self) -> dict:
+        return {f"final_{self.section}_speed": "rad/s"}
 
     def bodies(self) -> dict:
         return {} if self.geared_to else {self.section: self.initial_speed}
@@ -37,14 +52,10 @@ class Shaft(AbstractElement):
     def speed_scale(self):
         # at least 1 rad/s: a machine started at rest (or at a speed lost in round-off) still resolves slips
         # against the speeds its torques give it, not against nothing
-        return np.maximum(np.abs(self.initial_speed), SPEED_SCALE_FLOOR)
+        return np.maximum(np.abs(self.initial_speed), SPEED_SCALE_FLOOR) if self.scaled else None
 
     def outputs(self, x) -> dict:
         return {f"{self.section}_speed": x.speed(self.section)}
 
-    # A drawn part: Drivetrain.from_spec builds it with its constructor (its name and its gear train are the
-    # drivetrain's to say), not the registry from a section of its own; it takes (spec, scenario) once the
-    # registry builds drawn parts too.
-    @classmethod
-    def from_spec(cls, spec, scenario) -> Shaft:
-        raise TypeError("a shaft is built by its drivetrain (Drivetrain.from_spec), not from a section of its own")
+    def summary(self, x) -> dict:
+        return {f"final_{self.section}_speed": x.speed(self.section)}
