@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from .schema_clutch import ConeSpec
-from .schema_drivetrain import FrictionClutchSpec, ShaftMotorSpec, ShaftSpec
+from .schema_drivetrain import FrictionClutchSpec, LoadOnShaftSpec, ShaftMotorSpec, ShaftSpec
 from .signals import TimeSignal
 
 # The cone clutch's outputs by their role, as the hoist names them (a drawn clutch's are <name>_<role>).
@@ -41,6 +41,12 @@ def motor_as_drawn(spec, scenario) -> ShaftMotorSpec:
     motor_work)."""
     return ShaftMotorSpec.model_construct(**{name: getattr(spec, name) for name in type(spec).model_fields},
                                           shaft="motor", name="motor")
+
+
+def load_as_drawn(spec, scenario) -> LoadOnShaftSpec:
+    """The hoist's ``load:`` on a rigid rope as the drivetrain's load, hanging from the drum shaft at half
+    the drum's diameter."""
+    return LoadOnShaftSpec.model_construct(mass=spec.mass, shaft="drum", rope_radius=0.5 * scenario.drum.diameter)
 
 
 class TemplateClutchSpec(FrictionClutchSpec):

@@ -18,7 +18,7 @@ from . import tables
 from . import units as u
 from .schema_base import Section
 from .schema_clutch import ConeSpec, FrictionSpec
-from .schema_drivetrain import DrivetrainSpec
+from .schema_drivetrain import DrivetrainSpec, LoadSpec
 from .schema_motor import MotorSpec, RippleSpec
 from .schema_rope import GroundSpec, RopeSpec
 from .provenance import Provenance
@@ -75,10 +75,6 @@ class DrumSpec(Section):
     diameter: u.quantity(u.LENGTH, gt=0.0)
     inertia: u.quantity(u.INERTIA, gt=0.0)
     resisting_ripple: RippleSpec | None = None  # a torque resisting the lift, periodic in the drum angle
-
-
-class LoadSpec(Section):
-    mass: u.quantity(u.MASS, ge=0.0)
 
 
 class InitialSpec(Section):

@@ -108,10 +108,17 @@ class ShaftMotorSpec(MotorSpec):
     name: str = Field("", exclude=True)  # its key in drivetrain.motors (set there, never written)
 
 
-class LoadOnShaftSpec(Section):
+class LoadSpec(Section):
+    """A load hanging on a rope: the hoist's (``load:``, from its drum), and a drawn drivetrain's."""
+
+    mass: u.quantity(u.MASS, ge=0.0)
+
+
+class LoadOnShaftSpec(LoadSpec):
+    """A load hanging from a drawn drivetrain's shaft, its rope wound at a radius."""
+
     shaft: Text  # the drum's shaft
     rope_radius: u.quantity(u.LENGTH, gt=0.0)  # half the drum's diameter
-    mass: u.quantity(u.MASS, ge=0.0)
 
 
 class DrivetrainSpec(Section):

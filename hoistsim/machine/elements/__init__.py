@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from ..core.element import AbstractCoupling as AbstractCoupling
 from ..core.element import AbstractElement as AbstractElement
-from ...scenario.hoist_template import clutch_as_drawn, motor_as_drawn, motor_shaft_as_drawn
+from ...scenario.hoist_template import clutch_as_drawn, load_as_drawn, motor_as_drawn, motor_shaft_as_drawn
 from ._drawn import Drawn as Drawn
 from .bearings import DrumShaftLoads as DrumShaftLoads
 from .clutch_heating import ClutchHeating as ClutchHeating
@@ -52,7 +52,7 @@ REGISTRY: dict[str, object] = {
     "clutch_heating": ClutchHeating,
     "drum": Drum,
     "drum.resisting_ripple": ResistingRipple,
-    "load": {"rigid": RigidLoad, "elastic": ElasticLoad},  # on a rigid rope, or a body of its own on rope:
+    "load": {"rigid": Drawn(RigidLoad, load_as_drawn), "elastic": ElasticLoad},  # on a rigid rope, or a body of its own on rope:
     "rope": {"stiffness": Rope, "modulus": WireRope},
     "ground": Ground,
     "flywheel": Flywheel,

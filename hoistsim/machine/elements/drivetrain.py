@@ -27,5 +27,5 @@ class Drivetrain:
         clutches = [FrictionClutch.from_spec(c, scenario) for c in spec.clutches.values()]
         meshes = [MeshFriction.in_stage(name, stage, beyond_stage(spec, name))
                   for name, stage in spec.gears.items() if stage.lossy]
-        load = [] if spec.load is None else [RigidLoad.on_shaft(spec.load, scenario)]
+        load = [] if spec.load is None else [RigidLoad.from_spec(spec.load, scenario)]
         return (*shafts, *motors, *torques, *clutches, *meshes, *load)

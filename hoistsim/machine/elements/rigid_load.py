@@ -18,11 +18,6 @@ class RigidLoad(AbstractLoad):
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "RigidLoad":
-        return cls(mass=spec.mass, gravity=scenario.gravity, rope_radius=0.5 * scenario.drum.diameter)
-
-    @classmethod
-    def on_shaft(cls, spec, scenario) -> "RigidLoad":
-        """The load hanging from a drawn drivetrain's shaft (``drivetrain.load``)."""
         return cls(mass=spec.mass, gravity=scenario.gravity, rope_radius=spec.rope_radius, drum=spec.shaft)
 
     def shafts(self) -> dict:
