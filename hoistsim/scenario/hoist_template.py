@@ -12,7 +12,8 @@ from __future__ import annotations
 import numpy as np
 
 from .schema_clutch import ConeSpec
-from .schema_drivetrain import FrictionClutchSpec, LoadOnShaftSpec, ShaftMotorSpec, ShaftSpec
+from .schema import FlywheelSpec
+from .schema_drivetrain import FrictionClutchSpec, GearStageSpec, LoadOnShaftSpec, ShaftMotorSpec, ShaftSpec
 from .signals import TimeSignal
 
 # The cone clutch's outputs by their role, as the hoist names them (a drawn clutch's are <name>_<role>).
@@ -23,17 +24,71 @@ CLUTCH_NAMES = {"torque": "clutch_torque", "slip": "slip_speed", "locked": "clut
 
 
 class TemplateShaftSpec(ShaftSpec):
-    """A shaft the hoist's template draws: its speed at the start is no speed scale of the machine (the
-    hoist's slip resolution has always come from its motor's speeds, or failing that all its bodies')."""
+    """A shaft the hoist's template draws (motor, pinion, drum): geared where the template says, its speed
+    an output where the hoist's was, and its speed at the start no speed scale of the machine (the hoist's
+    slip resolution has always come from its motor's speeds, or failing that all its bodies')."""
+
+    geared_to: str = ""  # the shaft it turns with, "" for a body
+    ratio_to_root: float = 1.0  # its speed over that shaft's
+    speed_observed: bool = True
+
+    def train(self, scenario) -> tuple:
+        return self.geared_to or self.name, self.ratio_to_root, self.speed * self.ratio_to_root
 
     def sets_speed_scale(self) -> bool:
         return False
+
+    def observed(self) -> bool:
+        return self.speed_observed
 
 
 def motor_shaft_as_drawn(spec, scenario) -> TemplateShaftSpec:
     """The motor shaft: a body turning at ``initial.motor_speed``, its inertia the motor's rotor's (and what
     else the scene keys to it)."""
     return TemplateShaftSpec.model_construct(name="motor", inertia=0.0, speed=scenario.initial.motor_speed)
+
+
+def pinion_shaft_as_drawn(spec, scenario) -> TemplateShaftSpec:
+    """The pinion shaft (the clutch's output): a body with the pinion's inertia, turning z2/z1 times as fast as
+    the drum at ``initial.drum_speed``; its speed is no output of the hoist (the motor's less the slip)."""
+    return TemplateShaftSpec.model_construct(
+        name="pinion", inertia=spec.pinion_inertia,
+        speed=scenario.initial.drum_speed * spec.wheel_teeth / spec.pinion_teeth, speed_observed=False)
+
+
+def drum_shaft_as_drawn(spec, scenario) -> TemplateShaftSpec:
+    """The drum shaft, geared to the pinion by the gears' teeth (z1/z2 times its speed), with the wheel's
+    inertia (the drum's own is the drum's: :func:`drum_as_drawn`)."""
+    ratio = float(spec.pinion_teeth) / float(spec.wheel_teeth)
+    return TemplateShaftSpec.model_construct(name="drum", inertia=spec.wheel_inertia, speed=scenario.initial.drum_speed,
+                                             geared_to="pinion", ratio_to_root=ratio)
+
+
+def drum_as_drawn(spec, scenario) -> FlywheelSpec:
+    """The drum's inertia: a rotor keyed to the drum shaft (its diameter is the load's rope radius)."""
+    return FlywheelSpec.model_construct(shaft="drum", inertia=spec.inertia)
+
+
+class TemplateStageSpec(GearStageSpec):
+    """The hoist's gears as the template draws their lossy mesh: the stage from the pinion to the drum, its
+    speed ratio z1/z2 from the teeth, its outputs ``mesh_torque``, ``mesh_mode``, ..."""
+
+    def speed_ratio(self) -> float:
+        return float(self.teeth[0]) / float(self.teeth[1])
+
+    def mesh_prefix(self) -> str:
+        return "mesh"
+
+    def beyond(self, scenario) -> tuple:
+        return ("drum",)
+
+
+def mesh_as_drawn(spec, scenario) -> TemplateStageSpec:
+    """The hoist's lossy mesh (``gears:`` with an efficiency) as the drivetrain's stage ``mesh``."""
+    return TemplateStageSpec.model_construct(
+        name="mesh", between=("pinion", "drum"), teeth=(spec.pinion_teeth, spec.wheel_teeth),
+        ratio=spec.wheel_teeth / spec.pinion_teeth, efficiency=spec.efficiency,
+        backdrive_efficiency=spec.backdrive_efficiency)
 
 
 def motor_as_drawn(spec, scenario) -> ShaftMotorSpec:

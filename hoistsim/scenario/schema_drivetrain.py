@@ -32,8 +32,19 @@ class ShaftSpec(Section):
     speed: u.quantity(u.ANGULAR_SPEED) = 0.0  # at t = 0
     name: str = Field("", exclude=True)  # its key in drivetrain.shafts (set there, never written)
 
+    def train(self, scenario) -> tuple:
+        """(the first shaft of its gear train, its speed over that one's, its speed at the start): shafts
+        geared together turn as one body."""
+        drawn = scenario.drivetrain
+        root, ratio = gear_groups(drawn)[self.name]
+        return root, ratio, drawn.shafts[root].speed * ratio
+
     def sets_speed_scale(self) -> bool:
         """Whether its speed at the start is one of the machine's speed scales (the slip resolution's)."""
+        return True
+
+    def observed(self) -> bool:
+        """Whether its speed is an output (``<name>_speed``, and ``final_<name>_speed`` in the summary)."""
         return True
 
 
@@ -80,6 +91,20 @@ class GearStageSpec(Section):
     # (default: the same); either given, the stage is lossy (absent: ideal)
     efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
     backdrive_efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
+    name: str = Field("", exclude=True)  # its key in drivetrain.gears (set there, never written)
+
+    def speed_ratio(self) -> float:
+        """The output's speed over the input's."""
+        return 1.0 / self.ratio
+
+    def mesh_prefix(self) -> str:
+        """How a lossy mesh's outputs begin: ``<stage>_mesh`` (``_mesh_torque``, ``_mesh_mode``, ...)."""
+        return f"{self.name}_mesh"
+
+    def beyond(self, scenario) -> tuple:
+        """The shafts on its output side: its output shaft, then every shaft geared beyond it (what presses
+        its teeth)."""
+        return beyond_stage(scenario.drivetrain, self.name)
 
     @property
     def lossy(self) -> bool:
@@ -132,11 +157,12 @@ class DrivetrainSpec(Section):
     @model_validator(mode="before")
     @classmethod
     def _parts_named_by_their_keys(cls, data):
-        """Each shaft, clutch and motor knows its name, its key: what its outputs and events are called."""
+        """Each shaft, clutch, gear stage and motor knows its name, its key: what its outputs and events are
+        called."""
         if not isinstance(data, dict):
             return data
         data = dict(data)
-        for kind in ("shafts", "clutches", "motors"):
+        for kind in ("shafts", "clutches", "gears", "motors"):
             parts = data.get(kind)
             if not isinstance(parts, dict):
                 continue

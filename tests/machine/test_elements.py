@@ -253,4 +253,5 @@ def test_every_registered_element_is_built_from_its_section_and_the_scenario():
 def registered_classes() -> list:
     """The element class of every registry entry (a section a template draws: the drawn part's)."""
     entries = [c for entry in REGISTRY.values() for c in (entry.values() if isinstance(entry, dict) else [entry])]
-    return [getattr(entry, "element", entry) for entry in entries]
+    return list(dict.fromkeys(getattr(one, "element", one) for entry in entries
+                              for one in (entry if isinstance(entry, tuple) else (entry,))))

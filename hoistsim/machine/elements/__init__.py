@@ -11,18 +11,17 @@ from __future__ import annotations
 
 from ..core.element import AbstractCoupling as AbstractCoupling
 from ..core.element import AbstractElement as AbstractElement
-from ...scenario.hoist_template import clutch_as_drawn, load_as_drawn, motor_as_drawn, motor_shaft_as_drawn
+from ...scenario.hoist_template import (clutch_as_drawn, drum_as_drawn, drum_shaft_as_drawn, load_as_drawn,
+                                        mesh_as_drawn, motor_as_drawn, motor_shaft_as_drawn, pinion_shaft_as_drawn)
 from ._drawn import Drawn as Drawn
 from .bearings import DrumShaftLoads as DrumShaftLoads
 from .clutch_heating import ClutchHeating as ClutchHeating
 from .constant_torque_motor import ConstantTorqueMotor as ConstantTorqueMotor
 from .drivetrain import Drivetrain as Drivetrain
-from .drum import Drum as Drum
 from .elastic_load import ElasticLoad as ElasticLoad
 from .flywheel import Flywheel as Flywheel
 from .friction_brake import FrictionBrake as FrictionBrake
 from .friction_clutch import FrictionClutch as FrictionClutch
-from .gear_pair import GearPair as GearPair
 from .ground import Ground as Ground
 from .holding_brake import HoldingBrake as HoldingBrake
 from .linear_motor import LinearMotor as LinearMotor
@@ -46,11 +45,13 @@ REGISTRY: dict[str, object] = {
     # the motor shaft and the motor on it, drawn by the template
     "motor": (Drawn(Shaft, motor_shaft_as_drawn), Drawn(Motor, motor_as_drawn)),
     "motor.ripple": MotorRipple,
-    "gears": GearPair,
-    "gears.mesh": MeshFriction,  # a lossy mesh's friction: scenario.gears.mesh, given with an efficiency
+    # the pinion shaft (a body) and the drum shaft geared to it, drawn by the template
+    "gears": (Drawn(Shaft, pinion_shaft_as_drawn), Drawn(Shaft, drum_shaft_as_drawn)),
+    # a lossy mesh's friction: scenario.gears.mesh, given with an efficiency
+    "gears.mesh": Drawn(MeshFriction, mesh_as_drawn),
     "clutch": Drawn(FrictionClutch, clutch_as_drawn),  # the cone clutch: a friction clutch, drawn by the template
     "clutch_heating": ClutchHeating,
-    "drum": Drum,
+    "drum": Drawn(Flywheel, drum_as_drawn),  # the drum's own inertia, a rotor on the drum shaft
     "drum.resisting_ripple": ResistingRipple,
     "load": {"rigid": Drawn(RigidLoad, load_as_drawn), "elastic": ElasticLoad},  # on a rigid rope, or a body of its own on rope:
     "rope": {"stiffness": Rope, "modulus": WireRope},

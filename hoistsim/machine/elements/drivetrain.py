@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from ...scenario.schema_drivetrain import beyond_stage
 from ._signal import signal_fields
 from .friction_clutch import FrictionClutch
 from .mesh_friction import MeshFriction
@@ -25,7 +24,6 @@ class Drivetrain:
         torques = [ShaftTorque(**signal_fields(t.torque, "torque"), shaft=t.shaft, section=f"torque{i + 1}")
                    for i, t in enumerate(spec.torques)]
         clutches = [FrictionClutch.from_spec(c, scenario) for c in spec.clutches.values()]
-        meshes = [MeshFriction.in_stage(name, stage, beyond_stage(spec, name))
-                  for name, stage in spec.gears.items() if stage.lossy]
+        meshes = [MeshFriction.from_spec(stage, scenario) for stage in spec.gears.values() if stage.lossy]
         load = [] if spec.load is None else [RigidLoad.from_spec(spec.load, scenario)]
         return (*shafts, *motors, *torques, *clutches, *meshes, *load)

@@ -53,16 +53,10 @@ class MeshFriction(AbstractSlipHeat):
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "MeshFriction":
+        """A lossy gear stage's mesh: the input shaft's losses, pressed by what the shafts beyond take."""
         efficiency, backdrive = spec.efficiencies
-        return cls(efficiency=efficiency, backdrive_efficiency=backdrive,
-                   ratio=float(spec.pinion_teeth) / float(spec.wheel_teeth))
-
-    @classmethod
-    def in_stage(cls, name: str, stage, beyond: tuple) -> "MeshFriction":
-        """A drawn gear stage's lossy mesh: the input shaft's losses, pressed by what the shafts beyond take."""
-        efficiency, backdrive = stage.efficiencies
-        return cls(efficiency=efficiency, backdrive_efficiency=backdrive, ratio=1.0 / stage.ratio, section=name,
-                   prefix=f"{name}_mesh", driving=stage.between[0], beyond=beyond)
+        return cls(efficiency=efficiency, backdrive_efficiency=backdrive, ratio=spec.speed_ratio(), section=spec.name,
+                   prefix=spec.mesh_prefix(), driving=spec.between[0], beyond=spec.beyond(scenario))
 
     @property
     def heat_state(self) -> str:

@@ -6,7 +6,6 @@ from __future__ import annotations
 import numpy as np
 
 from ..._pytree import static
-from ...scenario.schema_drivetrain import gear_groups
 from ..core.element import AbstractElement
 
 SPEED_SCALE_FLOOR = 1.0  # rad/s
@@ -23,22 +22,22 @@ class Shaft(AbstractElement):
     section: str = static("")  # the shaft's name
     geared_to: str = static("")  # the first shaft of its gear train ("" : it is that shaft)
     scaled: bool = static(True)  # its speed at the start is one of the machine's speed scales
+    observed: bool = static(True)  # its speed is an output
 
     @classmethod
     def from_spec(cls, spec, scenario) -> Shaft:
-        drawn = scenario.drivetrain
-        root, ratio = gear_groups(drawn)[spec.name] if drawn is not None else (spec.name, 1.0)
-        speed = spec.speed * ratio if root == spec.name else drawn.shafts[root].speed * ratio
+        root, ratio, speed = spec.train(scenario)
         return cls(inertia=spec.inertia, initial_speed=speed, speed_ratio=ratio, section=spec.name,
-                   geared_to="" if root == spec.name else root, scaled=spec.sets_speed_scale())
+                   geared_to="" if root == spec.name else root, scaled=spec.sets_speed_scale(),
+                   observed=spec.observed())
 
     @property
     def columns(self) -> dict:
-        return {f"{self.section}_speed": ("rad/s", f"speed of shaft {self.section}")}
+        return {f"{self.section}_speed": ("rad/s", f"speed of shaft {self.section}")} if self.observed else {}
 
     @property
     def summaries(self) -> dict:
-        return {f"final_{self.section}_speed": "rad/s"}
+        return {f"final_{self.section}_speed": "rad/s"} if self.observed else {}
 
     def bodies(self) -> dict:
         return {} if self.geared_to else {self.section: self.initial_speed}
@@ -55,7 +54,7 @@ class Shaft(AbstractElement):
         return np.maximum(np.abs(self.initial_speed), SPEED_SCALE_FLOOR) if self.scaled else None
 
     def outputs(self, x) -> dict:
-        return {f"{self.section}_speed": x.speed(self.section)}
+        return {f"{self.section}_speed": x.speed(self.section)} if self.observed else {}
 
     def summary(self, x) -> dict:
-        return {f"final_{self.section}_speed": x.speed(self.section)}
+        return {f"final_{self.section}_speed": x.speed(self.section)} if self.observed else {}
