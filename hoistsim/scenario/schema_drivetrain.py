@@ -51,6 +51,7 @@ class ShaftSpec(Section):
 class TorqueSpec(Section):
     shaft: Text
     torque: signal(u.TORQUE)  # positive in the shaft's positive sense
+    name: str = Field("", exclude=True)  # torque1, torque2, ... in the order of drivetrain.torques (set there)
 
 
 class FrictionClutchSpec(FrictionSpec):
@@ -111,6 +112,11 @@ class GearStageSpec(Section):
         return self.efficiency is not None or self.backdrive_efficiency is not None
 
     @property
+    def mesh(self) -> "GearStageSpec | None":
+        """The lossy mesh's friction (the stage itself), or None for an ideal stage."""
+        return self if self.lossy else None
+
+    @property
     def efficiencies(self) -> tuple[float, float]:
         """(input driving, output driving): 1 and 1 for an ideal stage; the second defaults to the first."""
         forward = 1.0 if self.efficiency is None else self.efficiency
@@ -157,8 +163,8 @@ class DrivetrainSpec(Section):
     @model_validator(mode="before")
     @classmethod
     def _parts_named_by_their_keys(cls, data):
-        """Each shaft, clutch, gear stage and motor knows its name, its key: what its outputs and events are
-        called."""
+        """Each shaft, clutch, gear stage and motor knows its name, its key (a torque its place): what its
+        outputs and events are called."""
         if not isinstance(data, dict):
             return data
         data = dict(data)
@@ -174,6 +180,13 @@ class DrivetrainSpec(Section):
                     entry = {**entry, "name": key}
                 named[key] = entry
             data[kind] = named
+        torques = data.get("torques")
+        if isinstance(torques, list):  # named by their place: torque1, torque2, ...
+            for i, entry in enumerate(torques):
+                if isinstance(entry, dict) and "name" in entry:
+                    raise ScenarioError(f".torques.{i}.name", "unknown key: a torque is named by its place (torque1, ...)")
+            data["torques"] = [{**entry, "name": f"torque{i + 1}"} if isinstance(entry, dict) else entry
+                               for i, entry in enumerate(torques)]
         return data
 
     @model_validator(mode="after")

@@ -17,7 +17,6 @@ from ._drawn import Drawn as Drawn
 from .bearings import DrumShaftLoads as DrumShaftLoads
 from .clutch_heating import ClutchHeating as ClutchHeating
 from .constant_torque_motor import ConstantTorqueMotor as ConstantTorqueMotor
-from .drivetrain import Drivetrain as Drivetrain
 from .elastic_load import ElasticLoad as ElasticLoad
 from .flywheel import Flywheel as Flywheel
 from .friction_brake import FrictionBrake as FrictionBrake
@@ -35,6 +34,7 @@ from .resisting_ripple import ResistingRipple as ResistingRipple
 from .rigid_load import RigidLoad as RigidLoad
 from .rope import Rope as Rope
 from .shaft import Shaft as Shaft
+from .shaft_torque import ShaftTorque as ShaftTorque
 from .slider_crank import SliderCrank as SliderCrank
 from .wire_rope import WireRope as WireRope
 
@@ -62,7 +62,13 @@ REGISTRY: dict[str, object] = {
     "ratchet": Ratchet,
     "bearings": DrumShaftLoads,
     "periodic_regime": PeriodicRegime,  # scenario.periodic_regime: given, or implied by a ripple
-    "drivetrain": Drivetrain,  # a machine drawn as shafts and clutches: its elements, in its order
+    # a machine drawn as shafts and couplings (instead of the hoist's sections): each part of a kind ("*")
+    "drivetrain.shafts.*": Shaft,
+    "drivetrain.motors.*": Motor,
+    "drivetrain.torques.*": ShaftTorque,
+    "drivetrain.clutches.*": FrictionClutch,
+    "drivetrain.gears.*.mesh": MeshFriction,  # a lossy stage's mesh
+    "drivetrain.load": RigidLoad,
 }
 
 
@@ -76,23 +82,32 @@ def _variant(section: str, spec, scenario) -> str:
 
 def element_sections(scenario) -> list[tuple[str, object, type]]:
     """(section, its spec, what builds the element) for each element the scenario's sections build, in
-    registry order (a section that builds several: a row each)."""
+    registry order (a section that builds several: a row each; a drawn part: its own section, named)."""
     out = []
-    for section, entry in REGISTRY.items():
-        spec = scenario
-        for part in section.split("."):  # a section within a section: motor.ripple
-            spec = getattr(spec, part, None)
-        if spec is None:
-            continue
-        for one in entry if isinstance(entry, tuple) else (entry,):
-            out.append((section, spec, one[_variant(section, spec, scenario)] if isinstance(one, dict) else one))
+    for path, entry in REGISTRY.items():
+        for section, spec in _sections(scenario, path.split("."), ""):
+            for one in entry if isinstance(entry, tuple) else (entry,):
+                out.append((section, spec, one[_variant(section, spec, scenario)] if isinstance(one, dict) else one))
     return out
+
+
+def _sections(holder, parts: list, where: str):
+    """(dotted section, its spec) of each section ``parts`` names within ``holder`` (at ``where``): a section
+    within a section (motor.ripple), each part of a kind (drivetrain.clutches.*), none where one is absent."""
+    if holder is None:
+        return
+    if not parts:
+        yield where, holder
+        return
+    first, rest = parts[0], parts[1:]
+    if first == "*":
+        members = holder.items() if isinstance(holder, dict) else enumerate(holder)
+        for key, member in members:
+            yield from _sections(member, rest, f"{where}.{key}")
+        return
+    yield from _sections(getattr(holder, first, None), rest, f"{where}.{first}" if where else first)
 
 
 def elements_for(scenario) -> tuple[AbstractElement, ...]:
     """The elements a scenario names, built from their sections, in registry order."""
-    out: list = []
-    for _, spec, cls in element_sections(scenario):
-        built = cls.from_spec(spec, scenario)
-        out += built if isinstance(built, tuple) else [built]  # a drivetrain: an element per part
-    return tuple(out)
+    return tuple(cls.from_spec(spec, scenario) for _, spec, cls in element_sections(scenario))

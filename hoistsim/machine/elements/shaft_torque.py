@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from ..._pytree import static
 from ._shaft_work import AbstractShaftWork
-from ._signal import harmonics_at
+from ._signal import harmonics_at, signal_fields
 
 
 class ShaftTorque(AbstractShaftWork):
@@ -20,6 +20,10 @@ class ShaftTorque(AbstractShaftWork):
     shaft: str = static("")
     section: str = static("")  # torque1, torque2, ... in the order of drivetrain.torques
 
+    @classmethod
+    def from_spec(cls, spec, scenario) -> ShaftTorque:
+        return cls(**signal_fields(spec.torque, "torque"), shaft=spec.shaft, section=spec.name)
+
     @property
     def columns(self) -> dict:
         return {self.section: ("N*m", f"external torque on shaft {self.shaft}")}
@@ -33,11 +37,3 @@ class ShaftTorque(AbstractShaftWork):
 
     def outputs(self, x) -> dict:
         return {self.section: self.torque(x)}
-
-    # A drawn part: Drivetrain.from_spec builds it with its constructor (its name is its place in
-    # drivetrain.torques), not the registry from a section of its own; it takes (spec, scenario) once the
-    # registry builds drawn parts too.
-    @classmethod
-    def from_spec(cls, spec, scenario) -> ShaftTorque:
-        raise TypeError("an external torque is built by its drivetrain (Drivetrain.from_spec), not from a section "
-                        "of its own")
