@@ -64,9 +64,16 @@ def drum_shaft_as_drawn(spec, scenario) -> TemplateShaftSpec:
                                              geared_to="pinion", ratio_to_root=ratio)
 
 
-def drum_as_drawn(spec, scenario) -> FlywheelSpec:
+class TemplateRotorSpec(FlywheelSpec):
+    """The drum's own inertia as the template keys it to the drum shaft: a rotor named drum."""
+
+    def part_name(self) -> str:
+        return "drum"
+
+
+def drum_as_drawn(spec, scenario) -> TemplateRotorSpec:
     """The drum's inertia: a rotor keyed to the drum shaft (its diameter is the load's rope radius)."""
-    return FlywheelSpec.model_construct(shaft="drum", inertia=spec.inertia)
+    return TemplateRotorSpec.model_construct(shaft="drum", inertia=spec.inertia)
 
 
 class TemplateStageSpec(GearStageSpec):

@@ -113,6 +113,10 @@ class FlywheelSpec(Section):
                                 f"({self.outer_diameter:g} m), got {self.inner_diameter:g} m")
         return self
 
+    def part_name(self) -> str:
+        """What the machine calls it."""
+        return "flywheel"
+
     @property
     def moment_of_inertia(self) -> float:
         """kg*m^2: as given, or the rim's pi rho s (R_o^4 - R_i^4) / 2."""

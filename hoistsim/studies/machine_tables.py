@@ -1,7 +1,10 @@
 """The machine a scenario stands for, as ``hoistsim check`` prints it: each body's inertia and the hoist's
-two-shaft reduced model, or a drawn drivetrain's shafts and clutches."""
+two-shaft reduced model, or a drawn drivetrain's shafts and clutches; then the parts the machine is built from
+(the hoist's as its template draws them)."""
 
 from __future__ import annotations
+
+import re
 
 from ..results.report import fmt, table
 
@@ -36,8 +39,37 @@ def reduced_model_table(scenario) -> str:
 
 
 def machine_table(scenario) -> str:
-    """What ``check`` prints of a scenario's machine: the hoist's reduced model, or a drawn drivetrain."""
-    return reduced_model_table(scenario) if scenario.drivetrain is None else drivetrain_table(scenario.drivetrain)
+    """What ``check`` prints of a scenario's machine: the hoist's reduced model, or a drawn drivetrain; then the
+    parts it is built from."""
+    first = reduced_model_table(scenario) if scenario.drivetrain is None else drivetrain_table(scenario.drivetrain)
+    return first + "\n\n" + parts_table(scenario)
+
+
+def parts_table(scenario) -> str:
+    """Each part of the machine, as built: its name, its kind, where it sits (a shaft's gear train, the shafts a
+    coupling joins, the shafts it brings inertia to) and the scenario section it comes from."""
+    from ..machine.assemble import machine_elements
+    from ..machine.core.element import AbstractCoupling
+    from ..machine.elements import element_sections
+
+    rows = []
+    for (section, _, _), part in zip(element_sections(scenario), machine_elements(scenario)):
+        if isinstance(part, AbstractCoupling):
+            a, b = part.joins()
+            where = f"{a} - {b or 'ground'}"
+        elif getattr(part, "geared_to", None):
+            where = f"shaft, {fmt(float(part.speed_ratio))} x {part.geared_to}"
+        elif part.bodies():
+            where = "shaft (a body)"
+        else:
+            where = ", ".join(dict.fromkeys(shaft for shaft, _ in part.inertias())) or "-"
+        rows.append([part.section, _words(type(part).__name__), where, section])
+    return table(["part", "kind", "on", "from"], rows, align="llll")
+
+
+def _words(name: str) -> str:
+    """A class's name as words: FrictionClutch -> friction clutch."""
+    return re.sub(r"(?<=[a-z])(?=[A-Z])", " ", name).lower()
 
 
 def drivetrain_table(drivetrain) -> str:

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from typing import ClassVar
-
 from ..._pytree import static
 from ..core.element import AbstractElement
 
@@ -17,12 +15,11 @@ class Flywheel(AbstractElement):
 
     inertia: object  # kg*m^2
     shaft: str = static("motor")
-
-    section: ClassVar[str] = "flywheel"
+    section: str = static("flywheel")  # its name: the flywheel, or a rotor the hoist's template keys (the drum)
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "Flywheel":
-        return cls(inertia=spec.moment_of_inertia, shaft=spec.shaft)
+        return cls(inertia=spec.moment_of_inertia, shaft=spec.shaft, section=spec.part_name())
 
     def inertias(self) -> tuple:
         return ((self.shaft, self.inertia),)
