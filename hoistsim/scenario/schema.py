@@ -18,7 +18,7 @@ from . import tables
 from . import units as u
 from .schema_base import Section
 from .schema_clutch import ConeSpec, FrictionSpec
-from .schema_drivetrain import DrivetrainSpec, LoadSpec
+from .schema_drivetrain import DrivetrainSpec, LoadSpec, MeshSpec
 from .schema_motor import MotorSpec, RippleSpec
 from .schema_rope import GroundSpec, RopeSpec
 from .provenance import Provenance
@@ -42,33 +42,27 @@ class ClutchSpec(FrictionSpec, ConeSpec):
     driven_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0  # clutch half on the pinion shaft
 
 
-class GearSpec(Section):
+class GearSpec(MeshSpec):
+    """The hoist's spur gears: pinion 1 on the clutch's output shaft, wheel 2 on the drum shaft, and the mesh's
+    losses (:class:`.schema_drivetrain.MeshSpec`, the keys a drawn gear stage has too; absent: ideal, as in
+    exercise 6)."""
+
     pinion_teeth: u.whole("teeth")
     wheel_teeth: u.whole("teeth")
     module: u.quantity(u.LENGTH, gt=0.0)
     pressure_angle: u.quantity(u.ANGLE, gt=0.0, lt=math.pi / 2) = math.radians(20.0)
     pinion_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0
     wheel_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0
-    # the mesh's efficiency when the pinion drives the wheel, and when the wheel drives the pinion
-    # (default: the same); either given, the mesh is lossy (absent: ideal, as in exercise 6)
-    efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
-    backdrive_efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
 
     @property
     def characteristic(self) -> str:
         """Which variant: ``ideal`` (power passes unchanged) or ``lossy`` (an efficiency either way)."""
-        return "ideal" if self.efficiency is None and self.backdrive_efficiency is None else "lossy"
-
-    @property
-    def efficiencies(self) -> tuple[float, float]:
-        """(pinion driving, wheel driving): 1 and 1 for the ideal mesh; the second defaults to the first."""
-        forward = 1.0 if self.efficiency is None else self.efficiency
-        return forward, forward if self.backdrive_efficiency is None else self.backdrive_efficiency
+        return "lossy" if self.lossy else "ideal"
 
     @property
     def mesh(self) -> "GearSpec | None":
         """The lossy mesh's friction (the same keys), or None for an ideal mesh."""
-        return self if self.characteristic == "lossy" else None
+        return self if self.lossy else None
 
 
 class DrumSpec(Section):

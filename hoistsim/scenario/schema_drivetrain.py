@@ -84,14 +84,28 @@ class FrictionClutchSpec(FrictionSpec):
         return {}
 
 
-class GearStageSpec(Section):
+class MeshSpec(Section):
+    """A gear mesh's losses: its efficiency when the input (the pinion) drives the output, and when the output
+    drives the input (default: the same); either given, the mesh is lossy (absent: ideal)."""
+
+    efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
+    backdrive_efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
+
+    @property
+    def lossy(self) -> bool:
+        return self.efficiency is not None or self.backdrive_efficiency is not None
+
+    @property
+    def efficiencies(self) -> tuple[float, float]:
+        """(input driving, output driving): 1 and 1 for an ideal mesh; the second defaults to the first."""
+        forward = 1.0 if self.efficiency is None else self.efficiency
+        return forward, forward if self.backdrive_efficiency is None else self.backdrive_efficiency
+
+
+class GearStageSpec(MeshSpec):
     between: tuple[Text, Text]  # [input shaft, output shaft]
     ratio: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = None  # the input's speed over the output's
     teeth: tuple[u.whole("teeth"), u.whole("teeth")] | None = None  # [z_in, z_out]: ratio z_out / z_in
-    # the mesh's efficiency when the input drives the output, and when the output drives the input
-    # (default: the same); either given, the stage is lossy (absent: ideal)
-    efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
-    backdrive_efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
     name: str = Field("", exclude=True)  # its key in drivetrain.gears (set there, never written)
 
     def speed_ratio(self) -> float:
@@ -108,19 +122,9 @@ class GearStageSpec(Section):
         return beyond_stage(scenario.drivetrain, self.name)
 
     @property
-    def lossy(self) -> bool:
-        return self.efficiency is not None or self.backdrive_efficiency is not None
-
-    @property
     def mesh(self) -> "GearStageSpec | None":
         """The lossy mesh's friction (the stage itself), or None for an ideal stage."""
         return self if self.lossy else None
-
-    @property
-    def efficiencies(self) -> tuple[float, float]:
-        """(input driving, output driving): 1 and 1 for an ideal stage; the second defaults to the first."""
-        forward = 1.0 if self.efficiency is None else self.efficiency
-        return forward, forward if self.backdrive_efficiency is None else self.backdrive_efficiency
 
     @model_validator(mode="after")
     def _one_ratio(self):
