@@ -258,3 +258,42 @@ def registered_classes() -> list:
     entries = [c for entry in REGISTRY.values() for c in (entry.values() if isinstance(entry, dict) else [entry])]
     return list(dict.fromkeys(getattr(one, "element", one) for entry in entries
                               for one in (entry if isinstance(entry, tuple) else (entry,))))
+
+
+class _Reading:
+    """A scenario that notes the names read off it."""
+
+    def __init__(self, scenario, read: set):
+        object.__setattr__(self, "_scenario", scenario)
+        object.__setattr__(self, "_read", read)
+
+    def __getattr__(self, name):
+        object.__getattribute__(self, "_read").add(name)
+        return getattr(object.__getattribute__(self, "_scenario"), name)
+
+
+def test_a_part_the_template_draws_is_built_again_whenever_what_it_reads_is_another():
+    """A drawn hoist part serves again while its section and what it reads are the same objects: what its
+    template and its element read of the scenario is all declared in ``reads`` (a section read and not
+    declared would leave a run with another run's part), and another value of any is another part."""
+    from hoistsim.machine.elements._drawn import _LAST_BUILT
+
+    lossy = {"efficiency": 0.95}
+    heating = {"heat_capacity": "2.4 kJ/K", "cooling": "20 W/K", "ambient_temperature": "25 degC",
+               "static_friction": [["25 degC", 0.3], ["300 degC", 0.22]]}
+    scenes = [_scene(), _scene(gears=lossy, clutch_heating=heating, initial={"motor_speed": "100 rpm"})]
+    for scenario in scenes:
+        for section, spec, entry in element_sections(scenario):
+            if not hasattr(entry, "as_drawn"):
+                continue
+            _LAST_BUILT.clear()
+            read: set = set()
+            entry.from_spec(spec, _Reading(scenario, read))
+            assert read <= set(entry.reads), (section, entry.as_drawn.__name__, read)
+    # a section read, and the part built from another of it: another part, never the last one again
+    base = scenes[0]
+    (shaft,) = [e for e in elements_for(base) if e.section == "motor" and hasattr(e, "scaled")]
+    faster = base.model_copy(update={"initial": base.initial.model_copy(update={"motor_speed": 9.0})})
+    (again,) = [e for e in elements_for(faster) if e.section == "motor" and hasattr(e, "scaled")]
+    assert shaft.initial_speed == base.initial.motor_speed and again.initial_speed == 9.0
+    assert [e for e in elements_for(base) if e.section == "motor" and hasattr(e, "scaled")][0] is not again

@@ -43,17 +43,17 @@ from .wire_rope import WireRope as WireRope
 # The order is the order of bodies, states and output columns.
 REGISTRY: dict[str, object] = {
     # the motor shaft and the motor on it, drawn by the template
-    "motor": (Drawn(Shaft, motor_shaft_as_drawn), Drawn(Motor, motor_as_drawn)),
+    "motor": (Drawn(Shaft, motor_shaft_as_drawn, ("initial",)), Drawn(Motor, motor_as_drawn)),
     "motor.ripple": MotorRipple,
     # the pinion shaft (a body) and the drum shaft geared to it, drawn by the template
-    "gears": (Drawn(Shaft, pinion_shaft_as_drawn), Drawn(Shaft, drum_shaft_as_drawn)),
+    "gears": (Drawn(Shaft, pinion_shaft_as_drawn, ("initial",)), Drawn(Shaft, drum_shaft_as_drawn, ("initial",))),
     # a lossy mesh's friction: scenario.gears.mesh, given with an efficiency
     "gears.mesh": Drawn(MeshFriction, mesh_as_drawn),
-    "clutch": Drawn(FrictionClutch, clutch_as_drawn),  # the cone clutch: a friction clutch, drawn by the template
+    "clutch": Drawn(FrictionClutch, clutch_as_drawn, ("clutch_heating",)),  # the cone clutch: a friction clutch, drawn by the template
     "clutch_heating": ClutchHeating,
     "drum": Drawn(Flywheel, drum_as_drawn),  # the drum's own inertia, a rotor on the drum shaft
     "drum.resisting_ripple": ResistingRipple,
-    "load": {"rigid": Drawn(RigidLoad, load_as_drawn), "elastic": ElasticLoad},  # on a rigid rope, or a body of its own on rope:
+    "load": {"rigid": Drawn(RigidLoad, load_as_drawn, ("drum", "gravity")), "elastic": ElasticLoad},  # on a rigid rope, or a body of its own on rope:
     "rope": {"stiffness": Rope, "modulus": WireRope},
     "ground": Ground,
     "flywheel": Flywheel,
