@@ -6,14 +6,14 @@ Imported first by the package, so that every array hoistsim creates is float64.
 from __future__ import annotations
 
 import contextlib
-import functools
 import hashlib
 import os
-from pathlib import Path
 
 import jax
 
 from .cache_folders import cache_folder, cache_root
+from .program_origin import program_origin
+from .program_origin import source_digest as source_digest  # noqa: F401  (the digest stored programs are keyed by)
 from .program_pool import ProgramPool
 from .stored_programs import ReadAhead, read, store
 
@@ -128,28 +128,6 @@ def stores_programs() -> bool:
     return _executables is not None
 
 
-@functools.lru_cache(maxsize=None)
-def source_digest(package: str | None = None) -> str:
-    """SHA-256 of every Python source of the package: a stored program is only as good as the code behind it.
-
-    The version number does not change with an edit; the source does.  Read once
-    per process (the package is ~100 kB).
-    """
-    root = Path(package or Path(__file__).resolve().parent)
-    digest = hashlib.sha256()
-    for path in sorted(root.rglob("*.py")):
-        digest.update(str(path.relative_to(root)).encode() + b"\0" + path.read_bytes() + b"\0")
-    return digest.hexdigest()
-
-
-@functools.lru_cache(maxsize=None)
-def _program_origin() -> tuple:
-    """What a compiled program is made from besides its arguments: our source, the libraries that trace it."""
-    from importlib.metadata import version
-
-    return (source_digest(), *(version(p) for p in ("jax", "jaxlib", "diffrax", "equinox", "optimistix")))
-
-
 def executable(program, *args, name: str, devices: int = 1):
     """``program()`` (a jitted function) compiled for ``args``: held by the process's pool of programs, or
     loaded from disk when a run of the same shape compiled it before, or compiled.
@@ -173,7 +151,7 @@ def executable(program, *args, name: str, devices: int = 1):
     structure, shapes and dtypes.
     """
     leaves, treedef = jax.tree.flatten(args)
-    signature = repr((name, _program_origin(), jax.default_backend(), os.environ.get("XLA_FLAGS", ""), devices,
+    signature = repr((name, program_origin(), jax.default_backend(), os.environ.get("XLA_FLAGS", ""), devices,
                       str(treedef),
                       [(getattr(x, "shape", ()), str(getattr(x, "dtype", type(x)))) for x in leaves]))
     key = hashlib.sha256(signature.encode()).hexdigest()

@@ -1,7 +1,11 @@
 """Compiled programs kept on disk between processes: written, read back, and read ahead in a thread.
 
-A stored program is a pickle of three parts: XLA's serialised executable, and the structures of the
-program's arguments and of its results, each pickled apart as bytes.  Reading the executable is XLA's
+A stored program is a pickle of four parts: what made it (:func:`hoistsim.program_origin.program_origin`:
+our source's digest, the libraries' versions), XLA's serialised executable, and the structures of the
+program's arguments and of its results, each pickled apart as bytes.  A program of another origin is never
+unpickled further: the structure of its arguments names element classes whose fields may since have
+changed, which XLA's tree code would take on trust (a crash, not an error), and a program read ahead
+because a command ran it before an edit or an upgrade is of another origin.  Reading the executable is XLA's
 work, done with Python's lock let go (0.5 s for exercise 6's on 2 cores); unpickling the arguments'
 structure imports the machine's modules (the scenario's pydantic models among them), Python's work.
 Kept apart, the first runs in a thread while the command line reads the scenario
@@ -14,7 +18,12 @@ import pickle
 from concurrent.futures import Future, ThreadPoolExecutor
 
 from .cache_folders import keep
+from .program_origin import program_origin
 from .program_pool import counting_maps
+
+
+class StaleProgram(Exception):
+    """A stored program made from other code or other libraries: compiled again where it is wanted."""
 
 
 def store(compiled, path: str) -> None:
@@ -23,7 +32,7 @@ def store(compiled, path: str) -> None:
 
     try:
         executable, in_tree, out_tree = serialize(compiled)
-        keep(path, pickle.dumps((executable, pickle.dumps(in_tree), pickle.dumps(out_tree))))
+        keep(path, pickle.dumps((program_origin(), executable, pickle.dumps(in_tree), pickle.dumps(out_tree))))
     except Exception:  # a full disk or an executable that cannot be serialised: still run
         pass
 
@@ -44,7 +53,10 @@ def read(path: str, devices: int):
     from jax.experimental.serialize_executable import deserialize_and_load
 
     with open(path, "rb") as handle:
-        executable, in_tree, out_tree = pickle.load(handle)
+        stored = pickle.load(handle)
+    if len(stored) != 4 or stored[0] != program_origin():
+        raise StaleProgram(f"{path} was compiled from other code")
+    _, executable, in_tree, out_tree = stored
     return deserialize_and_load(executable, _StructureOnDemand(in_tree), pickle.loads(out_tree),
                                 execution_devices=jax.devices()[:devices])
 

@@ -17,8 +17,8 @@ PACKAGE = Path(hoistsim.__file__).parent
 
 # lowest first; each entry is a module or a folder of hoistsim
 LAYERS = (
-    ("foundation", ("errors", "cache_folders", "program_pool", "stored_programs", "program_hints", "_jax", "_pytree",
-                    "__init__")),
+    ("foundation", ("errors", "cache_folders", "program_pool", "program_origin", "stored_programs", "program_hints",
+                    "_jax", "_pytree", "__init__")),
     ("components", ("components",)),
     ("display", ("display",)),
     ("scenario", ("scenario",)),

@@ -54,7 +54,7 @@ def resume_key(scenario, summary_only: bool, split: tuple = ()) -> str:
     ``split``: how the runs are cut (the chunk width, and the devices a chunk is split over): blocks are
     counted in chunks, and the numbers are the same bits only for the same split.
     """
-    from .._jax import source_digest
+    from ..program_origin import source_digest
 
     text = json.dumps([scenario.text, bool(summary_only), source_digest(), list(split)])
     return hashlib.sha256(text.encode()).hexdigest()

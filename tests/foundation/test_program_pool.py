@@ -136,3 +136,35 @@ def test_a_command_remembers_the_programs_it_was_served(monkeypatch, tmp_path):
     monkeypatch.setenv("HOISTSIM_CACHE_DIR", "")
     program_hints.remember_programs(hint, [("a" * 64, 2)])  # the cache off: nothing kept, nothing read
     assert program_hints.programs_wanted(hint) == []
+
+
+class _Poison:
+    """Unpickling it fails loudly: what a structure of arguments naming classes that have changed may do worse."""
+
+    def __reduce__(self):
+        return (_explode, ())
+
+
+def _explode():
+    raise AssertionError("a stored program of other code was unpickled past its origin")
+
+
+def test_a_stored_program_of_other_code_is_not_read_past_its_origin(tmp_path):
+    """A command read ahead the programs it ran before an edit or an upgrade: such a program's origin is another,
+    and nothing more of it is unpickled (its arguments' structure may name element classes whose fields have
+    since changed: a crash in XLA's tree code, not an error); the program is compiled again where it is
+    wanted.  A program stored before origins were kept (three parts) is stale alike."""
+    import pickle
+
+    from hoistsim import stored_programs
+    from hoistsim.program_origin import program_origin
+
+    other = tmp_path / "other.bin"
+    other.write_bytes(pickle.dumps((("another source",) + program_origin()[1:], b"xla", pickle.dumps(_Poison()),
+                                    pickle.dumps(_Poison()))))
+    older = tmp_path / "older.bin"
+    older.write_bytes(pickle.dumps((b"xla", pickle.dumps(_Poison()), pickle.dumps(_Poison()))))
+    for path in (other, older):
+        with pytest.raises(stored_programs.StaleProgram):
+            stored_programs.read(str(path), 1)
+        assert stored_programs.ReadAhead._read(str(path), 1) == (None, None)
