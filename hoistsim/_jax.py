@@ -13,7 +13,7 @@ import jax
 
 from .cache_folders import cache_folder, cache_root
 from .program_origin import program_origin
-from .program_origin import source_digest as source_digest  # noqa: F401  (the digest stored programs are keyed by)
+from .program_origin import source_digest as source_digest  # the digest stored programs are keyed by
 from .program_pool import ProgramPool
 from .stored_programs import ReadAhead, read, store
 
@@ -210,7 +210,10 @@ def preload(wanted) -> None:
     """Start reading stored programs, (key, devices) each, in a thread (see :mod:`.stored_programs`):
     the command line has them read while it reads the scenario that asks for them, and
     :func:`executable` takes one from there when its key comes up."""
-    if _executables is not None:
+    if _executables is not None and wanted:
+        # the source's digest, which the reading checks each program's origin against, worked out here: in the
+        # reading thread its 150 file reads would each hand Python's lock to this thread's imports
+        source_digest()
         read_ahead.start({key: (_stored_at(key), devices) for key, devices in wanted if key not in programs})
 
 

@@ -1,11 +1,12 @@
 """Compiled programs kept on disk between processes: written, read back, and read ahead in a thread.
 
-A stored program is a pickle of four parts: what made it (:func:`hoistsim.program_origin.program_origin`:
-our source's digest, the libraries' versions), XLA's serialised executable, and the structures of the
-program's arguments and of its results, each pickled apart as bytes.  A program of another origin is never
-unpickled further: the structure of its arguments names element classes whose fields may since have
-changed, which XLA's tree code would take on trust (a crash, not an error), and a program read ahead
-because a command ran it before an edit or an upgrade is of another origin.  Reading the executable is XLA's
+A stored program is a pickle of four parts: what made it (:func:`origin`: our source's digest, JAX's and
+jaxlib's versions), XLA's serialised executable, and the structures of the program's arguments and of its
+results, each pickled apart as bytes.  A program of another origin is never unpickled further: the
+structure of its arguments names element classes whose fields may since have changed, which XLA's tree
+code would take on trust (a crash, not an error), and a program read ahead because a command ran it
+before an edit or an upgrade is of another origin.  (Its key, :func:`hoistsim._jax.executable`'s, holds
+the other libraries' versions too: a program of theirs is another key, never served.)  Reading the executable is XLA's
 work, done with Python's lock let go (0.5 s for exercise 6's on 2 cores); unpickling the arguments'
 structure imports the machine's modules (the scenario's pydantic models among them), Python's work.
 Kept apart, the first runs in a thread while the command line reads the scenario
@@ -18,12 +19,22 @@ import pickle
 from concurrent.futures import Future, ThreadPoolExecutor
 
 from .cache_folders import keep
-from .program_origin import program_origin
+from .program_origin import source_digest
 from .program_pool import counting_maps
 
 
 class StaleProgram(Exception):
     """A stored program made from other code or other libraries: compiled again where it is wanted."""
+
+
+def origin() -> tuple:
+    """What a stored program's structures are read with: our source (the element classes they name) and
+    JAX's tree code (imported already where a program is stored or read; the versions' lookup by package
+    metadata would cost a read ahead some 30 ms)."""
+    import jax
+    import jaxlib
+
+    return source_digest(), jax.__version__, jaxlib.__version__
 
 
 def store(compiled, path: str) -> None:
@@ -32,7 +43,7 @@ def store(compiled, path: str) -> None:
 
     try:
         executable, in_tree, out_tree = serialize(compiled)
-        keep(path, pickle.dumps((program_origin(), executable, pickle.dumps(in_tree), pickle.dumps(out_tree))))
+        keep(path, pickle.dumps((origin(), executable, pickle.dumps(in_tree), pickle.dumps(out_tree))))
     except Exception:  # a full disk or an executable that cannot be serialised: still run
         pass
 
@@ -54,7 +65,7 @@ def read(path: str, devices: int):
 
     with open(path, "rb") as handle:
         stored = pickle.load(handle)
-    if len(stored) != 4 or stored[0] != program_origin():
+    if len(stored) != 4 or stored[0] != origin():
         raise StaleProgram(f"{path} was compiled from other code")
     _, executable, in_tree, out_tree = stored
     return deserialize_and_load(executable, _StructureOnDemand(in_tree), pickle.loads(out_tree),

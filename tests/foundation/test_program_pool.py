@@ -157,11 +157,10 @@ def test_a_stored_program_of_other_code_is_not_read_past_its_origin(tmp_path):
     import pickle
 
     from hoistsim import stored_programs
-    from hoistsim.program_origin import program_origin
 
     other = tmp_path / "other.bin"
-    other.write_bytes(pickle.dumps((("another source",) + program_origin()[1:], b"xla", pickle.dumps(_Poison()),
-                                    pickle.dumps(_Poison()))))
+    other.write_bytes(pickle.dumps((("another source",) + stored_programs.origin()[1:], b"xla",
+                                    pickle.dumps(_Poison()), pickle.dumps(_Poison()))))
     older = tmp_path / "older.bin"
     older.write_bytes(pickle.dumps((b"xla", pickle.dumps(_Poison()), pickle.dumps(_Poison()))))
     for path in (other, older):
