@@ -32,9 +32,9 @@ def origin() -> tuple:
     JAX's tree code (imported already where a program is stored or read; the versions' lookup by package
     metadata would cost a read ahead some 30 ms)."""
     import jax
-    import jaxlib
+    import jax.lib
 
-    return source_digest(), jax.__version__, jaxlib.__version__
+    return source_digest(), jax.__version__, jax.lib.__version__  # jax.lib's: jaxlib's
 
 
 def store(compiled, path: str) -> None:

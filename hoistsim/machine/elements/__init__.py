@@ -84,28 +84,40 @@ def element_sections(scenario) -> list[tuple[str, object, type]]:
     """(section, its spec, what builds the element) for each element the scenario's sections build, in
     registry order (a section that builds several: a row each; a drawn part: its own section, named)."""
     out = []
-    for path, entry in REGISTRY.items():
-        for section, spec in _sections(scenario, path.split("."), ""):
+    for path, parts, entry in _PATHS:
+        for section, spec in _parts_of(scenario, parts) if "*" in parts else ((path, _section(scenario, parts)),):
+            if spec is None:
+                continue
             for one in entry if isinstance(entry, tuple) else (entry,):
                 out.append((section, spec, one[_variant(section, spec, scenario)] if isinstance(one, dict) else one))
     return out
 
 
-def _sections(holder, parts: list, where: str):
-    """(dotted section, its spec) of each section ``parts`` names within ``holder`` (at ``where``): a section
-    within a section (motor.ripple), each part of a kind (drivetrain.clutches.*), none where one is absent."""
-    if holder is None:
-        return
-    if not parts:
-        yield where, holder
-        return
-    first, rest = parts[0], parts[1:]
-    if first == "*":
-        members = holder.items() if isinstance(holder, dict) else enumerate(holder)
-        for key, member in members:
-            yield from _sections(member, rest, f"{where}.{key}")
-        return
-    yield from _sections(getattr(holder, first, None), rest, f"{where}.{first}" if where else first)
+# each registry path split once: (path, its parts, its entry)
+_PATHS = [(path, tuple(path.split(".")), entry) for path, entry in REGISTRY.items()]
+
+
+def _section(holder, parts: tuple):
+    """What a dotted path names within ``holder`` (a section within a section: motor.ripple), None where absent."""
+    for part in parts:
+        holder = getattr(holder, part, None)
+        if holder is None:
+            return None
+    return holder
+
+
+def _parts_of(scenario, parts: tuple) -> list:
+    """(dotted section, its spec) of each part a path with ``*`` names: drivetrain.clutches.* gives
+    drivetrain.clutches.<name> for each clutch, drivetrain.torques.* drivetrain.torques.<index>."""
+    found = [("", scenario)]
+    for part in parts:
+        if part == "*":
+            found = [(f"{where}.{key}", member) for where, holder in found
+                     for key, member in (holder.items() if isinstance(holder, dict) else enumerate(holder))]
+        else:
+            found = [(f"{where}.{part}" if where else part, getattr(holder, part, None)) for where, holder in found]
+            found = [(where, holder) for where, holder in found if holder is not None]
+    return found
 
 
 def elements_for(scenario) -> tuple[AbstractElement, ...]:
