@@ -86,6 +86,14 @@ class Layout:
                                        if k not in self.observation_kinds and k not in element.crossing_events]
         self.event_kinds += [k for k in self.observation_kinds if k not in self.event_kinds]
         self.sections = [e.section for e in elements]
+        # guards and events find their element by its name: one that has them has a name of its own (an element
+        # that watches nothing may share one: a torque source named after the shaft it turns)
+        for element in elements:
+            watched = (isinstance(element, AbstractCoupling) or element.observation_kinds or element.cycles
+                       or element.kink_names() or element.event_kinds)
+            if watched and self.sections.count(element.section) > 1:
+                raise LayoutError(element.section, f"{element.section!r} names more than one part of the machine, "
+                                  "and this one's guards and events are found by its name")
         self._columns = {name: column for e in elements for name, column in e.columns.items()}
         self._columns.update({angle_state(shaft): ("rad", f"angle the {shaft} shaft has turned since the start")
                               for shaft in self.angle_shafts})

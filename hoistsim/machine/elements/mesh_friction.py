@@ -38,11 +38,13 @@ class MeshFriction(AbstractSlipHeat):
     efficiency: object  # eta: the pinion drives
     backdrive_efficiency: object  # eta_b: the wheel drives
     ratio: object  # z1/z2: the drum's speed over the pinion's
-    section: str = static("mesh")  # the hoist's mesh, or a drawn gear stage's name
-    prefix: str = static("mesh")  # its outputs' names begin so: mesh_torque, or <stage>_mesh_torque
-    driving: str = static("pinion")  # the input shaft, whose losses it is
-    # the output shaft and every shaft geared beyond it: the tooth load is what the pinion passes into them
-    beyond: tuple = static(("drum",))
+    # its stage's name (the hoist's: mesh) and what its outputs' names begin with (mesh_torque, <stage>_mesh_torque),
+    # as its spec says (from_spec)
+    section: str = static("")
+    prefix: str = static("")
+    driving: str = static("")  # the input shaft, whose losses it is
+    # the output shaft and every shaft geared beyond it: the tooth load is what the input passes into them
+    beyond: tuple = static(())
 
     yields: ClassVar[bool] = True
     observes_slip_peak: ClassVar[bool] = False
