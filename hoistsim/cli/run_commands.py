@@ -158,15 +158,22 @@ def watch(scenario, output, figure, overrides):
 @main.command()
 @click.argument("scenario", type=click.Path(dir_okay=False))
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a scenario key.")
+@click.option("--drivetrain", "as_drivetrain", is_flag=True,
+              help="Print the drivetrain a hoist scenario stands for, as a scenario file (shafts, clutch, gears, ...).")
 @debug_option
 @one_line_errors
-def check(scenario, overrides):
-    """Validate SCENARIO and print the reduced model, without simulating."""
+def check(scenario, overrides, as_drivetrain):
+    """Validate SCENARIO and print the reduced model and the parts it is built from, without simulating."""
     from ..studies.machine_tables import machine_table
     from ..scenario.sweep_runs import SweepRuns
 
     scenario_path = scenario
     scenario = read_scenario(scenario_path, overrides)
+    if as_drivetrain:
+        from ..studies.hoist_drawing import hoist_as_drivetrain_text
+
+        click.echo(hoist_as_drivetrain_text(scenario), nl=False)
+        return
     count = len(SweepRuns(scenario))  # every value was validated as the file was read
     click.echo(machine_table(scenario))
     click.echo(f"{scenario_path}: valid ({count} run{'s' if count != 1 else ''})")

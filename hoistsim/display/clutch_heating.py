@@ -14,8 +14,10 @@ def _celsius(kelvin):
 
 
 def _max_temperature(parameters: dict):
-    """The scenario's max_temperature (K), None where it gives none."""
-    return (parameters.get("clutch_heating") or {}).get("max_temperature")
+    """The scenario's max_temperature (K), None where it gives none (the hoist's clutch_heating, or the heating
+    of a drawn clutch named clutch: the columns drawn here are its)."""
+    drawn = ((parameters.get("drivetrain") or {}).get("clutches") or {}).get("clutch") or {}
+    return (parameters.get("clutch_heating") or drawn.get("heating") or {}).get("max_temperature")
 
 
 def _limit_line(run):

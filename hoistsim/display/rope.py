@@ -10,7 +10,8 @@ from .panel import Display, Panel, Phase, SummaryPanel, Trace
 def _weight_line(run):
     """The load's weight across the run (N): where the rope force lifts it off the ground."""
     parameters = run["parameters"]
-    return np.full(np.shape(run["rope_force"]), parameters["load"]["mass"] * parameters["gravity"])
+    load = parameters.get("load") or parameters["drivetrain"]["load"]  # the hoist's, or a drawn drivetrain's
+    return np.full(np.shape(run["rope_force"]), load["mass"] * parameters["gravity"])
 
 
 def _headline(summary: dict) -> str | None:

@@ -46,7 +46,7 @@ def _steady_lift_speed(scenario: Scenario) -> float:
     return motor.no_load_speed * (1.0 - load_torque / motor.stall_torque)
 
 
-def _steady(scenario: Scenario) -> Scenario:
+def with_steady_lift(scenario: Scenario) -> Scenario:
     """With ``initial.steady_lift``, the scenario with its initial speeds set to the steady lifting speed."""
     if not scenario.initial.steady_lift:
         return scenario
@@ -65,7 +65,7 @@ def machine_elements(scenario: Scenario) -> tuple:
     The check depends on the structure alone (which elements, on which shafts),
     so a sweep pays it once.
     """
-    elements = elements_for(_steady(scenario))
+    elements = elements_for(with_steady_lift(scenario))
     structure = jax.tree.structure(elements)
     if structure not in _checked:
         try:

@@ -1,29 +1,56 @@
 """The hoist's sections written out as a drawn drivetrain's parts: the machine is built from those.
 
-The hoist's keys are read and checked as they are (:mod:`.schema`); a part the template draws is then the
-drawn drivetrain's part of its kind, on the template's shafts (``motor``, ``pinion``, ``drum``), with what the
-hoist's part has beside (a clutch's halves' inertias, its friction against temperature) and its outputs
-under the names the hoist's users know (``slip_speed``, ``engagement_force``, ``lockup_time``, ...).  Made
-from values checked already (no validation again: a sweep's values may be a column of runs).
+The hoist's keys are read and checked as they are (:mod:`.schema`); each section is then the drawn
+drivetrain's part of its kind (:data:`TEMPLATE`), on the template's shafts (``motor``, ``pinion``, ``drum``),
+with what the hoist's part has beside (a clutch's halves' inertias) and its outputs under the names the hoist's
+users know (``slip_speed``, ``lockup_time``, ``ripple_torque``, ...).  Made from values checked already (no
+validation again: a sweep's values may be a column of runs).
 """
 
 from __future__ import annotations
 
-import numpy as np
+from typing import NamedTuple
 
+from pydantic import Field
+
+from .schema_base import Section
 from .schema_clutch import ConeSpec
-from .schema import FlywheelSpec
-from .schema_drivetrain import FrictionClutchSpec, GearStageSpec, LoadOnShaftSpec, ShaftMotorSpec, ShaftSpec
+from .schema_drivetrain import FrictionClutchSpec, GearStageSpec, ShaftMotorSpec, ShaftSpec
+from .schema_load import LoadBearingsSpec, LoadOnShaftSpec
+from .schema_shaft_parts import BrakeOnShaftSpec, RatchetOnShaftSpec, RotorSpec, SliderCrankSpec
 from .signals import TimeSignal
 
-# The cone clutch's outputs by their role, as the hoist names them (a drawn clutch's are <name>_<role>).
-CLUTCH_NAMES = {"torque": "clutch_torque", "slip": "slip_speed", "locked": "clutch_locked", "force": "engagement_force",
-                "energy": "clutch_energy", "capacity": "clutch_capacity", "mode": "clutch_mode",
-                "lockup_time": "lockup_time", "slip_duration": "slip_duration", "peak_torque": "peak_clutch_torque",
-                "peak_slip_speed": "peak_slip_speed", "slip_energy": "slip_energy"}
+# The cone clutch's outputs as the hoist names them (a drawn clutch's are the patterns filled in with its name).
+CLUTCH_NAMES = {"{name}_torque": "clutch_torque", "{name}_slip": "slip_speed", "{name}_locked": "clutch_locked",
+                "{name}_force": "engagement_force", "{name}_energy": "clutch_energy",
+                "{name}_capacity": "clutch_capacity", "{name}_mode": "clutch_mode",
+                "{name}_lockup_time": "lockup_time", "{name}_slip_duration": "slip_duration",
+                "{name}_peak_torque": "peak_clutch_torque", "{name}_peak_slip_speed": "peak_slip_speed",
+                "{name}_slip_energy": "slip_energy",
+                # its heating's
+                "{name}_overheat_time": "overheat_time", "{name}_temperature_peak": "temperature_peak",
+                "{name}_overheat": "overheat"}
 
 
-class TemplateShaftSpec(ShaftSpec):
+class TemplatePart(NamedTuple):
+    """A drawn part a hoist section stands for: its path in a drivetrain (``drivetrain.shafts.*``), what writes
+    it out from the section and the scenario, and the other sections that reads (its element's too)."""
+
+    path: str
+    as_drawn: object  # (section, scenario) -> the drawn part's spec (for a key within a part: the part)
+    reads: tuple = ()
+
+
+class TemplateNames(Section):
+    """Outputs the template names otherwise than the drawn part's patterns would (the hoist's names)."""
+
+    outputs_named: dict = Field(default_factory=dict, exclude=True)
+
+    def output_names(self) -> dict[str, str]:
+        return self.outputs_named
+
+
+class TemplateShaftSpec(TemplateNames, ShaftSpec):
     """A shaft the hoist's template draws (motor, pinion, drum): geared where the template says, its speed
     an output where the hoist's was, and its speed at the start no speed scale of the machine (the hoist's
     slip resolution has always come from its motor's speeds, or failing that all its bodies')."""
@@ -64,16 +91,22 @@ def drum_shaft_as_drawn(spec, scenario) -> TemplateShaftSpec:
                                              geared_to="pinion", ratio_to_root=ratio)
 
 
-class TemplateRotorSpec(FlywheelSpec):
-    """The drum's own inertia as the template keys it to the drum shaft: a rotor named drum."""
+def drum_ripple_as_drawn(spec, scenario) -> TemplateShaftSpec:
+    """The drum's resisting ripple: the drum shaft's (outputs resisting_ripple_torque, resisting_ripple_work)."""
+    return TemplateShaftSpec.model_construct(
+        name="drum", resisting_ripple=spec, outputs_named={
+            "{name}_resisting_ripple_torque": "resisting_ripple_torque",
+            "{name}_resisting_ripple_work": "resisting_ripple_work"})
 
-    def part_name(self) -> str:
-        return "drum"
+
+def drum_as_drawn(spec, scenario) -> RotorSpec:
+    """The drum's inertia: a rotor named drum keyed to the drum shaft (its diameter is the load's rope's)."""
+    return RotorSpec.model_construct(name="drum", shaft="drum", inertia=spec.inertia)
 
 
-def drum_as_drawn(spec, scenario) -> TemplateRotorSpec:
-    """The drum's inertia: a rotor keyed to the drum shaft (its diameter is the load's rope radius)."""
-    return TemplateRotorSpec.model_construct(shaft="drum", inertia=spec.inertia)
+def flywheel_as_drawn(spec, scenario) -> RotorSpec:
+    """The flywheel: a rotor keyed to the motor or the drum shaft."""
+    return RotorSpec.model_construct(name="flywheel", shaft=spec.shaft, inertia=spec.moment_of_inertia)
 
 
 class TemplateStageSpec(GearStageSpec):
@@ -98,42 +131,59 @@ def mesh_as_drawn(spec, scenario) -> TemplateStageSpec:
         backdrive_efficiency=spec.backdrive_efficiency)
 
 
-def motor_as_drawn(spec, scenario) -> ShaftMotorSpec:
+class TemplateMotorSpec(TemplateNames, ShaftMotorSpec):
+    """The hoist's motor as the template draws it."""
+
+
+def motor_as_drawn(spec, scenario) -> TemplateMotorSpec:
     """The hoist's ``motor:`` as the drivetrain's motor ``motor`` on the motor shaft (outputs motor_torque,
-    motor_work)."""
-    return ShaftMotorSpec.model_construct(**{name: getattr(spec, name) for name in type(spec).model_fields},
-                                          shaft="motor", name="motor")
+    motor_work; its ripple's ripple_torque, motor_ripple_work)."""
+    return TemplateMotorSpec.model_construct(**{name: getattr(spec, name) for name in type(spec).model_fields},
+                                             shaft="motor", name="motor",
+                                             outputs_named={"{name}_ripple_torque": "ripple_torque"})
 
 
-def load_as_drawn(spec, scenario) -> LoadOnShaftSpec:
-    """The hoist's ``load:`` on a rigid rope as the drivetrain's load, hanging from the drum shaft at half
-    the drum's diameter."""
-    return LoadOnShaftSpec.model_construct(mass=spec.mass, shaft="drum", rope_radius=0.5 * scenario.drum.diameter)
+def motor_ripple_as_drawn(spec, scenario) -> TemplateMotorSpec:
+    """The motor's ripple: the drawn motor's, which holds it."""
+    return motor_as_drawn(scenario.motor, scenario)
 
 
-class TemplateClutchSpec(FrictionClutchSpec):
+class TemplateLoadSpec(LoadOnShaftSpec):
+    """The hoist's load on the drum shaft: the drum turns at ``initial.drum_speed`` at the start."""
+
+    drum_speed_at_start: float = 0.0
+
+    def shaft_speed(self, scenario) -> float:
+        return self.drum_speed_at_start
+
+
+def load_as_drawn(spec, scenario) -> TemplateLoadSpec:
+    """The hoist's ``load:`` (with ``rope:``, ``ground:`` and the drum shaft's ``bearings:``) as the drivetrain's
+    load, hanging from the drum shaft at half the drum's diameter."""
+    gears, bearings = scenario.gears, scenario.bearings
+    return TemplateLoadSpec.model_construct(
+        mass=spec.mass, shaft="drum", rope_radius=0.5 * scenario.drum.diameter, rope=scenario.rope,
+        ground=scenario.ground, drum_speed_at_start=scenario.initial.drum_speed,
+        bearings=None if bearings is None else LoadBearingsSpec.model_construct(
+            gear_offset=bearings.gear_offset, rope_offset=bearings.rope_offset, span=bearings.span,
+            wheel_pitch_diameter=gears.module * gears.wheel_teeth, pressure_angle=gears.pressure_angle))
+
+
+class TemplateClutchSpec(TemplateNames, FrictionClutchSpec):
     """The hoist's cone clutch as the template draws it: a friction clutch from the motor shaft to the pinion
-    shaft, pressed by the engagement force, with its halves' inertias, its friction against the faces'
-    temperature where ``clutch_heating`` gives tables, and the hoist's names for its outputs."""
+    shaft, pressed by the engagement force, with its halves' inertias, its heating (``clutch_heating:``) and the
+    hoist's names for its outputs."""
 
     driving_inertia: float = 0.0
     driven_inertia: float = 0.0
-    friction_fade: dict | None = None
 
     def halves(self) -> tuple[float, float]:
         return self.driving_inertia, self.driven_inertia
 
-    def fade(self) -> dict | None:
-        return self.friction_fade
-
-    def output_names(self) -> dict[str, str]:
-        return CLUTCH_NAMES
-
 
 def clutch_as_drawn(spec, scenario) -> TemplateClutchSpec:
-    """The hoist's ``clutch:`` (and ``clutch_heating:``'s friction tables) as the drivetrain's clutch ``clutch``."""
+    """The hoist's ``clutch:`` (and ``clutch_heating:``) as the drivetrain's clutch ``clutch``."""
     table = spec.engagement_force
-    heating = scenario.clutch_heating
     cone = ConeSpec.model_construct(inner_radius=spec.inner_radius, outer_radius=spec.outer_radius,
                                     half_angle=spec.half_angle, mean_radius=spec.mean_radius)
     force = TimeSignal.model_construct(times=table.times, values=table.forces, amplitudes=(), frequencies=(),
@@ -141,21 +191,70 @@ def clutch_as_drawn(spec, scenario) -> TemplateClutchSpec:
     return TemplateClutchSpec.model_construct(
         name="clutch", between=("motor", "pinion"), static_friction=spec.static_friction,
         kinetic_friction=spec.kinetic_friction, surfaces=spec.surfaces, effective_radius=None, cone=cone, force=force,
-        driving_inertia=spec.driving_inertia, driven_inertia=spec.driven_inertia,
-        friction_fade=fade_tables(heating, spec) if heating is not None and heating.fades else None)
+        driving_inertia=spec.driving_inertia, driven_inertia=spec.driven_inertia, heating=scenario.clutch_heating,
+        outputs_named=CLUTCH_NAMES)
 
 
-def fade_tables(heating, spec) -> dict:
-    """The clutch's friction against temperature: clutch_heating's tables (a table not given is the clutch's
-    constant), both on the knots of either, which leaves each unchanged (linear between)."""
-    given = [table for table in (heating.static_friction, heating.kinetic_friction) if table is not None]
-    knots = np.asarray(sorted({row[0] for table in given for row in table}), float)
+def heating_as_drawn(spec, scenario) -> TemplateClutchSpec:
+    """``clutch_heating:``: the drawn clutch's heating (its element reads the heating and the clutch's names)."""
+    return TemplateClutchSpec.model_construct(name="clutch", heating=spec, outputs_named=CLUTCH_NAMES)
 
-    def on_knots(table, constant):
-        if table is None:
-            return np.full(knots.shape, float(constant))
-        temperatures, values = (np.asarray(column, float) for column in zip(*table))
-        return np.interp(knots, temperatures, values)
 
-    return {"temperatures": knots, "static": on_knots(heating.static_friction, spec.static_friction),
-            "kinetic": on_knots(heating.kinetic_friction, spec.kinetic_friction)}
+class TemplateSliderCrankSpec(TemplateNames, SliderCrankSpec):
+    """The hoist's slider-crank as the template draws it."""
+
+
+def slider_crank_as_drawn(spec, scenario) -> TemplateSliderCrankSpec:
+    """``reciprocating:``: a slider-crank named reciprocating on the motor shaft (outputs slider_position,
+    reciprocating_inertia)."""
+    return TemplateSliderCrankSpec.model_construct(name="reciprocating", shaft="motor", mass=spec.mass,
+                                           crank_radius=spec.crank_radius, rod_length=spec.rod_length,
+                                           outputs_named={"{name}_position": "slider_position"})
+
+
+def brake_as_drawn(spec, scenario) -> BrakeOnShaftSpec:
+    """``brake:``: a brake named brake on the drum shaft."""
+    return BrakeOnShaftSpec.model_construct(**{name: getattr(spec, name) for name in type(spec).model_fields},
+                                            name="brake", shaft="drum")
+
+
+def ratchet_as_drawn(spec, scenario) -> RatchetOnShaftSpec:
+    """``ratchet:``: a pawl named ratchet on the drum shaft."""
+    return RatchetOnShaftSpec.model_construct(release_time=spec.release_time, name="ratchet", shaft="drum")
+
+
+def the_load(spec, scenario) -> TemplateLoadSpec:
+    """A section of the load's (its rope, the ground, the drum shaft's bearings): the drawn load, which holds it."""
+    return load_as_drawn(scenario.load, scenario)
+
+
+def as_it_is(spec, scenario):
+    """A section that is no part of the machine but an analysis of its run (the periodic regime)."""
+    return spec
+
+
+_LOAD_READS = ("drum", "gears", "rope", "ground", "bearings", "initial", "gravity")  # and the load's, for its parts
+
+# Each hoist section (dotted within another) -> the drawn parts it stands for, in the order of the machine's
+# bodies, states and columns.
+TEMPLATE: dict[str, tuple[TemplatePart, ...]] = {
+    "motor": (TemplatePart("drivetrain.shafts.*", motor_shaft_as_drawn, ("initial",)),
+              TemplatePart("drivetrain.motors.*", motor_as_drawn)),
+    "motor.ripple": (TemplatePart("drivetrain.motors.*.ripple", motor_ripple_as_drawn, ("motor",)),),
+    "gears": (TemplatePart("drivetrain.shafts.*", pinion_shaft_as_drawn, ("initial",)),
+              TemplatePart("drivetrain.shafts.*", drum_shaft_as_drawn, ("initial",))),
+    "gears.mesh": (TemplatePart("drivetrain.gears.*.mesh", mesh_as_drawn),),
+    "clutch": (TemplatePart("drivetrain.clutches.*", clutch_as_drawn, ("clutch_heating",)),),
+    "clutch_heating": (TemplatePart("drivetrain.clutches.*.heating", heating_as_drawn),),
+    "drum": (TemplatePart("drivetrain.rotors.*", drum_as_drawn),),
+    "drum.resisting_ripple": (TemplatePart("drivetrain.shafts.*.resisting_ripple", drum_ripple_as_drawn),),
+    "load": (TemplatePart("drivetrain.load", load_as_drawn, _LOAD_READS),),
+    "rope": (TemplatePart("drivetrain.load.rope", the_load, ("load", *_LOAD_READS)),),
+    "ground": (TemplatePart("drivetrain.load.ground", the_load, ("load", *_LOAD_READS)),),
+    "flywheel": (TemplatePart("drivetrain.rotors.*", flywheel_as_drawn),),
+    "reciprocating": (TemplatePart("drivetrain.slider_cranks.*", slider_crank_as_drawn),),
+    "brake": (TemplatePart("drivetrain.brakes.*", brake_as_drawn),),
+    "ratchet": (TemplatePart("drivetrain.ratchets.*", ratchet_as_drawn),),
+    "bearings": (TemplatePart("drivetrain.load.bearings", the_load, ("load", *_LOAD_READS)),),
+    "periodic_regime": (TemplatePart("periodic_regime", as_it_is, ("motor", "drum", "gears", "reciprocating")),),
+}

@@ -10,16 +10,17 @@ import json
 import math
 from typing import Any, Literal
 
-import numpy as np
 from pydantic import PrivateAttr, model_validator
 
 from ..errors import ScenarioError
-from . import tables
 from . import units as u
 from .schema_base import Section
 from .schema_clutch import ConeSpec, FrictionSpec
-from .schema_drivetrain import DrivetrainSpec, LoadSpec, MeshSpec
+from .schema_drivetrain import DrivetrainSpec, MeshSpec
+from .schema_load import LoadSpec
 from .schema_motor import MotorSpec, RippleSpec
+from .schema_parts import (BearingsSpec, BrakeSpec, ClutchHeatingSpec, FlywheelSpec, RatchetSpec,
+                           ReciprocatingSpec, kinetic_within_static)
 from .schema_rope import GroundSpec, RopeSpec
 from .provenance import Provenance
 from .tables import EngagementForce
@@ -87,124 +88,14 @@ class InitialSpec(Section):
         return self
 
 
-class FlywheelSpec(Section):
-    shaft: Literal["motor", "drum"] = "motor"
-    inertia: u.quantity(u.INERTIA, ge=0.0) | None = None
-    # or a rim: I = pi * density * width * (R_outer^4 - R_inner^4) / 2
-    density: u.quantity(u.DENSITY, gt=0.0) | None = None
-    outer_diameter: u.quantity(u.LENGTH, gt=0.0) | None = None
-    inner_diameter: u.quantity(u.LENGTH, ge=0.0) | None = None
-    width: u.quantity(u.LENGTH, gt=0.0) | None = None
-
-    @model_validator(mode="after")
-    def _inertia_or_rim(self):
-        rim = self._one_value_or_group(
-            "flywheel", "inertia", ("density", "outer_diameter", "inner_diameter", "width"),
-            both="inertia or a rim (density, outer_diameter, inner_diameter, width)",
-            required="the flywheel's inertia, or a rim's density, outer_diameter, inner_diameter and width")
-        if rim and self.inner_diameter >= self.outer_diameter:
-            raise ScenarioError("flywheel.inner_diameter", f"must be less than outer_diameter "
-                                f"({self.outer_diameter:g} m), got {self.inner_diameter:g} m")
-        return self
-
-    def part_name(self) -> str:
-        """What the machine calls it."""
-        return "flywheel"
-
-    @property
-    def moment_of_inertia(self) -> float:
-        """kg*m^2: as given, or the rim's pi rho s (R_o^4 - R_i^4) / 2."""
-        if self.inertia is not None:
-            return self.inertia
-        outer, inner = 0.5 * self.outer_diameter, 0.5 * self.inner_diameter
-        return math.pi * self.density * self.width * (outer**4 - inner**4) / 2.0
-
-
-class ReciprocatingSpec(Section):
-    """A slider-crank on the motor shaft: its reciprocating mass has an inertia that varies with angle."""
-
-    mass: u.quantity(u.MASS, gt=0.0)
-    crank_radius: u.quantity(u.LENGTH, gt=0.0)
-    rod_length: u.quantity(u.LENGTH, gt=0.0)
-
-    @model_validator(mode="after")
-    def _rod_longer_than_crank(self):
-        if self.rod_length <= self.crank_radius:
-            raise ScenarioError(".rod_length", f"must be longer than the crank ({self.crank_radius:g} m), "
-                                f"got {self.rod_length:g} m: the rod could not follow the crank")
-        return self
 
 
 class PeriodicSpec(Section):
     periods: u.whole("periods") = 5  # analysed once the regime has settled
 
 
-class BrakeSpec(Section):
-    release_time: u.quantity(u.TIME, ge=0.0)  # the brake frees the drum at this time
-    static_torque: u.quantity(u.TORQUE, gt=0.0) | None = None  # the most it holds, at the drum (absent: any)
-    kinetic_torque: u.quantity(u.TORQUE, ge=0.0) | None = None  # what it passes slipping (default: static)
-    apply_time: u.quantity(u.TIME, ge=0.0) | None = None  # it closes again at this time
-
-    @model_validator(mode="after")
-    def _consistent(self):
-        if self.kinetic_torque is not None and self.static_torque is None:
-            raise ScenarioError("brake.kinetic_torque", "needs static_torque (a brake without it holds any torque "
-                                "and never slips)")
-        if self.kinetic_torque is not None and self.kinetic_torque > self.static_torque:
-            raise ScenarioError("brake.kinetic_torque", f"must not exceed static_torque ({self.static_torque:g} "
-                                f"N*m), got {self.kinetic_torque:g} N*m")
-        if self.apply_time is not None and self.apply_time <= self.release_time:
-            raise ScenarioError("brake.apply_time", f"must be after release_time ({self.release_time:g} s), "
-                                f"got {self.apply_time:g} s")
-        if self.apply_time is not None and self.static_torque is None:
-            raise ScenarioError("brake.apply_time", "needs static_torque: a brake that holds any torque would "
-                                "stop a turning drum dead")
-        return self
-
-    @property
-    def characteristic(self) -> str:
-        """Which variant: ``holding`` (any torque, never slips) or ``friction`` (slips above static_torque)."""
-        return "holding" if self.static_torque is None else "friction"
 
 
-class RatchetSpec(Section):
-    release_time: u.quantity(u.TIME, ge=0.0) | None = None  # the pawl is lifted at this time (absent: never)
-
-
-class ClutchHeatingSpec(Section):
-    """The clutch's friction surfaces as one lump of heat: C dT/dt = slip power - G (T - T_ambient)."""
-
-    heat_capacity: u.quantity(u.HEAT_CAPACITY, gt=0.0)
-    cooling: u.quantity(u.CONDUCTANCE, " (the conductance to ambient)", ge=0.0)
-    ambient_temperature: u.quantity(u.TEMPERATURE, gt=0.0)
-    initial_temperature: u.quantity(u.TEMPERATURE, gt=0.0) | None = None  # ambient
-    # friction against temperature, replacing clutch.static_friction / kinetic_friction where given
-    static_friction: tables.StaticFrictionTable | None = None
-    kinetic_friction: tables.KineticFrictionTable | None = None
-    max_temperature: u.quantity(u.TEMPERATURE, gt=0.0) | None = None  # overheat event
-
-    @property
-    def start_temperature(self) -> float:
-        return self.ambient_temperature if self.initial_temperature is None else self.initial_temperature
-
-    @property
-    def fades(self) -> bool:
-        """Whether friction depends on temperature (a table is given)."""
-        return self.static_friction is not None or self.kinetic_friction is not None
-
-    @model_validator(mode="after")
-    def _limit_above_start(self):
-        if self.max_temperature is not None and self.max_temperature <= self.start_temperature:
-            raise ScenarioError("clutch_heating.max_temperature", f"must be above the initial temperature "
-                                f"({u.show(self.start_temperature, u.TEMPERATURE)}), got "
-                                f"{u.show(self.max_temperature, u.TEMPERATURE)}")
-        return self
-
-
-class BearingsSpec(Section):
-    gear_offset: u.quantity(u.LENGTH, gt=0.0)  # a: bearing A to the gear, away from B
-    rope_offset: u.quantity(u.LENGTH, gt=0.0)  # bearing A to the rope, towards B
-    span: u.quantity(u.LENGTH, gt=0.0)  # bearing A to bearing B
 
 
 class SimulationSpec(Section):
@@ -314,20 +205,9 @@ class Scenario(Section):
 
     @model_validator(mode="after")
     def _kinetic_within_static_when_hot(self):
-        heating = self.clutch_heating
-        if heating is None or not heating.fades:
-            return self
-        static = heating.static_friction or ((0.0, self.clutch.static_friction),)
-        kinetic = heating.kinetic_friction or ((0.0, self.clutch.kinetic_friction),)
-        # both piecewise linear, flat beyond their ends: compared at every knot of either, compared everywhere
-        given = (heating.static_friction or ()) + (heating.kinetic_friction or ())
-        for temperature in sorted({row[0] for row in given}):
-            mu_s, mu_k = (float(np.interp(temperature, *zip(*table))) for table in (static, kinetic))
-            if mu_k > mu_s:
-                # the table that says it: the kinetic one, or the static one that falls below the constant
-                key = f"clutch_heating.{'kinetic' if heating.kinetic_friction else 'static'}_friction"
-                raise ScenarioError(key, f"the kinetic friction {mu_k:g} is above the static friction {mu_s:g} at "
-                                    f"{u.show(temperature, u.TEMPERATURE)}; it must not exceed it at any temperature")
+        if self.clutch_heating is not None:
+            kinetic_within_static(self.clutch_heating, self.clutch.static_friction, self.clutch.kinetic_friction,
+                                  "clutch_heating")
         return self
 
     @model_validator(mode="after")

@@ -19,7 +19,11 @@ from ..errors import ScenarioError
 from . import units as u
 from .schema_base import Section
 from .schema_clutch import ConeSpec, FrictionSpec
-from .schema_motor import MotorSpec
+from .schema_motor import MotorSpec, RippleSpec
+from .schema_parts import ClutchHeatingSpec, fade_tables, kinetic_within_static
+from .schema_load import LoadOnShaftSpec
+from .schema_shaft_parts import (SHAFT_PARTS, BrakeOnShaftSpec, OnShaft, RatchetOnShaftSpec, RotorSpec,
+                                 SliderCrankSpec, check_shaft_parts)
 from .signals import signal
 from .units import Text
 
@@ -27,9 +31,10 @@ GROUND = "ground"  # the other side of a clutch that is a brake
 _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 
 
-class ShaftSpec(Section):
+class ShaftSpec(OnShaft, Section):
     inertia: u.quantity(u.INERTIA, ge=0.0)  # zero: only with something of inertia tied to it
     speed: u.quantity(u.ANGULAR_SPEED) = 0.0  # at t = 0
+    resisting_ripple: RippleSpec | None = None  # a torque resisting its turning, periodic in its angle
     name: str = Field("", exclude=True)  # its key in drivetrain.shafts (set there, never written)
 
     def train(self, scenario) -> tuple:
@@ -54,15 +59,23 @@ class TorqueSpec(Section):
     name: str = Field("", exclude=True)  # torque1, torque2, ... in the order of drivetrain.torques (set there)
 
 
-class FrictionClutchSpec(FrictionSpec):
+class FrictionClutchSpec(OnShaft, FrictionSpec):
     """Faces (static_friction, kinetic_friction, surfaces: :class:`.schema_clutch.FrictionSpec`) on a lever: an
-    effective radius, or a cone's, pressed by a force that is a time signal."""
+    effective radius, or a cone's, pressed by a force that is a time signal; their heat, where ``heating`` is
+    given, a lump with its temperature (the friction against it, where it gives tables)."""
 
     between: tuple[Text, Text]  # [shaft a, shaft b or ground]: its torque passes from a to b
     effective_radius: u.quantity(u.LENGTH, gt=0.0) | None = None  # or a cone's, from its geometry
     cone: ConeSpec | None = None
     force: signal(u.FORCE)  # N pressing the faces; at or below zero the clutch is open
+    heating: ClutchHeatingSpec | None = None
     name: str = Field("", exclude=True)  # its key in drivetrain.clutches (set there, never written)
+
+    @model_validator(mode="after")
+    def _kinetic_within_static_when_hot(self):
+        if self.heating is not None:
+            kinetic_within_static(self.heating, self.static_friction, self.kinetic_friction, ".heating")
+        return self
 
     @property
     def torque_per_newton(self) -> float:
@@ -77,11 +90,8 @@ class FrictionClutchSpec(FrictionSpec):
 
     def fade(self) -> dict | None:
         """Its friction against its faces' temperature (tables on common knots), None for constant friction."""
-        return None
-
-    def output_names(self) -> dict[str, str]:
-        """Its outputs' names by their role where they are not ``<name>_<role>`` (a template's)."""
-        return {}
+        heating = self.heating
+        return fade_tables(heating, self) if heating is not None and heating.fades else None
 
 
 class MeshSpec(Section):
@@ -136,24 +146,12 @@ class GearStageSpec(MeshSpec):
         return self
 
 
-class ShaftMotorSpec(MotorSpec):
-    """A motor on a shaft: the hoist motor's characteristics and inertia (the rotor turns with the shaft)."""
+class ShaftMotorSpec(OnShaft, MotorSpec):
+    """A motor on a shaft: the hoist motor's characteristics and inertia (the rotor turns with the shaft), and
+    its torque's ripple, periodic in the shaft's angle."""
 
     shaft: Text
     name: str = Field("", exclude=True)  # its key in drivetrain.motors (set there, never written)
-
-
-class LoadSpec(Section):
-    """A load hanging on a rope: the hoist's (``load:``, from its drum), and a drawn drivetrain's."""
-
-    mass: u.quantity(u.MASS, ge=0.0)
-
-
-class LoadOnShaftSpec(LoadSpec):
-    """A load hanging from a drawn drivetrain's shaft, its rope wound at a radius."""
-
-    shaft: Text  # the drum's shaft
-    rope_radius: u.quantity(u.LENGTH, gt=0.0)  # half the drum's diameter
 
 
 class DrivetrainSpec(Section):
@@ -162,6 +160,10 @@ class DrivetrainSpec(Section):
     clutches: dict[str, FrictionClutchSpec] = {}
     gears: dict[str, GearStageSpec] = {}
     motors: dict[str, ShaftMotorSpec] = {}
+    rotors: dict[str, RotorSpec] = {}
+    slider_cranks: dict[str, SliderCrankSpec] = {}
+    brakes: dict[str, BrakeOnShaftSpec] = {}
+    ratchets: dict[str, RatchetOnShaftSpec] = {}
     load: LoadOnShaftSpec | None = None
 
     @model_validator(mode="before")
@@ -172,7 +174,7 @@ class DrivetrainSpec(Section):
         if not isinstance(data, dict):
             return data
         data = dict(data)
-        for kind in ("shafts", "clutches", "gears", "motors"):
+        for kind in ("shafts", "clutches", "gears", "motors", *SHAFT_PARTS):
             parts = data.get(kind)
             if not isinstance(parts, dict):
                 continue
@@ -228,32 +230,45 @@ class DrivetrainSpec(Section):
             if stage.lossy:
                 beyond_stage(self, name)  # a lossy stage in a loop of stages is refused there
         self._speeds_agree(groups)
+        speeds = {name: self.shafts[root].speed * ratio for name, (root, ratio) in groups.items()}
+        check_shaft_parts(self, speeds)
+        self._load_may_start(speeds)
         self._every_body_has_inertia(groups)
         return self
+
+    def _load_may_start(self, speeds):
+        load = self.load
+        if load is not None and load.bearings is not None and not any(
+                stage.between[1] == load.shaft for stage in self.gears.values()):
+            raise ScenarioError("drivetrain.load.bearings", f"are the bearings of a shaft a gear's wheel drives: "
+                                f"no gear stage has shaft {load.shaft!r} (the load's) as its output")
+        if load is not None and load.ground is not None and load.rope is None and speeds[load.shaft] != 0.0:
+            raise ScenarioError(f"drivetrain.shafts.{load.shaft}.speed", "the load rests on the ground "
+                                "(drivetrain.load.ground) on a rigid rope, so its shaft must start at rest (an "
+                                "elastic rope may start slack or unloaded on a turning shaft)")
 
     def _parts_named(self):
         seen = {name: "shafts" for name in self.shafts} | {name: "clutches" for name in self.clutches}
         known = ", ".join(self.shafts)
-        for kind, parts in (("gears", self.gears), ("motors", self.motors)):
+        for kind, parts in (("gears", self.gears), ("motors", self.motors),
+                            *((kind, getattr(self, kind)) for kind in SHAFT_PARTS)):
             for name, part in parts.items():
-                # a motor may be named after its own shaft (motor on motor: motor_speed, motor_torque)
-                clash = name in seen and not (kind == "motors" and name == part.shaft and seen[name] == "shafts")
+                # a motor or a rotor may be named after its own shaft (motor on motor: motor_speed, motor_torque)
+                clash = name in seen and not (kind in ("motors", "rotors") and name == part.shaft
+                                              and seen[name] == "shafts")
                 if not _NAME.match(name) or name == GROUND or clash:
                     raise ScenarioError(f"drivetrain.{kind}.{name}", "a name is a word of letters, digits and "
                                         f"underscores starting with a letter, not {GROUND!r} and not the name of "
                                         "another part (they name the outputs)")
                 seen[name] = kind
                 shafts = part.between if kind == "gears" else (part.shaft,)
-                for shaft in shafts:
+                for shaft in shafts if kind in ("gears", "motors") else ():  # the others': check_shaft_parts
                     if shaft not in self.shafts:
                         where = "between" if kind == "gears" else "shaft"
                         raise ScenarioError(f"drivetrain.{kind}.{name}.{where}", f"there is no shaft {shaft!r} "
                                             f"(shafts: {known})")
                 if kind == "gears" and shafts[0] == shafts[1]:
                     raise ScenarioError(f"drivetrain.gears.{name}.between", f"gears shaft {shafts[0]!r} to itself")
-                if kind == "motors" and part.ripple is not None:
-                    raise ScenarioError(f"drivetrain.motors.{name}.ripple", "a drawn drivetrain's motor has no "
-                                        "ripple (the hoist's motor section has)")
         if self.load is not None and self.load.shaft not in self.shafts:
             raise ScenarioError("drivetrain.load.shaft", f"there is no shaft {self.load.shaft!r} (shafts: {known})")
 
@@ -273,6 +288,9 @@ class DrivetrainSpec(Section):
         for motor in self.motors.values():
             root, ratio = groups[motor.shaft]
             inertia[root] += motor.moment_of_inertia * ratio**2
+        for rotor in self.rotors.values():
+            root, ratio = groups[rotor.shaft]
+            inertia[root] += rotor.moment_of_inertia * ratio**2
         if self.load is not None:
             root, ratio = groups[self.load.shaft]
             inertia[root] += self.load.mass * self.load.rope_radius**2 * ratio**2

@@ -24,7 +24,7 @@ from hoistsim import scenario_from_dict, simulate
 from hoistsim.machine.assemble import build_plan, loop_sizes
 from hoistsim.machine.core.element import AbstractCoupling, AbstractElement, abstract_methods
 from hoistsim.machine.core.loop import OK, compiled_run
-from hoistsim.machine.elements import REGISTRY, element_sections, elements_for
+from hoistsim.machine.elements import REGISTRY, Drawn, element_sections, elements_for
 
 TIGHT = {"rtol": 1e-10, "atol": 1e-12}
 # A start that slips, locks, and lifts: every mode of the clutch and a moving drum.
@@ -254,10 +254,9 @@ def test_every_registered_element_is_built_from_its_section_and_the_scenario():
 
 
 def registered_classes() -> list:
-    """The element class of every registry entry (a section a template draws: the drawn part's)."""
-    entries = [c for entry in REGISTRY.values() for c in (entry.values() if isinstance(entry, dict) else [entry])]
-    return list(dict.fromkeys(getattr(one, "element", one) for entry in entries
-                              for one in (entry if isinstance(entry, tuple) else (entry,))))
+    """The element class of every registry entry (a part with variants: each variant's)."""
+    return list(dict.fromkeys(c for entry in REGISTRY.values()
+                              for c in (entry.values() if isinstance(entry, dict) else [entry])))
 
 
 class _Reading:
@@ -281,15 +280,24 @@ def test_a_part_the_template_draws_is_built_again_whenever_what_it_reads_is_anot
     lossy = {"efficiency": 0.95}
     heating = {"heat_capacity": "2.4 kJ/K", "cooling": "20 W/K", "ambient_temperature": "25 degC",
                "static_friction": [["25 degC", 0.3], ["300 degC", 0.22]]}
-    scenes = [_scene(), _scene(gears=lossy, clutch_heating=heating, initial={"motor_speed": "100 rpm"})]
+    ripple = {"period": "360 deg", "harmonics": [{"order": 1, "amplitude": "5 N*m"}]}
+    scenes = [_scene(), _scene(gears=lossy, clutch_heating=heating, initial={"motor_speed": "100 rpm"}),
+              # every other hoist section the template draws
+              _scene(motor={"ripple": ripple}, drum={"resisting_ripple": ripple}, flywheel={"inertia": "1 kg*m^2"},
+                     reciprocating={"mass": "2 kg", "crank_radius": "0.1 m", "rod_length": "0.4 m"},
+                     brake={"release_time": "0.1 s", "static_torque": "900 N*m"}, ratchet={},
+                     rope={"stiffness": "2 MN/m"}, ground={"hoisting_class": "HC2"},
+                     bearings={"gear_offset": "0.1 m", "rope_offset": "0.3 m", "span": "0.8 m"})]
+    drawn = 0
     for scenario in scenes:
         for section, spec, entry in element_sections(scenario):
-            if not hasattr(entry, "as_drawn"):
-                continue
+            assert isinstance(entry, Drawn), section  # a hoist's every part is a drawn part
             _LAST_BUILT.clear()
             read: set = set()
             entry.from_spec(spec, _Reading(scenario, read))
-            assert read <= set(entry.reads), (section, entry.as_drawn.__name__, read)
+            assert read <= set(entry.part.reads), (section, entry.part.as_drawn.__name__, read)
+            drawn += 1
+    assert drawn >= 25
     # a section read, and the part built from another of it: another part, never the last one again
     base = scenes[0]
     (shaft,) = [e for e in elements_for(base) if e.section == "motor" and hasattr(e, "scaled")]

@@ -139,4 +139,4 @@ def apply_event(plan, segment, c, t, y, masks: dict, hit, coinciding: dict,
         candidates[k] = candidates[k] | together
     # decided where the next pass starts, with the boundary's decision (one static check a step)
     return eqx.tree_at(lambda k: (k.pending, k.pending_modes, k.pending_candidates), c,
-                       (hit, modes.astype(c.modes.dtype), jnp.stack(candidates)))
+                       (hit, modes.astype(c.modes.dtype), jnp.stack(candidates) if candidates else c.pending_candidates))

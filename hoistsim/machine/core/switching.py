@@ -186,7 +186,10 @@ def guards(layout: Layout) -> list[tuple[str, GuardId, object]]:
                 return jnp.where(at.args.kinking, u - jnp.ceil(at.args.anchors[anchor] - KNOT_RESOLUTION) + 1.0, 1.0)
             to_ahead, to_behind = knot_guards(element.section, kink)
             kinks += [("kink", to_ahead, ahead), ("kink", to_behind, behind)]
-    return switch + limit + observe + valley + kinks
+    every = switch + limit + observe + valley + kinks
+    # a machine with nothing to watch (a free rotor) still has a guard: one that never falls, so a pass
+    # runs to its segment's end as any other
+    return every or [("valley", GuardId(layout.sections[0], "nothing"), lambda at: jnp.ones(()))]
 
 
 @jax.jit

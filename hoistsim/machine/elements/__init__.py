@@ -3,17 +3,17 @@
 A scenario section that is present builds its element (or elements); a section that is
 absent builds nothing, so the scene has none of its bodies, states, terms,
 guards or columns.  Variants of a section (the load on a rigid or an elastic rope) are
-alternatives picked by the keys given, each in its own file.  A hoist section that the hoist's
-template writes out as a drawn drivetrain's part (:class:`Drawn`) builds that part's element.
+alternatives picked by the keys given, each in its own file.  The hoist's sections are the drawn
+drivetrain's parts its template writes out (:class:`Drawn`): one element class for a part, in either form.
 """
 
 from __future__ import annotations
 
 from ..core.element import AbstractCoupling as AbstractCoupling
 from ..core.element import AbstractElement as AbstractElement
-from ...scenario.hoist_template import (clutch_as_drawn, drum_as_drawn, drum_shaft_as_drawn, load_as_drawn,
-                                        mesh_as_drawn, motor_as_drawn, motor_shaft_as_drawn, pinion_shaft_as_drawn)
+from ...scenario.hoist_template import TEMPLATE
 from ._drawn import Drawn as Drawn
+from ._drawn import element_of, within_part
 from .bearings import DrumShaftLoads as DrumShaftLoads
 from .clutch_heating import ClutchHeating as ClutchHeating
 from .constant_torque_motor import ConstantTorqueMotor as ConstantTorqueMotor
@@ -38,63 +38,50 @@ from .shaft_torque import ShaftTorque as ShaftTorque
 from .slider_crank import SliderCrank as SliderCrank
 from .wire_rope import WireRope as WireRope
 
-# Scenario section (dotted within another) -> its element, the variant's name -> element for a section
-# with variants, or a tuple of them for a section that builds several.
-# The order is the order of bodies, states and output columns.
+# A drawn drivetrain's part (each part of a kind: "*"; a key within a part: dotted after it) -> its element, or the
+# variant's name -> element for a part with variants (its spec's ``characteristic``).  A key within a part (a
+# motor's ripple) is built from the part that holds it.  The order is the order of bodies, states and output
+# columns of a drawn drivetrain (the hoist's is its template's: :data:`TEMPLATE`).
 REGISTRY: dict[str, object] = {
-    # the motor shaft and the motor on it, drawn by the template
-    "motor": (Drawn(Shaft, motor_shaft_as_drawn, ("initial",)), Drawn(Motor, motor_as_drawn)),
-    "motor.ripple": MotorRipple,
-    # the pinion shaft (a body) and the drum shaft geared to it, drawn by the template
-    "gears": (Drawn(Shaft, pinion_shaft_as_drawn, ("initial",)), Drawn(Shaft, drum_shaft_as_drawn, ("initial",))),
-    # a lossy mesh's friction: scenario.gears.mesh, given with an efficiency
-    "gears.mesh": Drawn(MeshFriction, mesh_as_drawn),
-    "clutch": Drawn(FrictionClutch, clutch_as_drawn, ("clutch_heating",)),  # the cone clutch: a friction clutch, drawn by the template
-    "clutch_heating": ClutchHeating,
-    "drum": Drawn(Flywheel, drum_as_drawn),  # the drum's own inertia, a rotor on the drum shaft
-    "drum.resisting_ripple": ResistingRipple,
-    "load": {"rigid": Drawn(RigidLoad, load_as_drawn, ("drum", "gravity")), "elastic": ElasticLoad},  # on a rigid rope, or a body of its own on rope:
-    "rope": {"stiffness": Rope, "modulus": WireRope},
-    "ground": Ground,
-    "flywheel": Flywheel,
-    "reciprocating": SliderCrank,
-    "brake": {"holding": HoldingBrake, "friction": FrictionBrake},
-    "ratchet": Ratchet,
-    "bearings": DrumShaftLoads,
-    "periodic_regime": PeriodicRegime,  # scenario.periodic_regime: given, or implied by a ripple
-    # a machine drawn as shafts and couplings (instead of the hoist's sections): each part of a kind ("*")
     "drivetrain.shafts.*": Shaft,
+    "drivetrain.shafts.*.resisting_ripple": ResistingRipple,
+    "drivetrain.rotors.*": Flywheel,
+    "drivetrain.slider_cranks.*": SliderCrank,
     "drivetrain.motors.*": Motor,
+    "drivetrain.motors.*.ripple": MotorRipple,
     "drivetrain.torques.*": ShaftTorque,
     "drivetrain.clutches.*": FrictionClutch,
+    "drivetrain.clutches.*.heating": ClutchHeating,
     "drivetrain.gears.*.mesh": MeshFriction,  # a lossy stage's mesh
-    "drivetrain.load": RigidLoad,
+    "drivetrain.load": {"rigid": RigidLoad, "elastic": ElasticLoad},  # on a rigid rope, or a body on its rope
+    "drivetrain.load.rope": {"stiffness": Rope, "modulus": WireRope},
+    "drivetrain.load.ground": Ground,
+    "drivetrain.brakes.*": {"holding": HoldingBrake, "friction": FrictionBrake},
+    "drivetrain.ratchets.*": Ratchet,
+    "drivetrain.load.bearings": DrumShaftLoads,
+    "periodic_regime": PeriodicRegime,  # an analysis of the hoist's run: given, or implied by a ripple
 }
 
 
-def _variant(section: str, spec, scenario) -> str:
-    """The variant of a section with variants: its spec's ``characteristic``, or for the load, whether
-    the scene gives it a rope of its own."""
-    if section == "load":
-        return "rigid" if scenario.rope is None else "elastic"
-    return spec.characteristic
-
-
-def element_sections(scenario) -> list[tuple[str, object, type]]:
-    """(section, its spec, what builds the element) for each element the scenario's sections build, in
-    registry order (a section that builds several: a row each; a drawn part: its own section, named)."""
+def element_sections(scenario) -> list[tuple[str, object, object]]:
+    """(section, its spec, what builds the element) for each element the scenario builds, in order: a drawn
+    drivetrain's parts in registry order; a hoist's sections in its template's order, each a :class:`Drawn`
+    part (a section that stands for several parts: a row each)."""
+    if scenario.drivetrain is None:
+        return [(section, spec, drawn) for section, parts, drawn in _TEMPLATE_PARTS
+                if (spec := _section(scenario, parts)) is not None]
     out = []
     for path, parts, entry in _PATHS:
-        for section, spec in _parts_of(scenario, parts) if "*" in parts else ((path, _section(scenario, parts)),):
-            if spec is None:
-                continue
-            for one in entry if isinstance(entry, tuple) else (entry,):
-                out.append((section, spec, one[_variant(section, spec, scenario)] if isinstance(one, dict) else one))
+        for section, spec, held in _parts_of(scenario, parts):
+            out.append((section, spec, element_of(entry, held)))
     return out
 
 
 # each registry path split once: (path, its parts, its entry)
 _PATHS = [(path, tuple(path.split(".")), entry) for path, entry in REGISTRY.items()]
+# each hoist section's drawn parts: (section, its path split, the part)
+_TEMPLATE_PARTS = [(section, tuple(section.split(".")), Drawn(part, REGISTRY[part.path]))
+                   for section, parts in TEMPLATE.items() for part in parts]
 
 
 def _section(holder, parts: tuple):
@@ -107,19 +94,23 @@ def _section(holder, parts: tuple):
 
 
 def _parts_of(scenario, parts: tuple) -> list:
-    """(dotted section, its spec) of each part a path with ``*`` names: drivetrain.clutches.* gives
-    drivetrain.clutches.<name> for each clutch, drivetrain.torques.* drivetrain.torques.<index>."""
-    found = [("", scenario)]
+    """(dotted section, the spec that builds it, the part itself) of each part a registry path names:
+    drivetrain.clutches.* gives drivetrain.clutches.<name> for each clutch, drivetrain.torques.*
+    drivetrain.torques.<index>.  A key within a part (drivetrain.motors.*.ripple, drivetrain.load.rope) is
+    built from the part that holds it (its element reads its keys there), where it is given."""
+    found = [("", scenario, None)]
     for part in parts:
         if part == "*":
-            found = [(f"{where}.{key}", member) for where, holder in found
+            found = [(f"{where}.{key}", member, holder) for where, holder, _ in found
                      for key, member in (holder.items() if isinstance(holder, dict) else enumerate(holder))]
         else:
-            found = [(f"{where}.{part}" if where else part, getattr(holder, part, None)) for where, holder in found]
-            found = [(where, holder) for where, holder in found if holder is not None]
-    return found
+            found = [(f"{where}.{part}" if where else part, getattr(holder, part, None), holder)
+                     for where, holder, _ in found]
+            found = [(where, member, holder) for where, member, holder in found if member is not None]
+    within = within_part(parts)
+    return [(where, holder if within else member, member) for where, member, holder in found]
 
 
 def elements_for(scenario) -> tuple[AbstractElement, ...]:
-    """The elements a scenario names, built from their sections, in registry order."""
+    """The elements a scenario names, built from their sections, in order."""
     return tuple(cls.from_spec(spec, scenario) for _, spec, cls in element_sections(scenario))

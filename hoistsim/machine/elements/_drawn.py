@@ -1,35 +1,54 @@
-"""A hoist section built as a drawn drivetrain's part: one element class for a part, in either form."""
+"""A hoist section built as the drawn drivetrain's part its template writes out: one element class for a part,
+in either form."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # each part its own key of the cache
 class Drawn:
-    """The registry's entry for a hoist section that the hoist's template writes out as a drawn part
-    (:mod:`hoistsim.scenario.hoist_template`): ``as_drawn(spec, scenario)`` gives the part's spec, from which
-    ``element`` builds as it does for a drawn drivetrain.
+    """A hoist section's drawn part (:class:`hoistsim.scenario.hoist_template.TemplatePart`): its template writes
+    out the part's spec, from which the registry's ``entry`` for its path builds the element as it does for a
+    drawn drivetrain (a key within a part, its rope or its ripple: from the part that holds it).
 
-    ``reads``: what else of the scenario the two read (its sections by name).  The runs of a sweep share
-    every section they do not sweep (the same objects), so the element last built here serves again while its
-    section and what it reads are the very objects it was built from: a run's plan is not paid for a part
-    that is the same in every run.  tests/machine/test_elements.py holds ``reads`` to what they read.
+    The runs of a sweep share every section they do not sweep (the same objects), so the element last built
+    here serves again while its section and what the part ``reads`` are the very objects it was built from: a
+    run's plan is not paid for a part that is the same in every run.  tests/machine/test_elements.py holds
+    ``reads`` to what the template and the element read.
     """
 
-    element: type
-    as_drawn: Callable
-    reads: tuple[str, ...] = ()
+    part: object  # TemplatePart
+    entry: object  # the registry's: an element class, or the variant's name -> class
 
     def from_spec(self, spec, scenario):
-        read = tuple(getattr(scenario, name) for name in self.reads)
+        read = tuple(getattr(scenario, name) for name in self.part.reads)
         last = _LAST_BUILT.get(self)
         if last is not None and last[0] is spec and all(a is b for a, b in zip(last[1], read)):
             return last[2]
-        element = self.element.from_spec(self.as_drawn(spec, scenario), scenario)
+        drawn = self.part.as_drawn(spec, scenario)
+        parts = tuple(self.part.path.split("."))
+        held = getattr(drawn, parts[-1]) if within_part(parts) else drawn
+        element = element_of(self.entry, held).from_spec(drawn, scenario)
         _LAST_BUILT[self] = (spec, read, element)  # the objects it was built from held: never mistaken for others
         return element
 
+    @property
+    def classes(self) -> tuple:
+        """Every element class it may build."""
+        return tuple(self.entry.values()) if isinstance(self.entry, dict) else (self.entry,)
 
-_LAST_BUILT: dict = {}  # Drawn entry -> (its section, what it read, the element built from them)
+
+def within_part(parts: tuple) -> bool:
+    """Whether a registry path names a key within a part (drivetrain.motors.*.ripple, drivetrain.load.rope):
+    built from the part that holds it."""
+    return len(parts) > 2 and parts[-1] != "*"
+
+
+def element_of(entry, spec):
+    """The element class a registry entry builds for a part: its variant's (its spec's ``characteristic``), for
+    an entry with variants."""
+    return entry[spec.characteristic] if isinstance(entry, dict) else entry
+
+
+_LAST_BUILT: dict = {}  # Drawn part -> (its section, what it read, the element built from them)

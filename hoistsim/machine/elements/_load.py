@@ -5,6 +5,7 @@ from __future__ import annotations
 import abc
 from typing import ClassVar
 
+from ..._pytree import static
 from ..core.element import AbstractElement
 
 
@@ -12,11 +13,13 @@ class AbstractLoad(AbstractElement):
     """A mass M lifted by the rope: its height above its start is a state (rate: its speed, ``load_speed``)
     and its potential energy M g x is in the ledger.  Its lowest point, where a load that ran back turns
     round, is an observation, so the summary's lowest position is exact.  Both variants declare the
-    shaft ``rope_point``: the rope's point on the drum (m/s, R times the drum's speed)."""
+    shaft ``rope_point``: the rope's point on the drum (m/s, R times the drum's speed).  Built from a drawn
+    load (``drivetrain.load``; the hoist's ``load`` with its ``rope``, ``ground`` and ``bearings``)."""
 
     mass: object  # M, kg
     gravity: object  # g, m/s^2
     rope_radius: object  # R, m
+    drum: str = static("drum")  # the shaft its rope is wound on
 
     section: ClassVar[str] = "load"
     summaries: ClassVar[dict] = {"lowest_load_position": "m", "final_load_position": "m", "load_lifted": "bool"}

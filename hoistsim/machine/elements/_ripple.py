@@ -10,9 +10,10 @@ import numpy as np
 
 from ..._pytree import static
 from ..core.element import AbstractElement
+from ._names import NamedOutputs, names_of
 
 
-class AbstractRipple(AbstractElement):
+class AbstractRipple(NamedOutputs, AbstractElement):
     """A torque periodic in the angle of a shaft: harmonics, or one period as a table.
 
     ``form`` "harmonics": sum of A_k sin(k 2 pi theta / period + phi_k);
@@ -28,15 +29,44 @@ class AbstractRipple(AbstractElement):
     table_angles: object  # rad, 0 .. period; empty for harmonics
     table_torques: object  # N*m
     form: str = static("harmonics")
+    shaft: str = static("")  # the shaft whose angle it follows and on which it acts
+    part: str = static("")  # the name of the part it belongs to (a motor, a shaft)
+    names: tuple = static(())  # (pattern, name) of each output its drawing names otherwise (NamedOutputs)
 
-    shaft: ClassVar[str]  # the shaft whose angle it follows and on which it acts
+    key: ClassVar[str]  # its key in its part: its name is <part>.<key> (the hoist's motor.ripple)
     direction: ClassVar[float]  # +1: drives the shaft; -1: resists it
-    work_term: ClassVar[str]  # its work's name in the energy ledger (declared "work" in ledger_kinds)
-    column: ClassVar[str]  # its output column (the ripple torque, positive in its own sense)
+    work_pattern: ClassVar[str]  # its work's name in the energy ledger, a pattern of its part's name
+    column_pattern: ClassVar[str]  # its output column (the ripple torque, positive in its own sense)
+    meaning: ClassVar[str]  # what its column is
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "AbstractRipple":
-        return cls(**cls.fields_from(spec))
+    def of_part(cls, ripple, shaft: str, spec) -> "AbstractRipple":
+        """The ripple ``ripple`` (a RippleSpec) of the part ``spec``, on ``shaft``."""
+        return cls(**cls.fields_from(ripple), shaft=shaft, part=spec.name, names=names_of(spec))
+
+    @property
+    def section(self) -> str:  # a name of its own: its kinks are found by it
+        return f"{self.part}.{self.key}"
+
+    @property
+    def part_name(self) -> str:
+        return self.part
+
+    @property
+    def work_term(self) -> str:
+        return self.named(self.work_pattern)
+
+    @property
+    def column(self) -> str:
+        return self.named(self.column_pattern)
+
+    @property
+    def ledger_kinds(self) -> dict:
+        return {self.work_term: "work"}
+
+    @property
+    def columns(self) -> dict:
+        return {self.column: ("N*m", self.meaning.format(shaft=self.shaft))}
 
     def angles(self) -> tuple:
         return (self.shaft,)

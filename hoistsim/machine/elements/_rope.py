@@ -11,7 +11,8 @@ from ..core.element import AbstractElement
 
 
 class AbstractRope(AbstractElement):
-    """A rope of stiffness k and viscous damping c between the drum's rope point and the load.
+    """A rope of stiffness k and viscous damping c between the drum's rope point and the load: a load's
+    ``rope``, built from the load that hangs on it.
 
     Its stretch s = x_d - x + s_0 (x_d the rope the drum has wound on since
     the start, x the load's height, s_0 the stretch at the start: M g / k for a
@@ -108,15 +109,14 @@ class AbstractRope(AbstractElement):
                 "rope_taut": self.taut(x).astype(jnp.int8)}
 
 
-def initial_stretch(scenario, stiffness: float) -> float:
+def initial_stretch(load, gravity: float, stiffness: float) -> float:
     """The stretch at t = 0 (m): a load hanging on a taut rope carries its weight, M g / k; one resting
     on the ground or hanging with slack (which then falls) starts at minus the slack."""
-    rope = scenario.rope
-    if scenario.ground is None and rope.initial_slack == 0.0:
-        return scenario.load.mass * scenario.gravity / stiffness
-    return -rope.initial_slack
+    if load.ground is None and load.rope.initial_slack == 0.0:
+        return load.mass * gravity / stiffness
+    return -load.rope.initial_slack
 
 
-def damping(scenario, stiffness: float) -> float:
+def damping(load, stiffness: float) -> float:
     """c = 2 zeta sqrt(k M), k at t = 0 (N*s/m)."""
-    return 2.0 * scenario.rope.damping_ratio * (stiffness * scenario.load.mass) ** 0.5
+    return 2.0 * load.rope.damping_ratio * (stiffness * load.mass) ** 0.5

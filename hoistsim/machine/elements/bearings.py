@@ -46,32 +46,34 @@ class DrumShaftLoads(AbstractElement):
     rope_offset: object  # m
     span: object  # m
     elastic_rope: bool = static(False)
+    drum: str = static("drum")  # the shaft the load hangs from, which the wheel drives
 
     section: ClassVar[str] = "bearings"
     columns: ClassVar[dict] = {name: ("N", text) for name, text in _DESCRIPTIONS.items()}
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "DrumShaftLoads":
-        gears = scenario.gears
+        bearings = spec.bearings
         return cls(
-            wheel_pitch_radius=0.5 * gears.module * gears.wheel_teeth,
-            tan_pressure_angle=math.tan(gears.pressure_angle),
-            load_mass=scenario.load.mass,
+            wheel_pitch_radius=0.5 * bearings.wheel_pitch_diameter,
+            tan_pressure_angle=math.tan(bearings.pressure_angle),
+            load_mass=spec.mass,
             gravity=scenario.gravity,
-            rope_radius=0.5 * scenario.drum.diameter,
-            gear_offset=spec.gear_offset,
-            rope_offset=spec.rope_offset,
-            span=spec.span,
-            elastic_rope=scenario.rope is not None,
+            rope_radius=spec.rope_radius,
+            gear_offset=bearings.gear_offset,
+            rope_offset=bearings.rope_offset,
+            span=bearings.span,
+            elastic_rope=spec.rope is not None,
+            drum=spec.shaft,
         )
 
     def outputs(self, x) -> dict:
-        tangential = x.torque_into("drum") / self.wheel_pitch_radius
+        tangential = x.torque_into(self.drum) / self.wheel_pitch_radius
         radial = jnp.abs(tangential) * self.tan_pressure_angle
         if self.elastic_rope:  # what the rope pulls the drum's rope point down with
             rope_tension = -x.shaft_torques["rope_point"]
         else:
-            rope_tension = self.load_mass * (self.gravity + self.rope_radius * x.acceleration("drum"))
+            rope_tension = self.load_mass * (self.gravity + self.rope_radius * x.acceleration(self.drum))
         shaft = DrumShaft(self.gear_offset, self.rope_offset, self.span)
         return {
             "tooth_tangential_force": tangential,

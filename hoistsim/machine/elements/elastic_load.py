@@ -9,13 +9,13 @@ from ._load import AbstractLoad
 
 class ElasticLoad(AbstractLoad):
     """A mass M with a height and a speed of its own (the body ``load``, in m and m/s), pulled up by the
-    rope (``rope:``) and down by its weight M g.
+    rope (its ``rope``) and down by its weight M g.
 
-    It starts at rest on the ground (``ground:``) or moving with the rope's
+    It starts at rest on the ground (its ``ground``) or moving with the rope's
     point on the drum (a load hanging on a rope that already carries it).
     """
 
-    initial_speed: object  # m/s
+    initial_speed: object = 0.0  # m/s
 
     columns: ClassVar[dict] = {
         "load_position": ("m", "height of the load above its start"),
@@ -24,16 +24,16 @@ class ElasticLoad(AbstractLoad):
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "ElasticLoad":
-        radius = 0.5 * scenario.drum.diameter
-        resting = scenario.ground is not None
-        return cls(mass=spec.mass, gravity=scenario.gravity, rope_radius=radius,
-                   initial_speed=0.0 if resting else radius * scenario.initial.drum_speed)
+        radius = spec.rope_radius
+        resting = spec.ground is not None
+        return cls(mass=spec.mass, gravity=scenario.gravity, rope_radius=radius, drum=spec.shaft,
+                   initial_speed=0.0 if resting else radius * spec.shaft_speed(scenario))
 
     def bodies(self) -> dict:
         return {"load": self.initial_speed}
 
     def shafts(self) -> dict:
-        return {"rope_point": ("drum", self.rope_radius)}
+        return {"rope_point": (self.drum, self.rope_radius)}
 
     def inertias(self) -> tuple:
         return (("load", self.mass),)

@@ -7,7 +7,8 @@ from ..core.element import AbstractElement
 
 
 class Flywheel(AbstractElement):
-    """Adds its inertia to the shaft it is keyed to (``motor`` or ``drum``).
+    """Adds its inertia to the shaft it is keyed to: a drawn drivetrain's rotor; the hoist's flywheel (on
+    ``motor`` or ``drum``) and its drum.
 
     Given as an inertia or as a rim of density rho, width s and radii R_o, R_i:
     I = pi rho s (R_o^4 - R_i^4) / 2 (the seed's formula), worked out on loading.
@@ -19,7 +20,7 @@ class Flywheel(AbstractElement):
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "Flywheel":
-        return cls(inertia=spec.moment_of_inertia, shaft=spec.shaft, section=spec.part_name())
+        return cls(inertia=spec.moment_of_inertia, shaft=spec.shaft, section=spec.name)
 
     def inertias(self) -> tuple:
         return ((self.shaft, self.inertia),)

@@ -10,6 +10,7 @@ import numpy as np
 from ..._pytree import static
 from ..core.element import SLIP_BACKWARD, SLIP_FORWARD, STUCK
 from ._signal import harmonics_at, signal_fields
+from ._names import NamedOutputs, names_of
 from ._slip_heat import AbstractSlipHeat
 
 # what each of its outputs is, by its role (named <name>_<role> unless its drawing names it otherwise)
@@ -26,7 +27,7 @@ _SUMMARIES = {"lockup_time": "s", "slip_duration": "s", "peak_torque": "N*m", "p
               "slip_energy": "J"}
 
 
-class FrictionClutch(AbstractSlipHeat):
+class FrictionClutch(NamedOutputs, AbstractSlipHeat):
     """Faces pressed by a force F(t), a time signal: static capacity mu_s c F and sliding torque mu_k c F,
     c = effective radius times surfaces (Modelica's ``cgeo``; a cone's n r_m / sin(beta)), nothing where
     F <= 0.  Its halves' inertias sit on the shafts it joins; its friction coefficients may depend on its
@@ -59,7 +60,7 @@ class FrictionClutch(AbstractSlipHeat):
     section: str = static("")  # the clutch's name
     in_harmonics: bool = static(False)
     fades: bool = static(False)
-    names: tuple = static(())  # (role, name) of each output its drawing names otherwise than <name>_<role>
+    names: tuple = static(())  # (pattern, name) of each output its drawing names otherwise (NamedOutputs)
 
     observation_kinds: ClassVar[tuple] = ("clutch_force",)
     crossings: ClassVar[tuple] = ("clutch_force",)
@@ -76,11 +77,7 @@ class FrictionClutch(AbstractSlipHeat):
                    torque_per_newton=spec.torque_per_newton, **signal_fields(spec.force, "force"),
                    driving_inertia=driving_inertia, driven_inertia=driven_inertia, driving=a,
                    driven=None if b == "ground" else b, section=spec.name, in_harmonics=spec.force.has_harmonics,
-                   names=tuple(sorted(spec.output_names().items())), **fading)
-
-    def named(self, role: str) -> str:
-        """The name of the output of a role: its drawing's, or ``<name>_<role>``."""
-        return dict(self.names).get(role, f"{self.section}_{role}")
+                   names=names_of(spec), **fading)
 
     @property
     def heat_state(self) -> str:
@@ -88,12 +85,12 @@ class FrictionClutch(AbstractSlipHeat):
 
     @property
     def summaries(self) -> dict:
-        return {self.named(role): units for role, units in _SUMMARIES.items()}
+        return {self.named(f"{{name}}_{role}"): units for role, units in _SUMMARIES.items()}
 
     @property
     def columns(self) -> dict:
         b = f"the {self.driven} shaft" if self.driven else "the ground"
-        return {self.named(role): (units, text.format(name=self.section, a=self.driving, b=b))
+        return {self.named(f"{{name}}_{role}"): (units, text.format(name=self.section, a=self.driving, b=b))
                 for role, (units, text) in _COLUMNS.items()}
 
     def joins(self) -> tuple:
@@ -167,21 +164,24 @@ class FrictionClutch(AbstractSlipHeat):
     def extremes(self, x) -> dict:
         mode = x.mode(self.section)
         return {
-            self.named("lockup_time"): ("first", mode == STUCK),
-            self.named("slip_duration"): ("duration", (mode == SLIP_FORWARD) | (mode == SLIP_BACKWARD)),
-            self.named("peak_torque"): ("max", jnp.abs(x.coupling_torque(self.section))),
-            self.named("peak_slip_speed"): ("max", jnp.abs(x.relative_speed(self.section))),
+            self.named("{name}_lockup_time"): ("first", mode == STUCK),
+            self.named("{name}_slip_duration"): ("duration", (mode == SLIP_FORWARD) | (mode == SLIP_BACKWARD)),
+            self.named("{name}_peak_torque"): ("max", jnp.abs(x.coupling_torque(self.section))),
+            self.named("{name}_peak_slip_speed"): ("max", jnp.abs(x.relative_speed(self.section))),
         }
 
     def summary(self, x) -> dict:
-        return {self.named("slip_energy"): x.state(self.heat_state)}
+        return {self.named("{name}_slip_energy"): x.state(self.heat_state)}
 
     def outputs(self, x) -> dict:
         name, mode = self.section, x.mode(self.section)
-        return {self.named("torque"): x.coupling_torque(name), self.named("slip"): x.relative_speed(name),
-                self.named("locked"): (mode == STUCK).astype(jnp.int8), self.named("force"): self.force(x),
-                self.named("energy"): x.state(self.heat_state), self.named("capacity"): self.capacity(x),
-                self.named("mode"): mode.astype(jnp.int8)}
+        return {self.named("{name}_torque"): x.coupling_torque(name),
+                self.named("{name}_slip"): x.relative_speed(name),
+                self.named("{name}_locked"): (mode == STUCK).astype(jnp.int8),
+                self.named("{name}_force"): self.force(x),
+                self.named("{name}_energy"): x.state(self.heat_state),
+                self.named("{name}_capacity"): self.capacity(x),
+                self.named("{name}_mode"): mode.astype(jnp.int8)}
 
 
 # Beyond the tables' last knot the knot coordinate grows by one every this many kelvin: steadily, so that no

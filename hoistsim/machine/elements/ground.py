@@ -15,7 +15,8 @@ HOISTING_CLASSES = {"HC1": (1.05, 0.17), "HC2": (1.10, 0.34), "HC3": (1.15, 0.51
 
 
 class Ground(OneWayHold, AbstractCoupling):
-    """A one-way support under the load: a contact between the load and the ground (the load pressing
+    """A one-way support under the load (a load's ``ground``, built from the load): a contact between the load
+    and the ground (the load pressing
     down pushes it backwards: held without limit; a pull up meets no support).
 
     Resting (stuck) it holds any push down and none up: the load lifts off
@@ -51,8 +52,9 @@ class Ground(OneWayHold, AbstractCoupling):
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "Ground":
-        classed = spec.hoisting_class is not None
-        phi2_min, beta2 = HOISTING_CLASSES[spec.hoisting_class] if classed else (float("nan"), float("nan"))
+        hoisting_class = spec.ground.hoisting_class
+        classed = hoisting_class is not None
+        phi2_min, beta2 = HOISTING_CLASSES[hoisting_class] if classed else (float("nan"), float("nan"))
         return cls(phi2_min=phi2_min, beta2=beta2, classed=classed)
 
     def joins(self) -> tuple:

@@ -1,4 +1,4 @@
-"""A torque ripple of the motor: added to its characteristic, periodic in the motor angle."""
+"""A torque ripple of a motor: added to its characteristic, periodic in its shaft's angle."""
 
 from __future__ import annotations
 
@@ -8,16 +8,19 @@ from ._ripple import AbstractRipple
 
 
 class MotorRipple(AbstractRipple):
-    """motor.ripple: the ripple of an engine's torque (a period of 720 deg for a four-stroke one).
+    """A motor's ``ripple``: the ripple of an engine's torque (a period of 720 deg for a four-stroke one).
 
-    Reads the motor angle (so the scene keeps it as a state), adds its torque on
-    the motor shaft, and counts its work in the ledger.
+    Reads its shaft's angle (so the scene keeps it as a state), adds its torque on the shaft, and counts its
+    work in the ledger (``<motor>_ripple_work``); its column ``<motor>_ripple_torque`` (the hoist's
+    ``ripple_torque``).
     """
 
-    section: ClassVar[str] = "motor.ripple"
-    shaft: ClassVar[str] = "motor"
+    key: ClassVar[str] = "ripple"
     direction: ClassVar[float] = 1.0
-    work_term: ClassVar[str] = "motor_ripple_work"
-    ledger_kinds: ClassVar[dict] = {"motor_ripple_work": "work"}
-    column: ClassVar[str] = "ripple_torque"
-    columns: ClassVar[dict] = {"ripple_torque": ("N*m", "motor torque ripple, added to the characteristic")}
+    work_pattern: ClassVar[str] = "{name}_ripple_work"
+    column_pattern: ClassVar[str] = "{name}_ripple_torque"
+    meaning: ClassVar[str] = "motor torque ripple, added to the characteristic"
+
+    @classmethod
+    def from_spec(cls, spec, scenario) -> "MotorRipple":
+        return cls.of_part(spec.ripple, spec.shaft, spec)

@@ -1,4 +1,4 @@
-"""A resisting torque ripple on the drum: periodic in the drum angle, against the lift."""
+"""A resisting torque ripple on a shaft (the hoist's drum): periodic in its angle, against its turning."""
 
 from __future__ import annotations
 
@@ -8,17 +8,19 @@ from ._ripple import AbstractRipple
 
 
 class ResistingRipple(AbstractRipple):
-    """drum.resisting_ripple: a resisting torque that varies over each turn of the drum.
+    """A shaft's ``resisting_ripple`` (the hoist's ``drum.resisting_ripple``): a resisting torque that varies
+    over each turn.
 
-    Reads the drum angle, acts on the drum shaft against the lift (its torque
-    M_r(theta) resists where positive), and counts its (negative) work in the ledger.
+    Reads the shaft's angle, acts on it against its positive turning (the lift, on the hoist's drum: its
+    torque M_r(theta) resists where positive), and counts its (negative) work in the ledger.
     """
 
-    section: ClassVar[str] = "drum.resisting_ripple"
-    shaft: ClassVar[str] = "drum"
+    key: ClassVar[str] = "resisting_ripple"
     direction: ClassVar[float] = -1.0
-    work_term: ClassVar[str] = "resisting_ripple_work"
-    ledger_kinds: ClassVar[dict] = {"resisting_ripple_work": "work"}
-    column: ClassVar[str] = "resisting_ripple_torque"
-    columns: ClassVar[dict] = {"resisting_ripple_torque": ("N*m", "resisting torque ripple on the drum shaft, "
-                                                                  "positive against the lift")}
+    work_pattern: ClassVar[str] = "{name}_resisting_ripple_work"
+    column_pattern: ClassVar[str] = "{name}_resisting_ripple_torque"
+    meaning: ClassVar[str] = "resisting torque ripple on shaft {shaft}, positive against its turning"
+
+    @classmethod
+    def from_spec(cls, spec, scenario) -> "ResistingRipple":
+        return cls.of_part(spec.resisting_ripple, spec.name, spec)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from ..._pytree import static
 from ._load import AbstractLoad
 
 
@@ -11,10 +10,8 @@ class RigidLoad(AbstractLoad):
 
     Inertia M R^2 and torque -M g R on the drum shaft; the load moves with the
     rope's point on the drum (the shaft ``load``, R times the drum's speed, is
-    what a ground under it holds).  ``drum``: the shaft the rope is wound on (a drawn drivetrain names it).
+    what a ground under it holds).
     """
-
-    drum: str = static("drum")
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "RigidLoad":

@@ -12,9 +12,9 @@ class Rope(AbstractRope):
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "Rope":
-        k = spec.stiffness
-        return cls(constant_stiffness=k, damping=damping(scenario, k), initial_stretch=initial_stretch(scenario, k),
-                   weight=scenario.load.mass * scenario.gravity)
+        k, g = spec.rope.stiffness, scenario.gravity
+        return cls(constant_stiffness=k, damping=damping(spec, k), initial_stretch=initial_stretch(spec, g, k),
+                   weight=spec.mass * g)
 
     def stiffness(self, x):
         return self.constant_stiffness

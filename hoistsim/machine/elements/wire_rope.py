@@ -39,10 +39,11 @@ class WireRope(AbstractRope):
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "WireRope":
-        axial = spec.modulus * spec.metallic_area
-        k = axial / spec.free_length
-        return cls(axial_stiffness=axial, free_length=spec.free_length, damping=damping(scenario, k),
-                   initial_stretch=initial_stretch(scenario, k), weight=scenario.load.mass * scenario.gravity)
+        rope, g = spec.rope, scenario.gravity
+        axial = rope.modulus * rope.metallic_area
+        k = axial / rope.free_length
+        return cls(axial_stiffness=axial, free_length=rope.free_length, damping=damping(spec, k),
+                   initial_stretch=initial_stretch(spec, g, k), weight=spec.mass * g)
 
     def length(self, x):
         """The free length L (m): what the drum has not wound on."""

@@ -1,0 +1,58 @@
+"""The schema of a load hanging on a rope (the hoist's ``load:``, a drawn drivetrain's ``drivetrain.load``): its
+mass, and a drawn load's shaft, rope radius, elastic rope, the ground under it and its shaft's bearings (values
+in SI)."""
+
+from __future__ import annotations
+
+import math
+
+from pydantic import model_validator
+
+from ..errors import ScenarioError
+from . import units as u
+from .schema_base import Section
+from .schema_parts import BearingsSpec
+from .schema_rope import GroundSpec, RopeSpec
+from .schema_shaft_parts import OnShaft
+from .units import Text
+
+
+class LoadSpec(Section):
+    """A load hanging on a rope: the hoist's (``load:``, from its drum), and a drawn drivetrain's."""
+
+    mass: u.quantity(u.MASS, ge=0.0)
+
+
+class LoadBearingsSpec(BearingsSpec):
+    """The bearings of the shaft the load hangs from, which a gear's wheel drives: the tooth forces (from the
+    torque the shaft receives, at the wheel's pitch circle), the rope's pull, and the two bearings' reactions."""
+
+    wheel_pitch_diameter: u.quantity(u.LENGTH, gt=0.0)
+    pressure_angle: u.quantity(u.ANGLE, gt=0.0, lt=math.pi / 2) = math.radians(20.0)
+
+
+class LoadOnShaftSpec(OnShaft, LoadSpec):
+    """A load hanging from a drawn drivetrain's shaft, its rope wound at a radius: a rigid rope, or an elastic
+    one (``rope``); it may start resting on the ground (``ground``)."""
+
+    shaft: Text  # the drum's shaft
+    rope_radius: u.quantity(u.LENGTH, gt=0.0)  # half the drum's diameter
+    rope: RopeSpec | None = None
+    ground: GroundSpec | None = None
+    bearings: LoadBearingsSpec | None = None
+
+    @property
+    def characteristic(self) -> str:
+        """Which variant: ``rigid`` (moves with the rope's point on the drum) or ``elastic`` (a body on its rope)."""
+        return "rigid" if self.rope is None else "elastic"
+
+    def shaft_speed(self, scenario) -> float:
+        """rad/s: the speed of its shaft at the start."""
+        return scenario.drivetrain.shafts[self.shaft].train(scenario)[2]
+
+    @model_validator(mode="after")
+    def _a_body_on_its_rope(self):
+        if self.rope is not None and self.mass <= 0.0:
+            raise ScenarioError(".mass", "must be positive with an elastic rope (rope:): the load is a body of "
+                                "its own on it")
+        return self

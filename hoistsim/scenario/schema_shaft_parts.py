@@ -1,0 +1,74 @@
+"""A drawn drivetrain's parts that sit on one shaft: rotors (flywheels), slider-cranks, brakes and ratchets.
+
+Each has the keys of the hoist's section of its kind (:mod:`.schema_parts`) and the shaft it sits on; its
+key in the drivetrain names it and its outputs (``<name>_torque``, ...), as the hoist's section's name does
+its (``brake_torque``).
+"""
+
+from __future__ import annotations
+
+from pydantic import Field
+
+from ..errors import ScenarioError
+from .schema_parts import BrakeSpec, FlywheelSpec, RatchetSpec, ReciprocatingSpec
+from .units import Text
+
+
+class OnShaft:
+    """What a part on a shaft adds to its kind's keys: the shaft, its name (its key, set by the drivetrain), and
+    its outputs' names where its drawing names them otherwise than its own name does (the hoist's template)."""
+
+    def output_names(self) -> dict[str, str]:
+        """Output name by its pattern (``{name}_torque``) where it is not the pattern filled in."""
+        return {}
+
+
+class RotorSpec(OnShaft, FlywheelSpec):
+    """An inertia keyed to a shaft: a flywheel, a drum (given as an inertia or as a rim)."""
+
+    shaft: Text
+    name: str = Field("", exclude=True)
+
+
+class SliderCrankSpec(OnShaft, ReciprocatingSpec):
+    """A reciprocating mass on a rod and crank keyed to a shaft."""
+
+    shaft: Text
+    name: str = Field("", exclude=True)
+
+
+class BrakeOnShaftSpec(OnShaft, BrakeSpec):
+    """A brake from a shaft to the ground: holding (any torque) or friction (static and kinetic torques),
+    released and applied at times."""
+
+    shaft: Text
+    name: str = Field("", exclude=True)
+
+
+class RatchetOnShaftSpec(OnShaft, RatchetSpec):
+    """A pawl from a shaft to the ground: the shaft may turn forwards, never backwards, until released."""
+
+    shaft: Text
+    name: str = Field("", exclude=True)
+
+
+SHAFT_PARTS = ("rotors", "slider_cranks", "brakes", "ratchets")  # the drivetrain's keys of these kinds
+
+
+def check_shaft_parts(drivetrain, speeds: dict) -> None:
+    """Each part on a shaft names a shaft there is, and is possible at its shaft's speed at the start
+    (``speeds``: each shaft's): a holding brake holds a shaft at rest, a pawl a shaft not turning backwards."""
+    known = ", ".join(drivetrain.shafts)
+    for kind in SHAFT_PARTS:
+        for name, part in getattr(drivetrain, kind).items():
+            if part.shaft not in drivetrain.shafts:
+                raise ScenarioError(f"drivetrain.{kind}.{name}.shaft", f"there is no shaft {part.shaft!r} "
+                                    f"(shafts: {known})")
+            speed = speeds[part.shaft]
+            if kind == "brakes" and part.characteristic == "holding" and speed != 0.0:
+                raise ScenarioError(f"drivetrain.{kind}.{name}.static_torque", f"is required: a holding brake "
+                                    f"(without static_torque) holds shaft {part.shaft!r} still, which starts at "
+                                    f"{speed:g} rad/s")
+            if kind == "ratchets" and speed < 0.0:
+                raise ScenarioError(f"drivetrain.{kind}.{name}.shaft", f"shaft {part.shaft!r} starts turning "
+                                    f"backwards ({speed:g} rad/s): the pawl would stop it dead")

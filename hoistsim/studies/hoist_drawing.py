@@ -1,0 +1,164 @@
+"""The drivetrain a hoist scenario stands for, written out as a scenario of its own (``hoistsim check
+--drivetrain``): the template's parts with their keys, in SI units, and the names its outputs take there.
+
+Run, it gives the hoist's motion under the drawn parts' names (``clutch_slip`` for ``slip_speed``), to round-off:
+the template's gear ratio z1/z2 is the drawn stage's 1 / (z2/z1).  The periodic regime's analysis (a hoist's
+rows of each period) has no drawn key, and is left out.
+"""
+
+from __future__ import annotations
+
+import io
+
+from pydantic import BaseModel
+from ruamel.yaml import YAML
+
+from ..errors import ScenarioError
+from ..machine.assemble import with_steady_lift
+from ..scenario import units as u
+from ..scenario.hoist_template import TEMPLATE
+from ..scenario.signals import TimeSignal
+from ..scenario.tables import ForceTable
+
+# the columns of each table key a drawn part may have
+_TABLE_COLUMNS = {"torque_speed": (u.ANGULAR_SPEED, u.TORQUE), "static_friction": (u.TEMPERATURE, u.DIMENSIONLESS),
+                  "kinetic_friction": (u.TEMPERATURE, u.DIMENSIONLESS), "table": (u.ANGLE, u.TORQUE)}
+# keys a template's spec has for the machine's own use, not a drawn part's
+_TEMPLATE_KEYS = {"name", "outputs_named", "geared_to", "ratio_to_root", "speed_observed", "driving_inertia",
+                  "driven_inertia", "drum_speed_at_start"}
+_STAGE = "gears"  # the drawn gear stage's name (its lossy mesh's outputs: gears_mesh_torque, ...)
+
+
+def hoist_as_drivetrain(scenario) -> tuple[dict, dict[str, str]]:
+    """(the hoist scenario as a drawn drivetrain's, plain data for YAML; each hoist output's name -> its drawn
+    name where they differ)."""
+    if scenario.drivetrain is not None:
+        raise ScenarioError("drivetrain", "is drawn already: --drivetrain writes a hoist's sections out as one",
+                            source=scenario.source)
+    scenario = with_steady_lift(scenario)
+    drawn: dict = {kind: {} for kind in ("shafts", "motors", "clutches", "gears", "rotors", "slider_cranks",
+                                         "brakes", "ratchets")}
+    renamed: dict[str, str] = {}
+    for section, parts in TEMPLATE.items():
+        spec = _section(scenario, section)
+        if spec is None:
+            continue
+        for part in parts:
+            if part.path.startswith("drivetrain."):
+                _place(drawn, part.path.split(".")[1:], part.as_drawn(spec, scenario), scenario, renamed)
+    halves = drawn.pop("_halves", {})
+    for shaft, inertia in halves.items():  # a drawn clutch's halves are its shafts'
+        drawn["shafts"][shaft]["inertia"] = _value(_number(drawn["shafts"][shaft]["inertia"]) + inertia, u.INERTIA)
+    out = {"name": f"{scenario.name}-drawn",
+           "description": f"The drivetrain the hoist scenario {scenario.name} stands for.",
+           "gravity": _value(scenario.gravity, u.ACCELERATION),
+           "drivetrain": {kind: parts for kind, parts in drawn.items() if parts},
+           "simulation": _plain(scenario.simulation)}
+    return out, renamed
+
+
+def hoist_as_drivetrain_text(scenario) -> str:
+    """:func:`hoist_as_drivetrain` as a scenario file's text, its outputs' new names in a comment above it."""
+    data, renamed = hoist_as_drivetrain(scenario)
+    lines = [f"# {data['description']}", "# Its outputs are named after its parts; where the hoist's are not:"]
+    lines += [f"#   {hoist} -> {drawn}" for hoist, drawn in renamed.items()]
+    if scenario.periodic_regime is not None:
+        lines.append("# The periodic regime's analysis (periodic:) is the hoist's only: it has no drawn key.")
+    yaml = YAML()
+    yaml.default_flow_style = None  # short lists ([motor, pinion], a table's rows) on one line
+    yaml.width = 120
+    text = io.StringIO()
+    yaml.dump(data, text)
+    return "\n".join(lines) + "\n" + text.getvalue()
+
+
+def _section(scenario, dotted: str):
+    for part in dotted.split("."):
+        scenario = getattr(scenario, part, None)
+        if scenario is None:
+            return None
+    return scenario
+
+
+def _place(drawn: dict, path: list, spec, scenario, renamed: dict) -> None:
+    """Write one drawn part (or a key within one) into the drivetrain's plain data."""
+    kind, key = path[0], path[-1]
+    names = spec.output_names() if hasattr(spec, "output_names") else {}
+    part_name = getattr(spec, "name", "") or kind
+    renamed.update({hoist: drawn_name for pattern, hoist in names.items()
+                    if (drawn_name := pattern.format(name=part_name)) != hoist})
+    if kind == "shafts" and key == "resisting_ripple":
+        drawn["shafts"][spec.name]["resisting_ripple"] = _plain(spec.resisting_ripple)
+    elif kind == "shafts":
+        shaft = {"inertia": _value(spec.inertia, u.INERTIA)}
+        if spec.geared_to:  # turns with its root through the hoist's gears: a stage of its own
+            gears = scenario.gears
+            stage = {"between": [spec.geared_to, spec.name], "teeth": [gears.pinion_teeth, gears.wheel_teeth]}
+            drawn["gears"][_STAGE] = {**stage, **drawn["gears"].get(_STAGE, {})}
+        else:
+            shaft["speed"] = _value(spec.speed, u.ANGULAR_SPEED)
+        drawn["shafts"][spec.name] = shaft
+    elif kind == "gears":  # a lossy mesh: its efficiencies on the stage
+        drawn["gears"].setdefault(_STAGE, {}).update(
+            {k: v for k, v in (("efficiency", spec.efficiency), ("backdrive_efficiency", spec.backdrive_efficiency))
+             if v is not None})
+        renamed.update({f"mesh_{role}": f"{_STAGE}_mesh_{role}" for role in ("torque", "loss_power", "heat", "mode",
+                                                                              "loss_energy")})
+    elif kind == "clutches" and key == "heating":
+        drawn["clutches"].setdefault(spec.name, {})["heating"] = _plain(spec.heating)
+    elif kind == "clutches":
+        clutch = _plain(spec)
+        clutch.pop("heating", None)
+        clutch.pop("effective_radius", None)
+        drawn["clutches"][spec.name] = {**clutch, **drawn["clutches"].get(spec.name, {})}
+        halves = drawn.setdefault("_halves", {})
+        for shaft, inertia in zip(spec.between, spec.halves()):
+            halves[shaft] = halves.get(shaft, 0.0) + inertia
+    elif kind == "load":
+        drawn["load"] = _plain(spec)
+    else:
+        plain = _plain(spec)
+        drawn[kind][spec.name] = plain
+
+
+def _plain(model) -> dict:
+    """A section's keys as a scenario writes them: numbers with their SI units, None left out."""
+    out = {}
+    for name, field in type(model).model_fields.items():
+        value = getattr(model, name, None)
+        if value is None or name in _TEMPLATE_KEYS or field.exclude:
+            continue
+        out[name] = _written(name, value, field)
+    return out
+
+
+def _written(name: str, value, field):
+    if isinstance(value, TimeSignal):
+        dimension = u.dimension_of(field)
+        if value.has_harmonics:
+            return {"offset": _value(value.values[0], dimension),
+                    "harmonics": [{"amplitude": _value(a, dimension), "frequency": f"{f!r} Hz", "phase": f"{p!r} rad"}
+                                  for a, f, p in zip(value.amplitudes, value.frequencies, value.phases)]}
+        return [[f"{t!r} s", _value(v, dimension)] for t, v in zip(value.times, value.values)]
+    if isinstance(value, ForceTable):
+        return [[f"{t!r} s", _value(v, u.FORCE)] for t, v in zip(value.times, value.forces)]
+    if isinstance(value, BaseModel):
+        return _plain(value)
+    if name in _TABLE_COLUMNS and isinstance(value, tuple):  # a table (a clutch's static_friction is a number)
+        first, second = _TABLE_COLUMNS[name]
+        return [[_value(x, first), _value(y, second)] for x, y in value]
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) if isinstance(v, BaseModel) else v for v in value]
+    dimension = u.dimension_of(field)
+    return _value(value, dimension) if dimension is not None else value
+
+
+def _value(number: float, dimension) -> str | float:
+    """A number in SI with its unit (exact: the float's own digits), bare where it has no unit."""
+    if dimension is None or not dimension.si_unit:
+        return float(number)
+    return f"{float(number)!r} {dimension.si_unit}"
+
+
+def _number(written) -> float:
+    return float(str(written).split()[0])
