@@ -7,8 +7,6 @@ needs only these.
 
 from __future__ import annotations
 
-from functools import cached_property
-
 import jax
 
 from ..._pytree import pytree_dataclass
@@ -36,6 +34,8 @@ class Plan:
     atol: jax.Array
     max_switches: jax.Array  # mode switches allowed before the run counts as chattering
 
-    @cached_property
+    @property
     def layout(self) -> Layout:
+        """Where its elements' states, bodies and columns sit: worked out whenever asked (some 60 us), never
+        kept on the plan (a plan is frozen, and JAX makes plans of placeholders and of one trace's values)."""
         return Layout(self.elements)
