@@ -103,6 +103,8 @@ FIGURES = {
                         _run_and_plot("engine_hoist_flywheel.yaml", {"_periodic": "engine_periodic.png"})),
     "engine_flywheel": ("hoistsim flywheel scenarios/engine_hoist_flywheel.yaml --irregularity 0.02 (about 4 min)",
                         _flywheel("engine_hoist_flywheel.yaml", "0.02", "engine_flywheel.png")),
+    "compliant_hoist": ("hoistsim run + plot scenarios/compliant_hoist.yaml",
+                        _run_and_plot("compliant_hoist.yaml", {"": "compliant_hoist.png"})),
     "work_precision": ("the work-precision figure, redrawn from benchmarks/results/work_precision.csv",
                        _work_precision),
 }

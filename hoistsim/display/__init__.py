@@ -23,10 +23,11 @@ from .periodic_regime import PERIODIC_REGIME
 from .ratchet import RATCHET
 from .rope import ROPE
 from .shaft import SHAFT
+from .spring_damper import SPRING_DAMPER
 
 DISPLAYS: tuple[Display, ...] = (MOTOR, GEAR_PAIR, MESH_FRICTION, CONE_CLUTCH, CLUTCH_HEATING, LOAD, ROPE, GROUND,
                                  HOLDING_BRAKE, FRICTION_BRAKE, RATCHET, DRUM_SHAFT_LOADS, PERIODIC_REGIME, SHAFT,
-                                 FRICTION_CLUTCH)
+                                 FRICTION_CLUTCH, SPRING_DAMPER)
 
 
 def headline(summary: dict) -> list[str]:

@@ -314,7 +314,8 @@ def _title(runs, swept) -> str:
     name = str(attrs.get("name", ""))
     if len(runs) > 1:
         return f"{name}: {len(runs)} runs, coloured by {swept_label(swept)}"
-    return f"{name}: " + "; ".join(headline(attrs))
+    said = headline(attrs)
+    return f"{name}: " + "; ".join(said) if said else name
 
 
 def _run_name(run) -> str:

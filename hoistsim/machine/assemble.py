@@ -93,8 +93,10 @@ def plan_from(elements: tuple, sim, grid: np.ndarray) -> Plan:
     scheduled = [0.0, sim.duration, *scheduled_times(elements)]
     speeds = [float(v) for e in elements for v in e.bodies().values()]
     # the state in Layout's order: the bodies' speeds, every element's states, the angles read
-    angles = {shaft for e in elements for shaft in e.angles()}  # each starts at 0
-    initial = speeds + [float(v) for e in elements for v in e.states().values()] + [0.0] * len(angles)
+    angles = dict.fromkeys(shaft for e in elements for shaft in e.angles())  # in Layout's order
+    starts = {shaft: angle for e in elements for shaft, angle in e.angle_starts().items()}
+    initial = (speeds + [float(v) for e in elements for v in e.states().values()]
+               + [float(starts.get(shaft, 0.0)) for shaft in angles])
     scales = [float(s) for s in (e.speed_scale() for e in elements) if s is not None]
     return Plan(
         elements=elements,  # floats and float arrays already (from_spec); jit takes them as they are

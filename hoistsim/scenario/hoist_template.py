@@ -26,10 +26,15 @@ CLUTCH_NAMES = {"{name}_torque": "clutch_torque", "{name}_slip": "slip_speed", "
                 "{name}_capacity": "clutch_capacity", "{name}_mode": "clutch_mode",
                 "{name}_lockup_time": "lockup_time", "{name}_slip_duration": "slip_duration",
                 "{name}_peak_torque": "peak_clutch_torque", "{name}_peak_slip_speed": "peak_slip_speed",
-                "{name}_slip_energy": "slip_energy",
-                # its heating's
-                "{name}_overheat_time": "overheat_time", "{name}_temperature_peak": "temperature_peak",
-                "{name}_overheat": "overheat"}
+                "{name}_slip_energy": "slip_energy"}
+
+
+def heating_names(heating) -> dict:
+    """The names the hoist gives its clutch heating's outputs (its overheat's where it has a limit)."""
+    names = {"{name}_temperature_peak": "temperature_peak"}
+    if heating.max_temperature is not None:
+        names |= {"{name}_overheat_time": "overheat_time", "{name}_overheat": "overheat"}
+    return names
 
 
 class TemplatePart(NamedTuple):
@@ -140,7 +145,8 @@ def motor_as_drawn(spec, scenario) -> TemplateMotorSpec:
     motor_work; its ripple's ripple_torque, motor_ripple_work)."""
     return TemplateMotorSpec.model_construct(**{name: getattr(spec, name) for name in type(spec).model_fields},
                                              shaft="motor", name="motor",
-                                             outputs_named={"{name}_ripple_torque": "ripple_torque"})
+                                             outputs_named={"{name}_ripple_torque": "ripple_torque"} if spec.ripple
+                                             else {})
 
 
 def motor_ripple_as_drawn(spec, scenario) -> TemplateMotorSpec:
@@ -197,7 +203,7 @@ def clutch_as_drawn(spec, scenario) -> TemplateClutchSpec:
 
 def heating_as_drawn(spec, scenario) -> TemplateClutchSpec:
     """``clutch_heating:``: the drawn clutch's heating (its element reads the heating and the clutch's names)."""
-    return TemplateClutchSpec.model_construct(name="clutch", heating=spec, outputs_named=CLUTCH_NAMES)
+    return TemplateClutchSpec.model_construct(name="clutch", heating=spec, outputs_named=heating_names(spec))
 
 
 class TemplateSliderCrankSpec(TemplateNames, SliderCrankSpec):

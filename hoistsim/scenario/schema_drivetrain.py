@@ -22,6 +22,7 @@ from .schema_clutch import ConeSpec, FrictionSpec
 from .schema_motor import MotorSpec, RippleSpec
 from .schema_parts import ClutchHeatingSpec, fade_tables, kinetic_within_static
 from .schema_load import LoadOnShaftSpec
+from .schema_spring import SpringSpec
 from .schema_shaft_parts import (SHAFT_PARTS, BrakeOnShaftSpec, OnShaft, RatchetOnShaftSpec, RotorSpec,
                                  SliderCrankSpec, check_shaft_parts)
 from .signals import signal
@@ -34,6 +35,7 @@ _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 class ShaftSpec(OnShaft, Section):
     inertia: u.quantity(u.INERTIA, ge=0.0)  # zero: only with something of inertia tied to it
     speed: u.quantity(u.ANGULAR_SPEED) = 0.0  # at t = 0
+    angle: u.quantity(u.ANGLE) = 0.0  # at t = 0 (where anything reads it: a spring, a ripple)
     resisting_ripple: RippleSpec | None = None  # a torque resisting its turning, periodic in its angle
     name: str = Field("", exclude=True)  # its key in drivetrain.shafts (set there, never written)
 
@@ -158,6 +160,7 @@ class DrivetrainSpec(Section):
     shafts: dict[str, ShaftSpec]
     torques: list[TorqueSpec] = []
     clutches: dict[str, FrictionClutchSpec] = {}
+    springs: dict[str, SpringSpec] = {}
     gears: dict[str, GearStageSpec] = {}
     motors: dict[str, ShaftMotorSpec] = {}
     rotors: dict[str, RotorSpec] = {}
@@ -174,7 +177,7 @@ class DrivetrainSpec(Section):
         if not isinstance(data, dict):
             return data
         data = dict(data)
-        for kind in ("shafts", "clutches", "gears", "motors", *SHAFT_PARTS):
+        for kind in ("shafts", "clutches", "springs", "gears", "motors", *SHAFT_PARTS):
             parts = data.get(kind)
             if not isinstance(parts, dict):
                 continue
@@ -213,14 +216,18 @@ class DrivetrainSpec(Section):
             if torque.shaft not in self.shafts:
                 raise ScenarioError(f"drivetrain.torques.{i}.shaft", f"there is no shaft {torque.shaft!r} "
                                     f"(shafts: {known})")
+        for kind, parts in (("clutches", self.clutches), ("springs", self.springs)):
+            for name, part in parts.items():
+                a, b = part.between
+                for side in (a, b):
+                    grounded = side == GROUND and (side == b or kind == "springs")  # a spring's housing: either
+                    if side not in self.shafts and not grounded:
+                        raise ScenarioError(f"drivetrain.{kind}.{name}.between", f"there is no shaft {side!r} "
+                                            f"(shafts: {known}; `ground` as the second for "
+                                            f"{'a brake' if kind == 'clutches' else 'the housing, or the first'})")
+                if a == b:
+                    raise ScenarioError(f"drivetrain.{kind}.{name}.between", f"joins shaft {a!r} to itself")
         for name, clutch in self.clutches.items():
-            a, b = clutch.between
-            for side in (a, b):
-                if side not in self.shafts and not (side == GROUND and side == b):
-                    raise ScenarioError(f"drivetrain.clutches.{name}.between", f"there is no shaft {side!r} "
-                                        f"(shafts: {known}; `ground` as the second for a brake)")
-            if a == b:
-                raise ScenarioError(f"drivetrain.clutches.{name}.between", f"joins shaft {a!r} to itself")
             if (clutch.effective_radius is None) == (clutch.cone is None):
                 raise ScenarioError(f"drivetrain.clutches.{name}.effective_radius", "give either effective_radius "
                                     "or cone (inner_radius, outer_radius, half_angle), one of them")
@@ -249,6 +256,12 @@ class DrivetrainSpec(Section):
 
     def _parts_named(self):
         seen = {name: "shafts" for name in self.shafts} | {name: "clutches" for name in self.clutches}
+        for name in self.springs:
+            if not _NAME.match(name) or name == GROUND or name in seen:
+                raise ScenarioError(f"drivetrain.springs.{name}", "a name is a word of letters, digits and "
+                                    f"underscores starting with a letter, not {GROUND!r} and not the name of "
+                                    "another part (they name the outputs)")
+            seen[name] = "springs"
         known = ", ".join(self.shafts)
         for kind, parts in (("gears", self.gears), ("motors", self.motors),
                             *((kind, getattr(self, kind)) for kind in SHAFT_PARTS)):

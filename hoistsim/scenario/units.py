@@ -97,6 +97,8 @@ STIFFNESS = Dimension("stiffness", "N/m", "'2.5e5 N/m'")
 PRESSURE = Dimension("modulus (a pressure)", "Pa", "'100 GPa'")
 AREA = Dimension("area", "m^2", "'95 mm^2'")
 FREQUENCY = Dimension("frequency", "Hz", "'5 Hz'")
+TORSIONAL_STIFFNESS = Dimension("torsional stiffness", "N*m/rad", "'1e4 N*m/rad'", radians=-1)
+TORSIONAL_DAMPING = Dimension("torsional damping", "N*m*s/rad", "'10 N*m*s/rad'", radians=-1)
 
 # dimensionality (as pint prints it, radian power) -> what an engineer calls it
 _KNOWN = {
@@ -114,6 +116,8 @@ _KNOWN = {
     ("[length] / [time] ** 2", 0): "acceleration",
     ("[mass] / [length] / [time] ** 2", 0): "pressure",
     ("[mass] / [time] ** 2", 0): "stiffness",
+    ("[mass] * [length] ** 2 / [time] ** 2", -1): "torsional stiffness",
+    ("[mass] * [length] ** 2 / [time]", -1): "torsional damping",
     ("[mass] * [length] ** 2 / [time] ** 3", 0): "power",
     ("[temperature]", 0): "temperature",
     ("[mass] * [length] ** 2 / [temperature] / [time] ** 2", 0): "heat capacity",
@@ -315,7 +319,7 @@ def bare_number_note(value: float, dimension: Dimension) -> str | None:
     if dimension is TEMPERATURE:
         return (f"the bare number {value:g} is read as {value:g} K ({show(value, dimension)}); "
                 f"write the unit, like {dimension.example}, to say which you mean")
-    if not dimension.radians:
+    if dimension.radians != 1:
         return None
     shown = value * (30 / math.pi if dimension.shown_in == "rpm" else 180 / math.pi)
     return (f"the bare number {value:g} is read as {value:g} {dimension.si_unit} ({shown:.4g} {dimension.shown_in}); "

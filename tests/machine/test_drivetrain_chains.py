@@ -251,3 +251,84 @@ def test_a_sweep_over_a_drivetrain_key_equals_its_runs_alone():
     assert finals[0] != finals[1]
     lockups = [run.summary["clutch2_lockup_time"] for run in result.runs]
     assert lockups[0] > lockups[1] > lockups[2]
+
+
+# --------------------------------------------------------------------------------------
+# chains with a spring: a spring-damper, or one with backlash, from the second shaft to the third
+
+_springs = st.tuples(st.floats(10.0, 1e4), st.floats(0.1, 20.0), st.floats(-0.5, 0.5))
+_driving = st.tuples(st.floats(0.5, 40.0), st.floats(0.1, 5.0), st.floats(0.0, 2 * math.pi))
+
+
+@st.composite
+def sprung_chains(draw, backlash: bool):
+    """Three shafts: clutch1 from J1 to J2 (the brake never pressed), a spring from J2 to J3, with a play where
+    ``backlash`` (each kind one compiled program)."""
+    inertias = draw(st.lists(st.floats(0.1, 5.0), min_size=3, max_size=3))
+    speeds = draw(st.lists(st.floats(-20.0, 20.0), min_size=3, max_size=3))
+    clutches = [draw(_clutch_specs), (0.5, 1.0, 0.1, 1, (0.3, 0.6), (0.0, 0.0, 0.0, 0.0))]  # clutch2: never pressed
+    # driven: a chain left to ring down to rest is the defect kept below
+    torque = draw(st.tuples(st.floats(-20.0, 20.0), st.tuples(_driving, _harmonics)))
+    data = chain(inertias, speeds, clutches, None, torque)
+    stiffness, damping, unstretched = draw(_springs)
+    spring = {"between": ["J2", "J3"], "stiffness": f"{stiffness!r} N*m/rad", "damping": f"{damping!r} N*m*s/rad",
+              "unstretched_angle": f"{unstretched!r} rad"}
+    if backlash:
+        spring["backlash"] = f"{draw(st.floats(0.0, 0.5))!r} rad"
+    data["drivetrain"]["springs"] = {"spring": spring}
+    return data
+
+
+def _sprung_chain_holds(data, ledger=1e-8):
+    """Clutch 1 obeys its law at every row, the ledger closes with the spring's energy and its damper's heat
+    (within ``ledger``), and the chain's angular momentum changes by the torque on J1 alone (the spring and the
+    clutches pass torque between shafts); a backlash's torque never pulls its sides together."""
+    scene = scenario_from_dict(data, name="chain")
+    run = simulate(scene)
+    _check_friction_law(run, "clutch1", scene.drivetrain.clutches["clutch1"])
+    assert run.energy_balance["relative_residual"] < ledger
+    shafts = scene.drivetrain.shafts
+    momentum = sum(s.inertia * run[f"{name}_speed"] for name, s in shafts.items())
+    torque = data["drivetrain"]["torques"][0]["torque"]
+    harmonics = [tuple(float(h[k].split()[0]) for k in ("amplitude", "frequency", "phase")) for h in torque["harmonics"]]
+    expected = sum(s.inertia * s.speed for s in shafts.values()) + _torque_impulse(
+        run.time, float(torque["offset"].split()[0]), harmonics)
+    scale = max(1.0, sum(s.inertia * abs(s.speed) for s in shafts.values()), float(np.max(np.abs(expected))))
+    np.testing.assert_allclose(momentum, expected, rtol=0, atol=1e-8 * scale)
+    if "spring_contact" in run.series:
+        contact, passed = run["spring_contact"], run["spring_torque"]
+        assert np.all(passed * contact >= 0.0) and np.all(passed[contact == 0] == 0.0)
+
+
+@pytest.mark.slow
+@SETTINGS
+@given(sprung_chains(backlash=False))
+def test_a_chain_with_a_spring_keeps_its_ledger_and_momentum(data):
+    _sprung_chain_holds(data)
+
+
+@pytest.mark.slow
+@SETTINGS
+@given(sprung_chains(backlash=True))
+def test_a_chain_with_backlash_keeps_its_ledger_and_momentum(data):
+    # A backlash's ledger holds to the solver's tolerance, a few times looser than a clutch's: on the chain the
+    # search found at 2e-8 (rtol 1e-10), its spring alone closes to 2.2e-9, 3.2e-10 and 8.4e-11 at rtol 1e-10,
+    # 1e-11 and 1e-12 (the heat of a release, (tau - tau_c) w_rel, integrated through the law's kinks)
+    _sprung_chain_holds(data, ledger=1e-7)
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="a known defect: a chain that has rung down to 1e-11 rad/s with open couplings "
+                                       "watching takes some 2e5 steps a pass (its step count limit)")
+def test_a_chain_ringing_down_to_rest_with_open_couplings():
+    """Found by the search above (with undriven chains): nothing drives it, the spring starts strained by 0.5 rad
+    and rings down (zeta 0.16 at 38 Hz); by 0.74 s its speeds are 1e-11 rad/s and the stepper takes ever
+    shorter steps until it fails at 0.857 s (185 000 steps by 0.85 s).  With clutch 1 the only open coupling
+    (clutch 2 and the brake removed) it runs in 2 000; with either of those two kept, it fails alike.  Kept
+    here as found, until the cause is known."""
+    data = chain([1.0, 0.5, 0.109375], [0.0, 0.0, 0.0], [(1.0, 1.0, 1.0, 1, (0.75, 0.98), (0.0, 0.0, 0.0, 0.0)),
+                                                         (0.5, 1.0, 0.1, 1, (0.3, 0.6), (0.0, 0.0, 0.0, 0.0))],
+                 None, (0.0, ((0.0, 1.0, 0.0), (0.0, 1.0, 0.0))))
+    data["drivetrain"]["springs"] = {"spring": {"between": ["J2", "J3"], "stiffness": "5142.0 N*m/rad",
+                                                "damping": "7.0 N*m*s/rad", "unstretched_angle": "0.5 rad"}}
+    _sprung_chain_holds(data)

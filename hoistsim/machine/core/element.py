@@ -118,6 +118,10 @@ class AbstractElement:
         """The rates of its states: name -> d(state)/dt (the state's units per s)."""
         return {}
 
+    def angle_starts(self) -> dict:
+        """Shaft -> its angle at t = 0 (rad), for the shafts it is (default 0)."""
+        return {}
+
     def angles(self) -> tuple:
         """Shafts whose angle it reads (``x.angle(shaft)``, rad from the start): a state and column each."""
         # one state and one output column <shaft>_angle for each shaft some element asks for, none otherwise

@@ -63,7 +63,8 @@ class Layout:
                 if shaft not in self.angle_shafts:
                     self.angle_shafts.append(shaft)
         self.state_names += [angle_state(shaft) for shaft in self.angle_shafts]
-        self.initial_states += [0.0] * len(self.angle_shafts)
+        starts = {shaft: angle for element in elements for shaft, angle in element.angle_starts().items()}
+        self.initial_states += [starts.get(shaft, 0.0) for shaft in self.angle_shafts]
         self._state_index = {name: i for i, name in enumerate(self.state_names)}
         self.event_kinds = list(SWITCH_KINDS)
         # kinds of mode changes: the core's, those couplings rename them to, the crossings named by their way
@@ -95,7 +96,7 @@ class Layout:
                 raise LayoutError(element.section, f"{element.section!r} names more than one part of the machine, "
                                   "and this one's guards and events are found by its name")
         self._columns = {name: column for e in elements for name, column in e.columns.items()}
-        self._columns.update({angle_state(shaft): ("rad", f"angle the {shaft} shaft has turned since the start")
+        self._columns.update({angle_state(shaft): ("rad", f"angle of the {shaft} shaft (its initial angle at t = 0)")
                               for shaft in self.angle_shafts})
         self.summaries = {name: units for e in elements for name, units in e.summaries.items()}
         self.ledger_kinds = {"kinetic_energy": "potential"}

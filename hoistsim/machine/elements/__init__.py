@@ -18,6 +18,7 @@ from .bearings import DrumShaftLoads as DrumShaftLoads
 from .clutch_heating import ClutchHeating as ClutchHeating
 from .constant_torque_motor import ConstantTorqueMotor as ConstantTorqueMotor
 from .elastic_load import ElasticLoad as ElasticLoad
+from .elasto_backlash import ElastoBacklash as ElastoBacklash
 from .flywheel import Flywheel as Flywheel
 from .friction_brake import FrictionBrake as FrictionBrake
 from .friction_clutch import FrictionClutch as FrictionClutch
@@ -36,6 +37,7 @@ from .rope import Rope as Rope
 from .shaft import Shaft as Shaft
 from .shaft_torque import ShaftTorque as ShaftTorque
 from .slider_crank import SliderCrank as SliderCrank
+from .spring_damper import SpringDamper as SpringDamper
 from .wire_rope import WireRope as WireRope
 
 # A drawn drivetrain's part (each part of a kind: "*"; a key within a part: dotted after it) -> its element, or the
@@ -52,6 +54,7 @@ REGISTRY: dict[str, object] = {
     "drivetrain.torques.*": ShaftTorque,
     "drivetrain.clutches.*": FrictionClutch,
     "drivetrain.clutches.*.heating": ClutchHeating,
+    "drivetrain.springs.*": {"spring": SpringDamper, "backlash": ElastoBacklash},
     "drivetrain.gears.*.mesh": MeshFriction,  # a lossy stage's mesh
     "drivetrain.load": {"rigid": RigidLoad, "elastic": ElasticLoad},  # on a rigid rope, or a body on its rope
     "drivetrain.load.rope": {"stiffness": Rope, "modulus": WireRope},

@@ -19,6 +19,7 @@ class Shaft(AbstractElement):
     inertia: object  # kg*m^2
     initial_speed: object  # rad/s
     speed_ratio: object = 1.0  # its speed over that of the shaft it is geared to
+    initial_angle: object = 0.0  # rad
     section: str = static("")  # the shaft's name
     geared_to: str = static("")  # the first shaft of its gear train ("" : it is that shaft)
     scaled: bool = static(True)  # its speed at the start is one of the machine's speed scales
@@ -27,7 +28,8 @@ class Shaft(AbstractElement):
     @classmethod
     def from_spec(cls, spec, scenario) -> Shaft:
         root, ratio, speed = spec.train(scenario)
-        return cls(inertia=spec.inertia, initial_speed=speed, speed_ratio=ratio, section=spec.name,
+        return cls(inertia=spec.inertia, initial_speed=speed, speed_ratio=ratio, initial_angle=spec.angle,
+                   section=spec.name,
                    geared_to="" if root == spec.name else root, scaled=spec.sets_speed_scale(),
                    observed=spec.observed())
 
@@ -47,6 +49,9 @@ class Shaft(AbstractElement):
 
     def inertias(self) -> tuple:
         return ((self.section, self.inertia),)
+
+    def angle_starts(self) -> dict:
+        return {self.section: self.initial_angle}
 
     def speed_scale(self):
         # at least 1 rad/s: a machine started at rest (or at a speed lost in round-off) still resolves slips

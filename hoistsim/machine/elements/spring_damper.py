@@ -1,0 +1,99 @@
+"""A torsional spring and damper between two shafts, or a shaft and the ground (the housing)."""
+
+from __future__ import annotations
+
+from ..._pytree import static
+from ..core.element import AbstractElement
+
+
+class SpringDamper(AbstractElement):
+    """tau = c (phi_rel - phi_rel0) + d w_rel, phi_rel = phi_b - phi_a and w_rel = w_b - w_a (Modelica's
+    SpringDamper): it pulls shaft b back with tau and shaft a forward with it (a to the ground: only a).
+
+    Its shafts' angles are states (each from the shaft's initial ``angle``).  Ledger: the strain energy
+    1/2 c (phi_rel - phi_rel0)^2 (potential) and the damper's heat, the integral of d w_rel^2 (a loss, a
+    state).  Outputs ``<name>_torque`` (tau), ``<name>_twist`` (phi_rel), ``<name>_twist_speed`` (w_rel).
+    """
+
+    stiffness: object  # c, N*m/rad
+    damping: object  # d, N*m*s/rad
+    unstretched_angle: object  # phi_rel0, rad
+    driving: str | None = static(None)  # shaft a, None for the ground
+    driven: str | None = static(None)  # shaft b, None for the ground
+    section: str = static("")  # its name
+
+    @classmethod
+    def from_spec(cls, spec, scenario) -> "SpringDamper":
+        a, b = spec.between
+        return cls(**cls.fields_from(spec))
+
+    @staticmethod
+    def fields_from(spec) -> dict:
+        a, b = (None if side == "ground" else side for side in spec.between)
+        return dict(stiffness=spec.spring_rate, damping=spec.damping, unstretched_angle=spec.unstretched_angle,
+                    driving=a, driven=b, section=spec.name)
+
+    @property
+    def loss_state(self) -> str:
+        return f"{self.section}_damping_loss"
+
+    @property
+    def ledger_kinds(self) -> dict:
+        return {f"{self.section}_strain_energy": "potential", self.loss_state: "loss"}
+
+    @property
+    def columns(self) -> dict:
+        a, b = (f"shaft {side}" if side else "the ground" for side in (self.driving, self.driven))
+        name = self.section
+        return {f"{name}_torque": ("N*m", f"torque {name} passes: it pulls {b} back with it, {a} forward"),
+                f"{name}_twist": ("rad", f"angle of {b} less that of {a}"),
+                f"{name}_twist_speed": ("rad/s", f"speed of {b} less that of {a}")}
+
+    def angles(self) -> tuple:
+        return tuple(side for side in (self.driving, self.driven) if side is not None)
+
+    def twist(self, x):
+        """phi_rel (rad): b's angle less a's (the ground's is 0)."""
+        return self._of(x.angle, self.driven) - self._of(x.angle, self.driving)
+
+    def twist_speed(self, x):
+        """w_rel (rad/s): b's speed less a's."""
+        return self._of(x.speed, self.driven) - self._of(x.speed, self.driving)
+
+    @staticmethod
+    def _of(read, side):
+        return 0.0 if side is None else read(side)
+
+    def torque(self, x):
+        return self.stiffness * (self.twist(x) - self.unstretched_angle) + self.damping * self.twist_speed(x)
+
+    def strain(self, x):
+        """The twist the spring is strained by (rad): the twist less the unstretched angle."""
+        return self.twist(x) - self.unstretched_angle
+
+    def torques(self, x) -> tuple:
+        tau = self.torque(x)
+        return tuple((side, sign * tau) for side, sign in ((self.driving, 1.0), (self.driven, -1.0))
+                     if side is not None)
+
+    def states(self) -> dict:
+        return {self.loss_state: 0.0}
+
+    def loss_power(self, x):
+        """W: the damper's heat, d w_rel^2."""
+        return self.damping * self.twist_speed(x) ** 2
+
+    def stored_strain(self, x):
+        """The strain its spring stores energy by (rad)."""
+        return self.strain(x)
+
+    def rates(self, x) -> dict:
+        return {self.loss_state: self.loss_power(x)}
+
+    def ledger(self, x) -> dict:
+        return {f"{self.section}_strain_energy": 0.5 * self.stiffness * self.stored_strain(x) ** 2,
+                self.loss_state: x.state(self.loss_state)}
+
+    def outputs(self, x) -> dict:
+        return {f"{self.section}_torque": self.torque(x), f"{self.section}_twist": self.twist(x),
+                f"{self.section}_twist_speed": self.twist_speed(x)}

@@ -1,0 +1,64 @@
+"""A drawn drivetrain's torsional springs and dampers (``drivetrain.springs``): between two shafts, or a shaft
+and ``ground`` (values in SI)."""
+
+from __future__ import annotations
+
+import math
+
+from pydantic import Field, model_validator
+
+from ..errors import ScenarioError
+from . import units as u
+from .schema_base import Section
+from .units import Text
+
+
+class SpringSpec(Section):
+    """A torsional spring c and a damper d in parallel, from shaft a to shaft b (or ``ground``): it passes
+    tau = c (phi_rel - unstretched_angle) + d w_rel, phi_rel and w_rel b's angle and speed less a's (Modelica's
+    SpringDamper; a Spring without damping, a Damper without stiffness)."""
+
+    between: tuple[Text, Text]  # [shaft a, shaft b]: either may be ground (the housing), not both
+    stiffness: u.quantity(u.TORSIONAL_STIFFNESS, ge=0.0) | None = None  # c (default 0: a damper)
+    # or a round shaft's: c = G pi (D^4 - D_i^4) / (32 L)
+    shear_modulus: u.quantity(u.PRESSURE, gt=0.0) | None = None  # G (steel: 79-81 GPa)
+    diameter: u.quantity(u.LENGTH, gt=0.0) | None = None  # D
+    inner_diameter: u.quantity(u.LENGTH, ge=0.0) = 0.0  # D_i, a hollow shaft's bore
+    length: u.quantity(u.LENGTH, gt=0.0) | None = None  # L, between the parts it joins
+    damping: u.quantity(u.TORSIONAL_DAMPING, ge=0.0) = 0.0  # d
+    unstretched_angle: u.quantity(u.ANGLE) = 0.0  # phi_rel0: the twist at which it passes no torque
+    backlash: u.quantity(u.ANGLE, ge=0.0) | None = None  # b: the total play (Modelica's ElastoBacklash)
+    name: str = Field("", exclude=True)  # its key in drivetrain.springs (set there, never written)
+
+    @model_validator(mode="after")
+    def _a_spring_or_a_damper(self):
+        keys = (self.stiffness, self.shear_modulus, self.diameter, self.length)
+        damper = all(value is None for value in keys) and self.damping > 0.0  # a damping alone
+        shaft = not damper and self._one_value_or_group(
+            "", "stiffness", ("shear_modulus", "diameter", "length"),
+            both="stiffness or a shaft's shear_modulus, diameter and length",
+            required="a stiffness, or a shaft's shear_modulus, diameter and length (or a damping alone: a damper)")
+        if shaft and self.inner_diameter >= self.diameter:
+            raise ScenarioError(".inner_diameter", f"must be less than the diameter ({self.diameter:g} m), got "
+                                f"{self.inner_diameter:g} m")
+        if self.backlash is not None and self.spring_rate == 0.0:
+            raise ScenarioError(".stiffness", "is required with backlash: the sides meet through the spring (a "
+                                "contact without stiffness would pass no torque)")
+        if self.spring_rate == 0.0 and self.damping == 0.0:
+            raise ScenarioError(".stiffness", "give a stiffness, a damping or both (a spring of neither passes "
+                                "no torque)")
+        return self
+
+    @property
+    def characteristic(self) -> str:
+        """Which variant: ``spring`` (a spring-damper) or ``backlash`` (one with play)."""
+        return "spring" if self.backlash is None else "backlash"
+
+    @property
+    def spring_rate(self) -> float:
+        """c (N*m/rad): as given, or the round shaft's G pi (D^4 - D_i^4) / (32 L); 0 for a damper."""
+        if self.stiffness is not None:
+            return self.stiffness
+        if self.diameter is None:
+            return 0.0
+        return self.shear_modulus * math.pi * (self.diameter**4 - self.inner_diameter**4) / (32.0 * self.length)
