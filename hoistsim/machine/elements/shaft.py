@@ -24,6 +24,7 @@ class Shaft(AbstractElement):
     geared_to: str = static("")  # the first shaft of its gear train ("" : it is that shaft)
     scaled: bool = static(True)  # its speed at the start is one of the machine's speed scales
     observed: bool = static(True)  # its speed is an output
+    angled: bool = static(False)  # its angle is given: a state and an output (<name>_angle) whatever reads it
 
     @classmethod
     def from_spec(cls, spec, scenario) -> Shaft:
@@ -31,7 +32,7 @@ class Shaft(AbstractElement):
         return cls(inertia=spec.inertia, initial_speed=speed, speed_ratio=ratio, initial_angle=spec.angle,
                    section=spec.name,
                    geared_to="" if root == spec.name else root, scaled=spec.sets_speed_scale(),
-                   observed=spec.observed())
+                   observed=spec.observed(), angled="angle" in spec.model_fields_set)
 
     @property
     def columns(self) -> dict:
@@ -52,6 +53,9 @@ class Shaft(AbstractElement):
 
     def angle_starts(self) -> dict:
         return {self.section: self.initial_angle}
+
+    def angles(self) -> tuple:
+        return (self.section,) if self.angled else ()
 
     def speed_scale(self):
         # at least 1 rad/s: a machine started at rest (or at a speed lost in round-off) still resolves slips

@@ -1,0 +1,56 @@
+"""Modelica's Rotational examples (scenarios/modelica/) against Dymola's published trajectories
+(tests/data/modelica/, from modelica/MAP-LIB_ReferenceResults; its source in SOURCE.md).
+
+Every comparison signal within 1e-3 of its range at every reference row more than 1 ms from a reference event
+(a repeated time), and every switch within 1e-4 s of the reference's.  First, FirstGrounded and Backlash are
+checked with their parts in tests/machine/test_springs.py; CoupledClutches here, its clutches' modes too.
+"""
+
+from __future__ import annotations
+
+import csv
+
+import numpy as np
+import pytest
+from helpers import SCENARIOS, TESTS
+
+from hoistsim import load_scenario, simulate
+
+
+def _reference(example: str):
+    with (TESTS / "data" / "modelica" / f"{example}.csv").open() as f:
+        rows = list(csv.reader(f))
+    table = np.asarray([[float(v) for v in row] for row in rows[1:]])
+    return {name: table[:, i] for i, name in enumerate(rows[0])}
+
+
+def _events(times):
+    """The reference's event instants: the times it repeats."""
+    return np.unique(times[1:][np.diff(times) == 0.0])
+
+
+@pytest.mark.slow  # three clutches: a program of its own to compile (~10 s)
+def test_coupled_clutches_against_dymolas_published_trajectories():
+    """MSL 4.0's CoupledClutches (sin2's phase pi/2): J1's angle and speed and each clutch's phi_rel, w_rel (the
+    second shaft's less the first's) within 1.2e-5 of their ranges; each clutch's mode changes (Modelica's
+    mode: -1 sliding backwards, 0 stuck, 1 forwards, 2 free) at hoistsim's switches, within 4e-6 s."""
+    run = simulate(load_scenario(SCENARIOS / "modelica" / "CoupledClutches.yaml"))
+    reference = _reference("CoupledClutches")
+    times = reference["time"]
+    events = _events(times)
+    far = np.min(np.abs(times[:, None] - events[None, :]), axis=1) > 1e-3
+    ours = {"J1.phi": run["J1_angle"], "J1.w": run["J1_speed"]}
+    for k in (1, 2, 3):
+        a, b = f"J{k}", f"J{k + 1}"
+        ours[f"clutch{k}.phi_rel"] = run[f"{b}_angle"] - run[f"{a}_angle"]
+        ours[f"clutch{k}.w_rel"] = run[f"{b}_speed"] - run[f"{a}_speed"]
+    for signal, series in ours.items():
+        worst = np.max(np.abs(np.interp(times, run.time, series) - reference[signal])[far]) / np.ptp(reference[signal])
+        assert worst < 1e-3, (signal, worst)
+    for k in (1, 2, 3):
+        mode = reference[f"clutch{k}.mode"]
+        changes = times[1:][np.diff(mode) != 0.0]
+        ours_k = run.events["time"][run.events["element"] == f"clutch{k}"]
+        assert len(ours_k) == len(changes), (k, ours_k, changes)
+        np.testing.assert_allclose(ours_k, changes, rtol=0, atol=1e-4, err_msg=f"clutch{k}")
+    assert run.summary["energy_relative_residual"] < 1e-9
