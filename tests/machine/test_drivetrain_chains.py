@@ -267,8 +267,9 @@ def sprung_chains(draw, backlash: bool):
     inertias = draw(st.lists(st.floats(0.1, 5.0), min_size=3, max_size=3))
     speeds = draw(st.lists(st.floats(-20.0, 20.0), min_size=3, max_size=3))
     clutches = [draw(_clutch_specs), (0.5, 1.0, 0.1, 1, (0.3, 0.6), (0.0, 0.0, 0.0, 0.0))]  # clutch2: never pressed
-    # driven: a chain left to ring down to rest is the defect kept below
-    torque = draw(st.tuples(st.floats(-20.0, 20.0), st.tuples(_driving, _harmonics)))
+    # drawn driven by harmonics: undriven and constant-torque chains found defects kept below
+    driving = _driving if backlash else _harmonics
+    torque = draw(st.tuples(st.floats(-20.0, 20.0), st.tuples(driving, _harmonics)))
     data = chain(inertias, speeds, clutches, None, torque)
     stiffness, damping, unstretched = draw(_springs)
     spring = {"between": ["J2", "J3"], "stiffness": f"{stiffness!r} N*m/rad", "damping": f"{damping!r} N*m*s/rad",
@@ -318,17 +319,30 @@ def test_a_chain_with_backlash_keeps_its_ledger_and_momentum(data):
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="a known defect: a chain that has rung down to 1e-11 rad/s with open couplings "
-                                       "watching takes some 2e5 steps a pass (its step count limit)")
 def test_a_chain_ringing_down_to_rest_with_open_couplings():
-    """Found by the search above (with undriven chains): nothing drives it, the spring starts strained by 0.5 rad
-    and rings down (zeta 0.16 at 38 Hz); by 0.74 s its speeds are 1e-11 rad/s and the stepper takes ever
-    shorter steps until it fails at 0.857 s (185 000 steps by 0.85 s).  With clutch 1 the only open coupling
-    (clutch 2 and the brake removed) it runs in 2 000; with either of those two kept, it fails alike.  Kept
-    here as found, until the cause is known."""
+    """Found by the search above: nothing drives it, the spring starts strained by 0.5 rad and rings down (zeta
+    0.16 at 38 Hz) to 1e-11 rad/s by 0.74 s.  While the spring's twist was the difference of its shafts' angles
+    (0.5 rad, whose round-off is 1e-16 rad), a motion that small no longer moved it: the twist froze, the speeds
+    drifted and the stepper failed at 0.857 s for want of steps.  Its twist is now a state of its own."""
     data = chain([1.0, 0.5, 0.109375], [0.0, 0.0, 0.0], [(1.0, 1.0, 1.0, 1, (0.75, 0.98), (0.0, 0.0, 0.0, 0.0)),
                                                          (0.5, 1.0, 0.1, 1, (0.3, 0.6), (0.0, 0.0, 0.0, 0.0))],
                  None, (0.0, ((0.0, 1.0, 0.0), (0.0, 1.0, 0.0))))
     data["drivetrain"]["springs"] = {"spring": {"between": ["J2", "J3"], "stiffness": "5142.0 N*m/rad",
                                                 "damping": "7.0 N*m*s/rad", "unstretched_angle": "0.5 rad"}}
     _sprung_chain_holds(data)
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="a known defect: a chain with backlash runs out of steps near 0.92 s")
+def test_a_chain_with_backlash_closing_a_clutch_on_a_constant_torque():
+    """Found by the search above, drawn before it was restricted to chains driven by harmonics: J1 driven by
+    1 N*m, clutch 1 closing at 0.5 s (4 N falling to 0 by 0.98 s), a backlash (222 N*m/rad, d 1, play
+    0.03125 rad) from J2 to J3; the stepper fails for want of steps at 0.916 s.  (The same search found a chain
+    whose ledger closed to 1.3e-7 only.)  Kept here as found, until the cause is known."""
+    data = chain([1.0, 1.0, 1.0], [0.0, 0.0, 0.0], [(1.0, 1.0, 1.0, 1, (0.5, 0.98), (0.0, 4.0, 0.0, 0.0)),
+                                                     (0.5, 1.0, 0.1, 1, (0.3, 0.6), (0.0, 0.0, 0.0, 0.0))],
+                 None, (1.0, ((0.0, 1.0, 0.0), (0.0, 1.0, 0.0))))
+    data["drivetrain"]["springs"] = {"spring": {"between": ["J2", "J3"], "stiffness": "222.0 N*m/rad",
+                                                "damping": "1.0 N*m*s/rad", "unstretched_angle": "0.0 rad",
+                                                "backlash": "0.03125 rad"}}
+    _sprung_chain_holds(data, ledger=1e-7)

@@ -10,7 +10,9 @@ class SpringDamper(AbstractElement):
     """tau = c (phi_rel - phi_rel0) + d w_rel, phi_rel = phi_b - phi_a and w_rel = w_b - w_a (Modelica's
     SpringDamper): it pulls shaft b back with tau and shaft a forward with it (a to the ground: only a).
 
-    Its shafts' angles are states (each from the shaft's initial ``angle``).  Ledger: the strain energy
+    Its twist is a state of its own, integrated from w_rel (from its shafts' initial ``angle``s): a twist of
+    1e-12 rad is not left to the difference of two angles of radians, whose round-off would freeze a spring
+    ringing down to rest (its shafts' angles are outputs too).  Ledger: the strain energy
     1/2 c (phi_rel - phi_rel0)^2 (potential) and the damper's heat, the integral of d w_rel^2 (a loss, a
     state).  Outputs ``<name>_torque`` (tau), ``<name>_twist`` (phi_rel), ``<name>_twist_speed`` (w_rel).
     """
@@ -18,24 +20,30 @@ class SpringDamper(AbstractElement):
     stiffness: object  # c, N*m/rad
     damping: object  # d, N*m*s/rad
     unstretched_angle: object  # phi_rel0, rad
+    initial_twist: object = 0.0  # phi_rel at t = 0, rad
     driving: str | None = static(None)  # shaft a, None for the ground
     driven: str | None = static(None)  # shaft b, None for the ground
     section: str = static("")  # its name
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "SpringDamper":
-        a, b = spec.between
-        return cls(**cls.fields_from(spec))
+        return cls(**cls.fields_from(spec, scenario))
 
     @staticmethod
-    def fields_from(spec) -> dict:
+    def fields_from(spec, scenario) -> dict:
         a, b = (None if side == "ground" else side for side in spec.between)
+        shafts = scenario.drivetrain.shafts
+        start = [0.0 if side is None else shafts[side].angle for side in (a, b)]
         return dict(stiffness=spec.spring_rate, damping=spec.damping, unstretched_angle=spec.unstretched_angle,
-                    driving=a, driven=b, section=spec.name)
+                    initial_twist=start[1] - start[0], driving=a, driven=b, section=spec.name)
 
     @property
     def loss_state(self) -> str:
         return f"{self.section}_damping_loss"
+
+    @property
+    def twist_state(self) -> str:
+        return f"{self.section}.twist"
 
     @property
     def ledger_kinds(self) -> dict:
@@ -53,8 +61,8 @@ class SpringDamper(AbstractElement):
         return tuple(side for side in (self.driving, self.driven) if side is not None)
 
     def twist(self, x):
-        """phi_rel (rad): b's angle less a's (the ground's is 0)."""
-        return self._of(x.angle, self.driven) - self._of(x.angle, self.driving)
+        """phi_rel (rad): b's angle less a's (the ground's is 0), its own state."""
+        return x.state(self.twist_state)
 
     def twist_speed(self, x):
         """w_rel (rad/s): b's speed less a's."""
@@ -77,7 +85,7 @@ class SpringDamper(AbstractElement):
                      if side is not None)
 
     def states(self) -> dict:
-        return {self.loss_state: 0.0}
+        return {self.twist_state: self.initial_twist, self.loss_state: 0.0}
 
     def loss_power(self, x):
         """W: the damper's heat, d w_rel^2."""
@@ -88,7 +96,7 @@ class SpringDamper(AbstractElement):
         return self.strain(x)
 
     def rates(self, x) -> dict:
-        return {self.loss_state: self.loss_power(x)}
+        return {self.twist_state: self.twist_speed(x), self.loss_state: self.loss_power(x)}
 
     def ledger(self, x) -> dict:
         return {f"{self.section}_strain_energy": 0.5 * self.stiffness * self.stored_strain(x) ** 2,
