@@ -37,6 +37,17 @@ def heating_names(heating) -> dict:
     return names
 
 
+def section_of(scenario, parts: tuple):
+    """What a dotted section's parts name within the scenario (a section within a section: motor.ripple),
+    None where it is absent."""
+    holder = scenario
+    for part in parts:
+        holder = getattr(holder, part, None)
+        if holder is None:
+            return None
+    return holder
+
+
 class TemplatePart(NamedTuple):
     """A drawn part a hoist section stands for: its path in a drivetrain (``drivetrain.shafts.*``), what writes
     it out from the section and the scenario, and the other sections that reads (its element's too)."""
@@ -60,9 +71,9 @@ class TemplateShaftSpec(TemplateNames, ShaftSpec):
     an output where the hoist's was, and its speed at the start no speed scale of the machine (the hoist's
     slip resolution has always come from its motor's speeds, or failing that all its bodies')."""
 
-    geared_to: str = ""  # the shaft it turns with, "" for a body
-    ratio_to_root: float = 1.0  # its speed over that shaft's
-    speed_observed: bool = True
+    geared_to: str = Field("", exclude=True)  # the shaft it turns with, "" for a body
+    ratio_to_root: float = Field(1.0, exclude=True)  # its speed over that shaft's
+    speed_observed: bool = Field(True, exclude=True)
 
     def train(self, scenario) -> tuple:
         return self.geared_to or self.name, self.ratio_to_root, self.speed * self.ratio_to_root
@@ -157,7 +168,7 @@ def motor_ripple_as_drawn(spec, scenario) -> TemplateMotorSpec:
 class TemplateLoadSpec(LoadOnShaftSpec):
     """The hoist's load on the drum shaft: the drum turns at ``initial.drum_speed`` at the start."""
 
-    drum_speed_at_start: float = 0.0
+    drum_speed_at_start: float = Field(0.0, exclude=True)
 
     def shaft_speed(self, scenario) -> float:
         return self.drum_speed_at_start
@@ -180,8 +191,8 @@ class TemplateClutchSpec(TemplateNames, FrictionClutchSpec):
     shaft, pressed by the engagement force, with its halves' inertias, its heating (``clutch_heating:``) and the
     hoist's names for its outputs."""
 
-    driving_inertia: float = 0.0
-    driven_inertia: float = 0.0
+    driving_inertia: float = Field(0.0, exclude=True)
+    driven_inertia: float = Field(0.0, exclude=True)
 
     def halves(self) -> tuple[float, float]:
         return self.driving_inertia, self.driven_inertia

@@ -16,16 +16,14 @@ from ruamel.yaml import YAML
 from ..errors import ScenarioError
 from ..machine.assemble import with_steady_lift
 from ..scenario import units as u
-from ..scenario.hoist_template import TEMPLATE
+from ..machine.elements import MeshFriction
+from ..scenario.hoist_template import TEMPLATE, section_of
 from ..scenario.signals import TimeSignal
 from ..scenario.tables import ForceTable
 
 # the columns of each table key a drawn part may have
 _TABLE_COLUMNS = {"torque_speed": (u.ANGULAR_SPEED, u.TORQUE), "static_friction": (u.TEMPERATURE, u.DIMENSIONLESS),
                   "kinetic_friction": (u.TEMPERATURE, u.DIMENSIONLESS), "table": (u.ANGLE, u.TORQUE)}
-# keys a template's spec has for the machine's own use, not a drawn part's
-_TEMPLATE_KEYS = {"name", "outputs_named", "geared_to", "ratio_to_root", "speed_observed", "driving_inertia",
-                  "driven_inertia", "drum_speed_at_start"}
 _STAGE = "gears"  # the drawn gear stage's name (its lossy mesh's outputs: gears_mesh_torque, ...)
 
 
@@ -39,16 +37,16 @@ def hoist_as_drivetrain(scenario) -> tuple[dict, dict[str, str]]:
     drawn: dict = {kind: {} for kind in ("shafts", "motors", "clutches", "gears", "rotors", "slider_cranks",
                                          "brakes", "ratchets")}
     renamed: dict[str, str] = {}
+    inertias: dict[str, float] = {}  # each shaft's, with the clutch's halves on it (a drawn clutch's are its shafts')
     for section, parts in TEMPLATE.items():
-        spec = _section(scenario, section)
+        spec = section_of(scenario, tuple(section.split(".")))
         if spec is None:
             continue
         for part in parts:
             if part.path.startswith("drivetrain."):
-                _place(drawn, part.path.split(".")[1:], part.as_drawn(spec, scenario), scenario, renamed)
-    halves = drawn.pop("_halves", {})
-    for shaft, inertia in halves.items():  # a drawn clutch's halves are its shafts'
-        drawn["shafts"][shaft]["inertia"] = _value(_number(drawn["shafts"][shaft]["inertia"]) + inertia, u.INERTIA)
+                _place(drawn, part.path.split(".")[1:], part.as_drawn(spec, scenario), scenario, renamed, inertias)
+    for shaft, inertia in inertias.items():
+        drawn["shafts"][shaft]["inertia"] = _value(inertia, u.INERTIA)
     out = {"name": f"{scenario.name}-drawn",
            "description": f"The drivetrain the hoist scenario {scenario.name} stands for.",
            "gravity": _value(scenario.gravity, u.ACCELERATION),
@@ -72,16 +70,9 @@ def hoist_as_drivetrain_text(scenario) -> str:
     return "\n".join(lines) + "\n" + text.getvalue()
 
 
-def _section(scenario, dotted: str):
-    for part in dotted.split("."):
-        scenario = getattr(scenario, part, None)
-        if scenario is None:
-            return None
-    return scenario
-
-
-def _place(drawn: dict, path: list, spec, scenario, renamed: dict) -> None:
-    """Write one drawn part (or a key within one) into the drivetrain's plain data."""
+def _place(drawn: dict, path: list, spec, scenario, renamed: dict, inertias: dict) -> None:
+    """Write one drawn part (or a key within one) into the drivetrain's plain data (``inertias``: each shaft's,
+    written when every part is placed)."""
     kind, key = path[0], path[-1]
     names = spec.output_names() if hasattr(spec, "output_names") else {}
     part_name = getattr(spec, "name", "") or kind
@@ -90,7 +81,8 @@ def _place(drawn: dict, path: list, spec, scenario, renamed: dict) -> None:
     if kind == "shafts" and key == "resisting_ripple":
         drawn["shafts"][spec.name]["resisting_ripple"] = _plain(spec.resisting_ripple)
     elif kind == "shafts":
-        shaft = {"inertia": _value(spec.inertia, u.INERTIA)}
+        inertias[spec.name] = inertias.get(spec.name, 0.0) + spec.inertia
+        shaft = {"inertia": None}  # its place, first
         if spec.geared_to:  # turns with its root through the hoist's gears: a stage of its own
             gears = scenario.gears
             stage = {"between": [spec.geared_to, spec.name], "teeth": [gears.pinion_teeth, gears.wheel_teeth]}
@@ -102,8 +94,8 @@ def _place(drawn: dict, path: list, spec, scenario, renamed: dict) -> None:
         drawn["gears"].setdefault(_STAGE, {}).update(
             {k: v for k, v in (("efficiency", spec.efficiency), ("backdrive_efficiency", spec.backdrive_efficiency))
              if v is not None})
-        renamed.update({f"mesh_{role}": f"{_STAGE}_mesh_{role}" for role in ("torque", "loss_power", "heat", "mode",
-                                                                              "loss_energy")})
+        mesh = MeshFriction.from_spec(spec, scenario)  # its outputs' names as the hoist has them
+        renamed.update({name: f"{_STAGE}_{name}" for name in (*mesh.columns, *mesh.summaries)})
     elif kind == "clutches" and key == "heating":
         drawn["clutches"].setdefault(spec.name, {})["heating"] = _plain(spec.heating)
     elif kind == "clutches":
@@ -111,9 +103,8 @@ def _place(drawn: dict, path: list, spec, scenario, renamed: dict) -> None:
         clutch.pop("heating", None)
         clutch.pop("effective_radius", None)
         drawn["clutches"][spec.name] = {**clutch, **drawn["clutches"].get(spec.name, {})}
-        halves = drawn.setdefault("_halves", {})
         for shaft, inertia in zip(spec.between, spec.halves()):
-            halves[shaft] = halves.get(shaft, 0.0) + inertia
+            inertias[shaft] = inertias.get(shaft, 0.0) + inertia
     elif kind == "load":
         drawn["load"] = _plain(spec)
     else:
@@ -126,7 +117,7 @@ def _plain(model) -> dict:
     out = {}
     for name, field in type(model).model_fields.items():
         value = getattr(model, name, None)
-        if value is None or name in _TEMPLATE_KEYS or field.exclude:
+        if value is None or field.exclude:  # (a template's own keys are excluded, as a part's name is)
             continue
         out[name] = _written(name, value, field)
     return out
@@ -158,7 +149,3 @@ def _value(number: float, dimension) -> str | float:
     if dimension is None or not dimension.si_unit:
         return float(number)
     return f"{float(number)!r} {dimension.si_unit}"
-
-
-def _number(written) -> float:
-    return float(str(written).split()[0])

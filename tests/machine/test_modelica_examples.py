@@ -54,3 +54,14 @@ def test_coupled_clutches_against_dymolas_published_trajectories():
         assert len(ours_k) == len(changes), (k, ours_k, changes)
         np.testing.assert_allclose(ours_k, changes, rtol=0, atol=1e-4, err_msg=f"clutch{k}")
     assert run.summary["energy_relative_residual"] < 1e-9
+
+
+@pytest.mark.parametrize("path", sorted((SCENARIOS / "modelica").glob("*.yaml")), ids=lambda p: p.stem)
+def test_every_shaft_of_an_example_writes_its_angle_and_speed(path):
+    """Modelica's phi and w of every inertia are series here: <shaft>_angle and <shaft>_speed for every shaft."""
+    from hoistsim.machine.assemble import build_plan
+
+    scenario = load_scenario(path)
+    columns = build_plan(scenario, summary_only=True)[0].layout.columns()
+    for shaft in scenario.drivetrain.shafts:
+        assert f"{shaft}_angle" in columns and f"{shaft}_speed" in columns, (path.stem, shaft)

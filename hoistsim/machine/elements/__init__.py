@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from ..core.element import AbstractCoupling as AbstractCoupling
 from ..core.element import AbstractElement as AbstractElement
-from ...scenario.hoist_template import TEMPLATE
+from ...scenario.hoist_template import TEMPLATE, section_of
 from ._drawn import Drawn as Drawn
 from ._drawn import element_of, within_part
 from .bearings import DrumShaftLoads as DrumShaftLoads
@@ -72,7 +72,7 @@ def element_sections(scenario) -> list[tuple[str, object, object]]:
     part (a section that stands for several parts: a row each)."""
     if scenario.drivetrain is None:
         return [(section, spec, drawn) for section, parts, drawn in _TEMPLATE_PARTS
-                if (spec := _section(scenario, parts)) is not None]
+                if (spec := section_of(scenario, parts)) is not None]
     out = []
     for path, parts, entry in _PATHS:
         for section, spec, held in _parts_of(scenario, parts):
@@ -83,17 +83,8 @@ def element_sections(scenario) -> list[tuple[str, object, object]]:
 # each registry path split once: (path, its parts, its entry)
 _PATHS = [(path, tuple(path.split(".")), entry) for path, entry in REGISTRY.items()]
 # each hoist section's drawn parts: (section, its path split, the part)
-_TEMPLATE_PARTS = [(section, tuple(section.split(".")), Drawn(part, REGISTRY[part.path]))
+_TEMPLATE_PARTS = [(section, tuple(section.split(".")), Drawn.of(part, REGISTRY))
                    for section, parts in TEMPLATE.items() for part in parts]
-
-
-def _section(holder, parts: tuple):
-    """What a dotted path names within ``holder`` (a section within a section: motor.ripple), None where absent."""
-    for part in parts:
-        holder = getattr(holder, part, None)
-        if holder is None:
-            return None
-    return holder
 
 
 def _parts_of(scenario, parts: tuple) -> list:

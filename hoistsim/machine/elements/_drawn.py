@@ -20,6 +20,7 @@ class Drawn:
 
     part: object  # TemplatePart
     entry: object  # the registry's: an element class, or the variant's name -> class
+    held: str | None = None  # a key within the part (its path's last) whose spec picks the variant, or None
 
     def from_spec(self, spec, scenario):
         read = tuple(getattr(scenario, name) for name in self.part.reads)
@@ -27,16 +28,16 @@ class Drawn:
         if last is not None and last[0] is spec and all(a is b for a, b in zip(last[1], read)):
             return last[2]
         drawn = self.part.as_drawn(spec, scenario)
-        parts = tuple(self.part.path.split("."))
-        held = getattr(drawn, parts[-1]) if within_part(parts) else drawn
+        held = drawn if self.held is None else getattr(drawn, self.held)
         element = element_of(self.entry, held).from_spec(drawn, scenario)
         _LAST_BUILT[self] = (spec, read, element)  # the objects it was built from held: never mistaken for others
         return element
 
-    @property
-    def classes(self) -> tuple:
-        """Every element class it may build."""
-        return tuple(self.entry.values()) if isinstance(self.entry, dict) else (self.entry,)
+    @classmethod
+    def of(cls, part, registry: dict) -> "Drawn":
+        """The drawn part ``part`` with its path's entry in ``registry`` (its path split once, here)."""
+        parts = tuple(part.path.split("."))
+        return cls(part, registry[part.path], parts[-1] if within_part(parts) else None)
 
 
 def within_part(parts: tuple) -> bool:
