@@ -89,6 +89,14 @@ def scene(force="3201 N", mass="500 kg", motor_speed=None, brake=None, duration=
     return scenario_from_dict(data, name=name)
 
 
+# -------------------------------------------------------------------------------- a drawn drivetrain
+def drawn(name: str, duration="1 s", interval="1 ms", rtol=1e-11, atol=1e-13, **parts):
+    """A drawn drivetrain of ``parts`` (the keys of ``drivetrain:``) at tight tolerances, for checks of its
+    parts against closed forms and independent integrations."""
+    return scenario_from_dict({"name": name, "drivetrain": parts, "simulation": {
+        "duration": duration, "output_interval": interval, "rtol": rtol, "atol": atol}}, name=name)
+
+
 # ----------------------------------------------------------------------------------- property searches
 def property_settings(examples: int, **more) -> settings:
     """``examples`` random scenes a property in CI; HOISTSIM_PROPERTY_EXAMPLES=400 for a deeper search by hand."""

@@ -15,7 +15,8 @@ from pydantic import Field
 
 from .schema_base import Section
 from .schema_clutch import ConeSpec
-from .schema_drivetrain import FrictionClutchSpec, GearStageSpec, ShaftMotorSpec, ShaftSpec
+from .schema_drawn_clutches import FrictionClutchSpec
+from .schema_drivetrain import GearStageSpec, ShaftMotorSpec, ShaftSpec
 from .schema_load import LoadBearingsSpec, LoadOnShaftSpec
 from .schema_shaft_parts import BrakeOnShaftSpec, RatchetOnShaftSpec, RotorSpec, SliderCrankSpec
 from .signals import TimeSignal

@@ -18,10 +18,10 @@ from pydantic import Field, model_validator
 from ..errors import ScenarioError
 from . import units as u
 from .schema_base import Section
-from .schema_clutch import ConeSpec, FrictionSpec
 from .schema_motor import MotorSpec, RippleSpec
-from .schema_parts import ClutchHeatingSpec, fade_tables, kinetic_within_static
 from .schema_load import LoadOnShaftSpec
+from .schema_bearing_friction import BearingFrictionSpec
+from .schema_drawn_clutches import FrictionClutchSpec, OneWayClutchSpec
 from .schema_spring import SpringSpec
 from .schema_shaft_parts import (SHAFT_PARTS, BrakeOnShaftSpec, OnShaft, RatchetOnShaftSpec, RotorSpec,
                                  SliderCrankSpec, check_shaft_parts)
@@ -29,6 +29,10 @@ from .signals import signal
 from .units import Text
 
 GROUND = "ground"  # the other side of a clutch that is a brake
+# where a part of each kind may name the ground instead of a shaft (said where a side is no shaft)
+_GROUNDED = {"clutches": "; `ground` as the second for a brake", "one_way_clutches": "",
+             "bearing_frictions": "; `ground` as the second, or shaft: for friction against the ground",
+             "springs": "; `ground` as the housing, first or second"}
 _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 
 
@@ -59,41 +63,6 @@ class TorqueSpec(Section):
     shaft: Text
     torque: signal(u.TORQUE)  # positive in the shaft's positive sense
     name: str = Field("", exclude=True)  # torque1, torque2, ... in the order of drivetrain.torques (set there)
-
-
-class FrictionClutchSpec(OnShaft, FrictionSpec):
-    """Faces (static_friction, kinetic_friction, surfaces: :class:`.schema_clutch.FrictionSpec`) on a lever: an
-    effective radius, or a cone's, pressed by a force that is a time signal; their heat, where ``heating`` is
-    given, a lump with its temperature (the friction against it, where it gives tables)."""
-
-    between: tuple[Text, Text]  # [shaft a, shaft b or ground]: its torque passes from a to b
-    effective_radius: u.quantity(u.LENGTH, gt=0.0) | None = None  # or a cone's, from its geometry
-    cone: ConeSpec | None = None
-    force: signal(u.FORCE)  # N pressing the faces; at or below zero the clutch is open
-    heating: ClutchHeatingSpec | None = None
-    name: str = Field("", exclude=True)  # its key in drivetrain.clutches (set there, never written)
-
-    @model_validator(mode="after")
-    def _kinetic_within_static_when_hot(self):
-        if self.heating is not None:
-            kinetic_within_static(self.heating, self.static_friction, self.kinetic_friction, ".heating")
-        return self
-
-    @property
-    def torque_per_newton(self) -> float:
-        """m: the torque each newton of force gives, per unit friction coefficient (a cone's wedge in it)."""
-        if self.cone is None:
-            return self.effective_radius * self.surfaces
-        return self.cone.torque_per_newton(self.surfaces)
-
-    def halves(self) -> tuple[float, float]:
-        """kg*m^2: the inertia of its half on shaft a and on shaft b (a drawn clutch's halves are its shafts')."""
-        return 0.0, 0.0
-
-    def fade(self) -> dict | None:
-        """Its friction against its faces' temperature (tables on common knots), None for constant friction."""
-        heating = self.heating
-        return fade_tables(heating, self) if heating is not None and heating.fades else None
 
 
 class MeshSpec(Section):
@@ -160,6 +129,8 @@ class DrivetrainSpec(Section):
     shafts: dict[str, ShaftSpec]
     torques: list[TorqueSpec] = []
     clutches: dict[str, FrictionClutchSpec] = {}
+    one_way_clutches: dict[str, OneWayClutchSpec] = {}
+    bearing_frictions: dict[str, BearingFrictionSpec] = {}
     springs: dict[str, SpringSpec] = {}
     gears: dict[str, GearStageSpec] = {}
     motors: dict[str, ShaftMotorSpec] = {}
@@ -177,7 +148,8 @@ class DrivetrainSpec(Section):
         if not isinstance(data, dict):
             return data
         data = dict(data)
-        for kind in ("shafts", "clutches", "springs", "gears", "motors", *SHAFT_PARTS):
+        for kind in ("shafts", "clutches", "one_way_clutches", "bearing_frictions", "springs", "gears", "motors",
+                     *SHAFT_PARTS):
             parts = data.get(kind)
             if not isinstance(parts, dict):
                 continue
@@ -216,21 +188,23 @@ class DrivetrainSpec(Section):
             if torque.shaft not in self.shafts:
                 raise ScenarioError(f"drivetrain.torques.{i}.shaft", f"there is no shaft {torque.shaft!r} "
                                     f"(shafts: {known})")
-        for kind, parts in (("clutches", self.clutches), ("springs", self.springs)):
+        for kind, parts in (("clutches", self.clutches), ("one_way_clutches", self.one_way_clutches),
+                            ("bearing_frictions", self.bearing_frictions), ("springs", self.springs)):
             for name, part in parts.items():
-                a, b = part.between
+                a, b = part.sides if kind == "bearing_frictions" else part.between
+                key = "shaft" if kind == "bearing_frictions" and part.between is None else "between"
                 for side in (a, b):
                     grounded = side == GROUND and (side == b or kind == "springs")  # a spring's housing: either
-                    if side not in self.shafts and not grounded:
-                        raise ScenarioError(f"drivetrain.{kind}.{name}.between", f"there is no shaft {side!r} "
-                                            f"(shafts: {known}; `ground` as the second for "
-                                            f"{'a brake' if kind == 'clutches' else 'the housing, or the first'})")
+                    if side not in self.shafts and not (grounded and kind != "one_way_clutches"):
+                        raise ScenarioError(f"drivetrain.{kind}.{name}.{key}", f"there is no shaft {side!r} "
+                                            f"(shafts: {known}{_GROUNDED[kind]})")
                 if a == b:
                     raise ScenarioError(f"drivetrain.{kind}.{name}.between", f"joins shaft {a!r} to itself")
-        for name, clutch in self.clutches.items():
-            if (clutch.effective_radius is None) == (clutch.cone is None):
-                raise ScenarioError(f"drivetrain.clutches.{name}.effective_radius", "give either effective_radius "
-                                    "or cone (inner_radius, outer_radius, half_angle), one of them")
+        for kind in ("clutches", "one_way_clutches"):
+            for name, clutch in getattr(self, kind).items():
+                if (clutch.effective_radius is None) == (clutch.cone is None):
+                    raise ScenarioError(f"drivetrain.{kind}.{name}.effective_radius", "give either effective_radius "
+                                        "or cone (inner_radius, outer_radius, half_angle), one of them")
         self._parts_named()
         groups = gear_groups(self)
         for name, stage in self.gears.items():
@@ -239,6 +213,7 @@ class DrivetrainSpec(Section):
         self._speeds_agree(groups)
         speeds = {name: self.shafts[root].speed * ratio for name, (root, ratio) in groups.items()}
         check_shaft_parts(self, speeds)
+        self._freewheels_may_start(speeds)
         self._load_may_start(speeds)
         self._every_body_has_inertia(groups)
         return self
@@ -254,14 +229,23 @@ class DrivetrainSpec(Section):
                                 "(drivetrain.load.ground) on a rigid rope, so its shaft must start at rest (an "
                                 "elastic rope may start slack or unloaded on a turning shaft)")
 
+    def _freewheels_may_start(self, speeds):
+        for name, clutch in self.one_way_clutches.items():
+            a, b = clutch.between
+            if speeds[a] > speeds[b]:
+                raise ScenarioError(f"drivetrain.shafts.{a}.speed", f"starts faster ({speeds[a]:g} rad/s) than shaft "
+                                    f"{b!r} ({speeds[b]:g} rad/s), which one-way clutch {name!r} lets overrun it: "
+                                    f"{a!r} can never overrun {b!r}")
+
     def _parts_named(self):
         seen = {name: "shafts" for name in self.shafts} | {name: "clutches" for name in self.clutches}
-        for name in self.springs:
-            if not _NAME.match(name) or name == GROUND or name in seen:
-                raise ScenarioError(f"drivetrain.springs.{name}", "a name is a word of letters, digits and "
-                                    f"underscores starting with a letter, not {GROUND!r} and not the name of "
-                                    "another part (they name the outputs)")
-            seen[name] = "springs"
+        for kind in ("one_way_clutches", "bearing_frictions", "springs"):
+            for name in getattr(self, kind):
+                if not _NAME.match(name) or name == GROUND or name in seen:
+                    raise ScenarioError(f"drivetrain.{kind}.{name}", "a name is a word of letters, digits and "
+                                        f"underscores starting with a letter, not {GROUND!r} and not the name of "
+                                        "another part (they name the outputs)")
+                seen[name] = kind
         known = ", ".join(self.shafts)
         for kind, parts in (("gears", self.gears), ("motors", self.motors),
                             *((kind, getattr(self, kind)) for kind in SHAFT_PARTS)):

@@ -4,9 +4,12 @@ A drivetrain's torques and clutch forces are signals of time:
 - a constant, ``10 N*m``;
 - a table ``[[t, value], ...]``, piecewise linear, a repeated time a step (held beyond its ends);
 - ``{offset: value, harmonics: [{amplitude, frequency, phase}, ...]}``: the offset plus each
-  amplitude * sin(2 pi frequency t + phase).
+  amplitude * sin(2 pi frequency t + phase), the harmonics' sum times ``envelope`` where one is given: a
+  table of time ``[[t, factor], ...]`` (a sine switched off at 0.5 s: ``[[0 s, 1], [0.5 s, 1], [0.5 s, 0]]``,
+  Modelica's Product of a Sine and a Step).
 Every form is read into one :class:`TimeSignal`: a table (one row for a constant or an offset) and
-harmonics (none for a table), so that an element evaluates all of them the same way.
+harmonics (none for a table) with their envelope (none: 1), so that an element evaluates all of them the
+same way.
 """
 
 from __future__ import annotations
@@ -16,11 +19,11 @@ from typing import Annotated, Any
 from pydantic import BaseModel, BeforeValidator, ConfigDict
 
 from .tables import TableError, time_rows
-from .units import ANGLE, FREQUENCY, Dimension, UnitError, check_range, to_si
+from .units import ANGLE, DIMENSIONLESS, FREQUENCY, Dimension, UnitError, check_range, to_si
 
 
 class TimeSignal(BaseModel):
-    """A table of time (SI) plus harmonics: value(t) = table(t) + sum A sin(2 pi f t + phi)."""
+    """A table of time (SI) plus harmonics: value(t) = table(t) + envelope(t) sum A sin(2 pi f t + phi)."""
 
     model_config = ConfigDict(frozen=True)
     times: tuple[float, ...]
@@ -28,6 +31,9 @@ class TimeSignal(BaseModel):
     amplitudes: tuple[float, ...] = ()
     frequencies: tuple[float, ...] = ()  # Hz
     phases: tuple[float, ...] = ()  # rad
+    # a table of time scaling the harmonics (its knots segment boundaries, a repeated time a step); none: 1
+    envelope_times: tuple[float, ...] | None = None  # s
+    envelope_values: tuple[float, ...] | None = None  # 1
 
     @property
     def has_harmonics(self) -> bool:
@@ -35,9 +41,10 @@ class TimeSignal(BaseModel):
 
 
 def _harmonics(value: dict, dimension: Dimension) -> TimeSignal:
-    unknown = set(value) - {"offset", "harmonics"}
+    unknown = set(value) - {"offset", "harmonics", "envelope"}
     if unknown:
-        raise UnitError(f"unknown key {sorted(unknown)[0]!r}: a signal in harmonics has offset and harmonics")
+        raise UnitError(f"unknown key {sorted(unknown)[0]!r}: a signal in harmonics has offset, harmonics and "
+                        "envelope")
     rows = value.get("harmonics") or []
     if not isinstance(rows, list):
         raise UnitError("harmonics must be a list of {amplitude, frequency, phase}")
@@ -55,8 +62,19 @@ def _harmonics(value: dict, dimension: Dimension) -> TimeSignal:
             phases.append(to_si(row.get("phase", 0.0), ANGLE))
         except UnitError as exc:
             raise TableError(i, str(exc)) from None
+    envelope = {}
+    if value.get("envelope") is not None:
+        if not amplitudes:
+            raise UnitError("an envelope scales the harmonics: give harmonics with it")
+        if not isinstance(value["envelope"], (list, tuple)) or not value["envelope"]:
+            raise UnitError("envelope must be a table [[time, factor], ...], like [[0 s, 1], [0.5 s, 1], [0.5 s, 0]]")
+        try:
+            times, factors = time_rows(value["envelope"], DIMENSIONLESS, "[0.5 s, 1]")
+        except TableError as exc:
+            raise UnitError(f"envelope {exc}") from None
+        envelope = {"envelope_times": times, "envelope_values": factors}
     return TimeSignal(times=(0.0,), values=(offset,), amplitudes=tuple(amplitudes),
-                      frequencies=tuple(frequencies), phases=tuple(phases))
+                      frequencies=tuple(frequencies), phases=tuple(phases), **envelope)
 
 
 def time_signal(value: Any, dimension: Dimension) -> TimeSignal:

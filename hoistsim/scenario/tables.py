@@ -120,6 +120,19 @@ def torque_speed_table(value: object) -> tuple[tuple[float, float], ...]:
     return pair_table(value, ANGULAR_SPEED, TORQUE, "speeds", "like [[0 rpm, 500 N*m], [300 rpm, 0 N*m]]")
 
 
+def slip_speed_table(value: object, second: Dimension, what: str, example: str) -> tuple[tuple[float, float], ...]:
+    """A friction against the slip speed: rows ``[speed, value]``, at least two, speeds rising from zero or
+    more (the friction at a slip either way: its speed's size), each value not negative (``what`` names it)."""
+    rows = pair_table(value, ANGULAR_SPEED, second, "speeds", example)
+    for i, (speed, friction) in enumerate(rows):
+        try:
+            check_range(speed, value[i][0], ANGULAR_SPEED, ge=0, hint=" (a slip speed's size)")
+            check_range(friction, value[i][1], second, ge=0, hint=f" ({what} opposes the slip)")
+        except UnitError as exc:
+            raise TableError(i, str(exc)) from None
+    return rows
+
+
 def angle_torque_table(value: object) -> tuple[tuple[float, float], ...]:
     """One period of a torque ripple: rows ``[angle, torque]``, angles strictly increasing."""
     return pair_table(value, ANGLE, TORQUE, "angles", "like [[0 deg, 0 N*m], [90 deg, 850 N*m], [360 deg, 0 N*m]]")
@@ -174,5 +187,28 @@ StaticFrictionTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator
 KineticFrictionTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
     lambda value: value if isinstance(value, tuple) else friction_temperature_table(value, positive=False)),
     FirstColumn(TEMPERATURE)]
+
+
+def constant_or_slip_table(dimension: Dimension, what: str, example: str):
+    """A field given as a constant not below zero, or as a table of the slip speed (rows [speed, value]): a float
+    or the table's rows (``what`` names the value, ``example`` a table)."""
+
+    def convert(value: Any):
+        if isinstance(value, tuple):  # already read
+            return value
+        if isinstance(value, list):
+            return slip_speed_table(value, dimension, what, example)
+        try:
+            number = to_si(value, dimension)
+        except UnitError as exc:
+            raise UnitError(f"{exc}; or a table of the slip speed [[speed, {dimension.name}], ...], {example}") from None
+        return check_range(number, value, dimension, ge=0, hint=f" ({what} opposes the slip)")
+
+    return Annotated[float | tuple[tuple[float, float], ...], BeforeValidator(convert), dimension,
+                     FirstColumn(ANGULAR_SPEED)]
+
+
+SlipFriction = constant_or_slip_table(DIMENSIONLESS, "a friction coefficient", "like [[0 rad/s, 0.5], [10 rad/s, 0.4]]")
+SlipTorque = constant_or_slip_table(TORQUE, "a friction torque", "like [[0 rad/s, 2 N*m], [100 rad/s, 3 N*m]]")
 AngleTorqueTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
     lambda value: value if isinstance(value, tuple) else angle_torque_table(value))]

@@ -127,9 +127,14 @@ def _written(name: str, value, field):
     if isinstance(value, TimeSignal):
         dimension = u.dimension_of(field)
         if value.has_harmonics:
-            return {"offset": _value(value.values[0], dimension),
-                    "harmonics": [{"amplitude": _value(a, dimension), "frequency": f"{f!r} Hz", "phase": f"{p!r} rad"}
-                                  for a, f, p in zip(value.amplitudes, value.frequencies, value.phases)]}
+            written = {"offset": _value(value.values[0], dimension),
+                       "harmonics": [{"amplitude": _value(a, dimension), "frequency": f"{f!r} Hz",
+                                      "phase": f"{p!r} rad"}
+                                     for a, f, p in zip(value.amplitudes, value.frequencies, value.phases)]}
+            if value.envelope_times is not None:
+                written["envelope"] = [[f"{t!r} s", repr(v)] for t, v in zip(value.envelope_times,
+                                                                              value.envelope_values)]
+            return written
         return [[f"{t!r} s", _value(v, dimension)] for t, v in zip(value.times, value.values)]
     if isinstance(value, ForceTable):
         return [[f"{t!r} s", _value(v, u.FORCE)] for t, v in zip(value.times, value.forces)]

@@ -83,7 +83,7 @@ def drivetrain_table(drivetrain) -> str:
         largest = max(force.values) + sum(abs(a) for a in force.amplitudes)
         per = clutch.torque_per_newton * max(largest, 0.0)
         rows.append([name, " - ".join(clutch.between), fmt(largest), fmt(clutch.static_friction * per),
-                     fmt(clutch.kinetic_friction * per)])
+                     fmt(clutch.kinetic_at_rest * per)])
     clutches = table(["clutch", "between", "largest force [N]", "capacity [N*m]", "sliding [N*m]"], rows,
                      align="llrrr")
     return shafts + ("\n\n" + clutches if rows else "")

@@ -29,6 +29,64 @@ def _events(times):
     return np.unique(times[1:][np.diff(times) == 0.0])
 
 
+def deviations(run, example: str, ours: dict) -> dict:
+    """Each comparison signal's worst deviation from the reference, over its range, at every reference row more
+    than 1 ms from a reference event (``ours``: signal -> our series on the run's rows)."""
+    reference = _reference(example)
+    times = reference["time"]
+    events = _events(times)
+    far = np.min(np.abs(times[:, None] - events[None, :]), axis=1) > 1e-3 if len(events) else np.ones(times.shape, bool)
+    return {signal: float(np.max(np.abs(np.interp(times, run.time, series) - reference[signal])[far])
+                          / np.ptp(reference[signal])) for signal, series in ours.items()}
+
+
+def mode_changes(example: str, element: str) -> np.ndarray:
+    """The instants the reference's mode of ``element`` changes (Modelica's mode: -1 sliding backwards, 0 stuck,
+    1 forwards, 2 free)."""
+    reference = _reference(example)
+    return reference["time"][1:][np.diff(reference[f"{element}.mode"]) != 0.0]
+
+
+def _relative(run, a: str, b: str) -> dict:
+    """Modelica's phi_rel and w_rel of a part from shaft a to shaft b: b's less a's."""
+    return {"phi_rel": run[f"{b}_angle"] - run[f"{a}_angle"], "w_rel": run[f"{b}_speed"] - run[f"{a}_speed"]}
+
+
+def _shaft(run, shaft: str) -> dict:
+    return {f"{shaft}.phi": run[f"{shaft}_angle"], f"{shaft}.w": run[f"{shaft}_speed"]}
+
+
+# example -> (its comparison signals from a run, the parts whose mode changes are compared with our switches)
+EXAMPLES = {
+    "Friction": (lambda run: {**_shaft(run, "inertia3"),
+                              **{f"clutch.{k}": v for k, v in _relative(run, "inertia3", "inertia2").items()},
+                              "spring.phi_rel": run["spring_twist"], "spring.w_rel": run["spring_twist_speed"]},
+                 ("clutch", "brake")),
+    "OneWayClutch": (lambda run: {**_shaft(run, "inertiaIn"), **{f"oneWayClutch.{k}": v for k, v in
+                                                                _relative(run, "inertiaIn", "inertiaOut").items()}},
+                     ()),
+    "OneWayClutchDisengaged": (lambda run: {**_shaft(run, "inertiaIn"), **{
+        f"oneWayClutch.{k}": v for k, v in _relative(run, "inertiaIn", "inertiaOut").items()}}, ()),
+}
+
+
+@pytest.mark.slow  # a program of its own to compile for each (some 6 s)
+@pytest.mark.parametrize("example", sorted(EXAMPLES))
+def test_an_example_against_dymolas_published_trajectories(example):
+    """Every comparison signal within 1e-3 of its range (measured: within 8.3e-5), every switch of the parts
+    whose modes the reference gives within 1e-4 s of its mode change, and the ledger closed."""
+    run = simulate(load_scenario(SCENARIOS / "modelica" / f"{example}.yaml"))
+    signals, moded = EXAMPLES[example]
+    worst = deviations(run, example, signals(run))
+    assert max(worst.values()) < 1e-3, worst
+    for element in moded:
+        changes = mode_changes(example, element)
+        ours = run.events["time"][run.events["element"] == element]
+        assert len(ours) == len(changes), (element, ours, changes)
+        np.testing.assert_allclose(ours, changes, rtol=0, atol=1e-4, err_msg=element)
+    assert run.summary["energy_relative_residual"] < 1e-9
+
+
 @pytest.mark.slow  # three clutches: a program of its own to compile (~10 s)
 def test_coupled_clutches_against_dymolas_published_trajectories():
     """MSL 4.0's CoupledClutches (sin2's phase pi/2): J1's angle and speed and each clutch's phi_rel, w_rel (the

@@ -17,18 +17,13 @@ import math
 
 import numpy as np
 import pytest
-from helpers import SCENARIOS, TESTS
+from helpers import SCENARIOS, TESTS, drawn
 
-from hoistsim import load_scenario, scenario_from_dict, simulate
+from hoistsim import load_scenario, simulate
 from hoistsim.errors import ScenarioError
 
-TIGHT = {"rtol": 1e-11, "atol": 1e-13}
-
-
 def _drawn(duration="1 s", interval="1 ms", **parts):
-    return scenario_from_dict({"name": "springs", "drivetrain": parts,
-                               "simulation": {"duration": duration, "output_interval": interval, **TIGHT}},
-                              name="springs")
+    return drawn("springs", duration, interval, **parts)
 
 
 def test_a_shaft_on_a_spring_damper_oscillates_as_the_closed_form():

@@ -14,6 +14,7 @@ from ..core.element import AbstractElement as AbstractElement
 from ...scenario.hoist_template import TEMPLATE, section_of
 from ._drawn import Drawn as Drawn
 from ._drawn import element_of, within_part
+from .bearing_friction import BearingFriction as BearingFriction
 from .bearings import DrumShaftLoads as DrumShaftLoads
 from .clutch_heating import ClutchHeating as ClutchHeating
 from .constant_torque_motor import ConstantTorqueMotor as ConstantTorqueMotor
@@ -29,6 +30,7 @@ from .mesh_friction import MeshFriction as MeshFriction
 from .motor import Motor as Motor
 from .motor_ripple import MotorRipple as MotorRipple
 from .motor_table import TableMotor as TableMotor
+from .one_way_clutch import OneWayClutch as OneWayClutch
 from .periodic_regime import PeriodicRegime as PeriodicRegime
 from .ratchet import Ratchet as Ratchet
 from .resisting_ripple import ResistingRipple as ResistingRipple
@@ -54,6 +56,8 @@ REGISTRY: dict[str, object] = {
     "drivetrain.torques.*": ShaftTorque,
     "drivetrain.clutches.*": FrictionClutch,
     "drivetrain.clutches.*.heating": ClutchHeating,
+    "drivetrain.one_way_clutches.*": OneWayClutch,
+    "drivetrain.bearing_frictions.*": BearingFriction,
     "drivetrain.springs.*": {"spring": SpringDamper, "backlash": ElastoBacklash},
     "drivetrain.gears.*.mesh": MeshFriction,  # a lossy stage's mesh
     "drivetrain.load": {"rigid": RigidLoad, "elastic": ElasticLoad},  # on a rigid rope, or a body on its rope

@@ -8,11 +8,33 @@ import numpy as np
 
 def signal_fields(signal, prefix: str) -> dict:
     """The element fields of a :class:`hoistsim.scenario.signals.TimeSignal`: ``<prefix>_times`` and ``_values`` (a
-    table of time, whose knots are segment boundaries) and the harmonics' amplitudes, frequencies, phases."""
+    table of time, whose knots are segment boundaries), the harmonics' amplitudes, frequencies, phases, and
+    their envelope's ``<prefix>_envelope_times`` and ``_values`` (a table of time too; None: no envelope)."""
+    enveloped = signal.envelope_times is not None
     return {f"{prefix}_times": np.asarray(signal.times, float), f"{prefix}_values": np.asarray(signal.values, float),
             f"{prefix}_amplitudes": np.asarray(signal.amplitudes, float),
             f"{prefix}_frequencies": np.asarray(signal.frequencies, float),
-            f"{prefix}_phases": np.asarray(signal.phases, float)}
+            f"{prefix}_phases": np.asarray(signal.phases, float),
+            f"{prefix}_envelope_times": np.asarray(signal.envelope_times, float) if enveloped else None,
+            f"{prefix}_envelope_values": np.asarray(signal.envelope_values, float) if enveloped else None}
+
+
+def signal_tables(element, prefix: str) -> dict:
+    """The tables of time of an element's signal ``prefix`` (as ``tables()`` gives them): its table, named
+    ``<section>.<prefix>``, and its envelope's, ``<section>.<prefix>_envelope``, where it has one."""
+    tables = {f"{element.section}.{prefix}": (f"{prefix}_times", f"{prefix}_values")}
+    if getattr(element, f"{prefix}_envelope_times") is not None:
+        tables[f"{element.section}.{prefix}_envelope"] = (f"{prefix}_envelope_times", f"{prefix}_envelope_values")
+    return tables
+
+
+def signal_at(element, x, prefix: str):
+    """The element's signal ``prefix`` at the instant: its table plus its harmonics, times their envelope."""
+    harmonics = harmonics_at(x.t, getattr(element, f"{prefix}_amplitudes"), getattr(element, f"{prefix}_frequencies"),
+                             getattr(element, f"{prefix}_phases"))
+    if getattr(element, f"{prefix}_envelope_times") is not None:
+        harmonics = x.table(f"{element.section}.{prefix}_envelope") * harmonics
+    return x.table(f"{element.section}.{prefix}") + harmonics
 
 
 def harmonics_at(t, amplitudes, frequencies, phases):

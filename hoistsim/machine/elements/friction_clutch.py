@@ -9,9 +9,11 @@ import numpy as np
 
 from ..._pytree import static
 from ..core.element import SLIP_BACKWARD, SLIP_FORWARD, STUCK
-from ._signal import harmonics_at, signal_fields
+from ._signal import signal_at, signal_fields, signal_tables
 from ._names import NamedOutputs, names_of
+from ._knots import knots_passed
 from ._slip_heat import AbstractSlipHeat
+from ._slip_table import along_slip, slip_knots
 
 # what each of its outputs is, by its role (named <name>_<role> unless its drawing names it otherwise)
 _COLUMNS = {
@@ -37,7 +39,8 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
     crosses zero between two rows is a segment boundary, like the rows); a force in
     harmonics may cross zero anywhere, so its sign is watched: the crossing is found like a switch
     (events ``disengage`` falling, ``engage`` rising) and no step straddles the kink of max(F, 0).  Its
-    heat of slip is a state and a loss of the ledger; its events carry its name.
+    heat of slip is a state and a loss of the ledger; its events carry its name.  Its kinetic friction may be a
+    table of the slip speed's size instead (Modelica's mu_pos; knots that no step straddles either).
     """
 
     static_friction: object
@@ -48,6 +51,8 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
     force_amplitudes: object  # N
     force_frequencies: object  # Hz
     force_phases: object  # rad
+    force_envelope_times: object = None  # s, the harmonics' envelope (None: none)
+    force_envelope_values: object = None
     driving_inertia: object = 0.0  # kg*m^2, its half on shaft a
     driven_inertia: object = 0.0  # kg*m^2, its half on shaft b
     # friction against the faces' temperature (both tables on the knots of either), in place of the constants
@@ -55,11 +60,15 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
     friction_temperatures: object = None  # K
     static_frictions: object = None
     kinetic_frictions: object = None
+    # the kinetic friction against the slip speed's size (a table), in place of the constant where ``slip_varies``
+    slip_speeds: object = None  # rad/s
+    slip_frictions: object = None
     driving: str = static("")  # shaft a
     driven: str | None = static(None)  # shaft b, None for the ground
     section: str = static("")  # the clutch's name
     in_harmonics: bool = static(False)
     fades: bool = static(False)
+    slip_varies: bool = static(False)
     names: tuple = static(())  # (pattern, name) of each output its drawing names otherwise (NamedOutputs)
 
     observation_kinds: ClassVar[tuple] = ("clutch_force",)
@@ -73,7 +82,11 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
         fade = spec.fade()
         fading = {} if fade is None else {"friction_temperatures": fade["temperatures"], "fades": True,
                                           "static_frictions": fade["static"], "kinetic_frictions": fade["kinetic"]}
-        return cls(static_friction=spec.static_friction, kinetic_friction=spec.kinetic_friction,
+        table = spec.slip_table
+        if table is not None:
+            fading = {"slip_speeds": np.asarray([row[0] for row in table], float), "slip_varies": True,
+                      "slip_frictions": np.asarray([row[1] for row in table], float)}
+        return cls(static_friction=spec.static_friction, kinetic_friction=spec.kinetic_at_rest,
                    torque_per_newton=spec.torque_per_newton, **signal_fields(spec.force, "force"),
                    driving_inertia=driving_inertia, driven_inertia=driven_inertia, driving=a,
                    driven=None if b == "ground" else b, section=spec.name, in_harmonics=spec.force.has_harmonics,
@@ -101,18 +114,20 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
         return halves + ((self.driven, self.driven_inertia),) if self.driven else halves
 
     def tables(self) -> dict:
-        return {f"{self.section}.force": ("force_times", "force_values")}
+        return signal_tables(self, "force")
 
     def force(self, x):
-        return x.table(f"{self.section}.force") + harmonics_at(x.t, self.force_amplitudes, self.force_frequencies,
-                                                               self.force_phases)
+        return signal_at(self, x, "force")
 
     def pressing(self, x):
         """The force that presses the faces: F, or 0 where F <= 0 (the clutch is open)."""
         return jnp.maximum(self.force(x), 0.0)
 
     def friction(self, x):
-        """(static, kinetic) friction coefficients now: the constants, or the tables at the faces' temperature."""
+        """(static, kinetic) friction coefficients now: the constants, or the tables at the faces' temperature,
+        or the kinetic one at the slip speed's size."""
+        if self.slip_varies:
+            return self.static_friction, along_slip(x, self.section, self.slip_speeds, self.slip_frictions)
         if not self.fades:
             return self.static_friction, self.kinetic_friction
         temperature = x.state(f"{self.section}_temperature")
@@ -126,10 +141,12 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
         return self.friction(x)[1] * self.torque_per_newton * self.pressing(x)
 
     def kink_names(self) -> tuple:
-        return ("friction_knots",) if self.fades else ()
+        return ("friction_knots",) if self.fades or self.slip_varies else ()
 
     def kinks(self, x) -> dict:
         # the friction's slope changes at each knot of its tables: no step straddles one
+        if self.slip_varies:
+            return {"friction_knots": slip_knots(x, self.section, self.slip_speeds)}
         if not self.fades:
             return {}
         return {"friction_knots": knots_passed(x.state(f"{self.section}_temperature"), self.friction_temperatures)}
@@ -182,17 +199,3 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
                 self.named("{name}_energy"): x.state(self.heat_state),
                 self.named("{name}_capacity"): self.capacity(x),
                 self.named("{name}_mode"): mode.astype(jnp.int8)}
-
-
-# Beyond the tables' last knot the knot coordinate grows by one every this many kelvin: steadily, so that no
-# crossing is missed, and slowly, so that the whole numbers it passes there (no knots) are 1e6 K apart.
-BEYOND_THE_TABLE = 1e6  # K
-
-
-def knots_passed(temperature, knots):
-    """The tables' knots counted along the temperature: a whole number exactly at each knot, rising
-    steadily with the temperature everywhere (below the first knot, -1 at absolute zero)."""
-    inside = jnp.interp(temperature, knots, jnp.arange(knots.shape[0], dtype=knots.dtype))
-    below = (temperature - knots[0]) / knots[0]
-    above = knots.shape[0] - 1 + (temperature - knots[-1]) / BEYOND_THE_TABLE
-    return jnp.where(temperature < knots[0], below, jnp.where(temperature > knots[-1], above, inside))

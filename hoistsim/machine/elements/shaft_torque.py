@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from ..._pytree import static
 from ._shaft_work import AbstractShaftWork
-from ._signal import harmonics_at, signal_fields
+from ._signal import signal_at, signal_fields, signal_tables
 
 
 class ShaftTorque(AbstractShaftWork):
@@ -17,6 +17,8 @@ class ShaftTorque(AbstractShaftWork):
     torque_amplitudes: object  # N*m
     torque_frequencies: object  # Hz
     torque_phases: object  # rad
+    torque_envelope_times: object = None  # s, the harmonics' envelope (None: none)
+    torque_envelope_values: object = None
     shaft: str = static("")
     section: str = static("")  # torque1, torque2, ... in the order of drivetrain.torques
 
@@ -29,11 +31,10 @@ class ShaftTorque(AbstractShaftWork):
         return {self.section: ("N*m", f"external torque on shaft {self.shaft}")}
 
     def tables(self) -> dict:
-        return {f"{self.section}.torque": ("torque_times", "torque_values")}
+        return signal_tables(self, "torque")
 
     def torque(self, x):
-        return x.table(f"{self.section}.torque") + harmonics_at(x.t, self.torque_amplitudes, self.torque_frequencies,
-                                                                self.torque_phases)
+        return signal_at(self, x, "torque")
 
     def outputs(self, x) -> dict:
         return {self.section: self.torque(x)}

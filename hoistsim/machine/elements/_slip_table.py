@@ -1,0 +1,17 @@
+"""A friction read from a table of the slip speed: Modelica's mu_pos and tau_pos, the same either way of slip."""
+
+from __future__ import annotations
+
+import jax.numpy as jnp
+
+from ._knots import knots_passed
+
+
+def along_slip(x, section: str, speeds, values):
+    """The table's value at the size of the coupling's slip speed (flat beyond its rows)."""
+    return jnp.interp(jnp.abs(x.relative_speed(section)), speeds, values)
+
+
+def slip_knots(x, section: str, speeds):
+    """The table's knots counted along the size of the slip speed: whole at each, so no step straddles one."""
+    return knots_passed(jnp.abs(x.relative_speed(section)), speeds)

@@ -1,0 +1,93 @@
+"""A drawn drivetrain's friction clutches (``drivetrain.clutches``) and one-way clutches
+(``drivetrain.one_way_clutches``): faces pressed by a force that is a time signal (values in SI)."""
+
+from __future__ import annotations
+
+from pydantic import Field, model_validator
+
+from ..errors import ScenarioError
+from . import tables
+from . import units as u
+from .schema_clutch import ConeSpec, FrictionSpec
+from .schema_parts import ClutchHeatingSpec, fade_tables, kinetic_within_static
+from .schema_shaft_parts import OnShaft
+from .signals import signal
+from .units import Text
+
+
+class FrictionClutchSpec(OnShaft, FrictionSpec):
+    """Faces (static_friction, kinetic_friction, surfaces: :class:`.schema_clutch.FrictionSpec`) on a lever: an
+    effective radius, or a cone's, pressed by a force that is a time signal; their heat, where ``heating`` is
+    given, a lump with its temperature (the friction against it, where it gives tables).  The kinetic friction
+    may be a table of the slip speed (Modelica's mu_pos), the static friction then given as its ``peak``
+    factor over the kinetic friction at zero slip (Modelica's peak) or as a coefficient."""
+
+    static_friction: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = None  # or peak
+    # a constant, or rows [slip speed, coefficient]: the friction at a slip either way, flat beyond the rows
+    kinetic_friction: tables.SlipFriction
+    peak: u.quantity(u.DIMENSIONLESS, ge=1.0) | None = None  # static_friction = peak * kinetic at zero slip
+    between: tuple[Text, Text]  # [shaft a, shaft b or ground]: its torque passes from a to b
+    effective_radius: u.quantity(u.LENGTH, gt=0.0) | None = None  # or a cone's, from its geometry
+    cone: ConeSpec | None = None
+    force: signal(u.FORCE)  # N pressing the faces; at or below zero the clutch is open
+    heating: ClutchHeatingSpec | None = None
+    name: str = Field("", exclude=True)  # its key in drivetrain.clutches (set there, never written)
+
+    def _sliding_within_sticking(self):  # in place of FrictionSpec's: static_friction or peak, over a table
+        if (self.static_friction is None) == (self.peak is None):
+            raise ScenarioError(".static_friction", "give either static_friction or peak (static_friction = peak * "
+                                "the kinetic friction at zero slip), one of them")
+        if self.peak is not None:
+            object.__setattr__(self, "static_friction", self.peak * self.kinetic_at_rest)  # read as such from here
+        elif self.kinetic_at_rest > self.static_friction:
+            raise ScenarioError(".kinetic_friction", f"must not exceed static_friction ({self.static_friction:g}) at "
+                                f"zero slip, got {self.kinetic_at_rest:g}")
+        if self.slip_table is not None and self.heating is not None and self.heating.fades:
+            raise ScenarioError(".kinetic_friction", "is a table of the slip speed, and heating gives friction against "
+                                "the temperature: give one of them")
+        return self
+
+    @model_validator(mode="after")
+    def _kinetic_within_static_when_hot(self):
+        if self.heating is not None and self.slip_table is None:
+            kinetic_within_static(self.heating, self.static_friction, self.kinetic_friction, ".heating")
+        return self
+
+    @property
+    def slip_table(self) -> tuple | None:
+        """The kinetic friction's rows [slip speed (rad/s), coefficient], or None where it is a constant."""
+        return self.kinetic_friction if isinstance(self.kinetic_friction, tuple) else None
+
+    @property
+    def kinetic_at_rest(self) -> float:
+        """The kinetic friction at zero slip: the constant, or the table's first row."""
+        table = self.slip_table
+        return self.kinetic_friction if table is None else table[0][1]
+
+    @property
+    def torque_per_newton(self) -> float:
+        """m: the torque each newton of force gives, per unit friction coefficient (a cone's wedge in it)."""
+        if self.cone is None:
+            return self.effective_radius * self.surfaces
+        return self.cone.torque_per_newton(self.surfaces)
+
+    def halves(self) -> tuple[float, float]:
+        """kg*m^2: the inertia of its half on shaft a and on shaft b (a drawn clutch's halves are its shafts')."""
+        return 0.0, 0.0
+
+    def fade(self) -> dict | None:
+        """Its friction against its faces' temperature (tables on common knots), None for constant friction."""
+        heating = self.heating
+        return fade_tables(heating, self) if heating is not None and heating.fades else None
+
+
+class OneWayClutchSpec(FrictionClutchSpec):
+    """A freewheel and a friction clutch side by side (Modelica's OneWayClutch): shaft b (the second of
+    ``between``) may overrun shaft a, never a overrun b; the clutch's keys, but no ground (a freewheel to the
+    ground is a ratchet) and no heating."""
+
+    @model_validator(mode="after")
+    def _between_two_shafts(self):
+        if self.heating is not None:
+            raise ScenarioError(".heating", "is not a key of a one-way clutch (its heat is <name>_energy)")
+        return self
