@@ -23,6 +23,7 @@ from .schema_load import LoadOnShaftSpec
 from .schema_bearing_friction import BearingFrictionSpec
 from .schema_drawn_clutches import FrictionClutchSpec, OneWayClutchSpec
 from .schema_spring import SpringSpec
+from .schema_speed_torques import SPEED_PARTS, EddyCurrentBrakeSpec, HeatCapacitorSpec, SpeedLaws, check_speed_parts
 from .schema_shaft_parts import (SHAFT_PARTS, BrakeOnShaftSpec, OnShaft, RatchetOnShaftSpec, RotorSpec,
                                  SliderCrankSpec, check_shaft_parts)
 from .signals import signal
@@ -59,9 +60,9 @@ class ShaftSpec(OnShaft, Section):
         return True
 
 
-class TorqueSpec(Section):
+class TorqueSpec(SpeedLaws, Section):
     shaft: Text
-    torque: signal(u.TORQUE)  # positive in the shaft's positive sense
+    torque: signal(u.TORQUE) | None = None  # positive in the shaft's positive sense; or a law of its speed
     name: str = Field("", exclude=True)  # torque1, torque2, ... in the order of drivetrain.torques (set there)
 
 
@@ -139,6 +140,8 @@ class DrivetrainSpec(Section):
     brakes: dict[str, BrakeOnShaftSpec] = {}
     ratchets: dict[str, RatchetOnShaftSpec] = {}
     load: LoadOnShaftSpec | None = None
+    eddy_current_brakes: dict[str, EddyCurrentBrakeSpec] = {}
+    heat_capacitors: dict[str, HeatCapacitorSpec] = {}
 
     @model_validator(mode="before")
     @classmethod
@@ -149,7 +152,7 @@ class DrivetrainSpec(Section):
             return data
         data = dict(data)
         for kind in ("shafts", "clutches", "one_way_clutches", "bearing_frictions", "springs", "gears", "motors",
-                     *SHAFT_PARTS):
+                     *SHAFT_PARTS, *SPEED_PARTS):
             parts = data.get(kind)
             if not isinstance(parts, dict):
                 continue
@@ -268,6 +271,7 @@ class DrivetrainSpec(Section):
                     raise ScenarioError(f"drivetrain.gears.{name}.between", f"gears shaft {shafts[0]!r} to itself")
         if self.load is not None and self.load.shaft not in self.shafts:
             raise ScenarioError("drivetrain.load.shaft", f"there is no shaft {self.load.shaft!r} (shafts: {known})")
+        check_speed_parts(self, set(seen), lambda name: bool(_NAME.match(name)) and name != GROUND)
 
     def _speeds_agree(self, groups):
         for name, (root, ratio) in groups.items():

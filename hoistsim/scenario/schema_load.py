@@ -5,6 +5,7 @@ in SI)."""
 from __future__ import annotations
 
 import math
+from typing import Literal
 
 from pydantic import model_validator
 
@@ -14,6 +15,7 @@ from .schema_base import Section
 from .schema_parts import BearingsSpec
 from .schema_rope import GroundSpec, RopeSpec
 from .schema_shaft_parts import OnShaft
+from .schema_speed_torques import DragSpec
 from .units import Text
 
 
@@ -33,18 +35,22 @@ class LoadBearingsSpec(BearingsSpec):
 
 class LoadOnShaftSpec(OnShaft, LoadSpec):
     """A load hanging from a drawn drivetrain's shaft, its rope wound at a radius: a rigid rope, or an elastic
-    one (``rope``); it may start resting on the ground (``ground``)."""
+    one (``rope``); it may start resting on the ground (``ground``).  Or, on a ``level`` path, a load the shaft
+    moves through the radius (a wheel's) with no gravity along it; ``drag``: a force against its motion,
+    quadratic in its speed."""
 
     shaft: Text  # the drum's shaft
     rope_radius: u.quantity(u.LENGTH, gt=0.0)  # half the drum's diameter
     rope: RopeSpec | None = None
     ground: GroundSpec | None = None
     bearings: LoadBearingsSpec | None = None
+    path: Literal["vertical", "level"] = "vertical"  # level: no gravity along it
+    drag: DragSpec | None = None
 
     @property
     def characteristic(self) -> str:
         """Which variant: ``rigid`` (moves with the rope's point on the drum) or ``elastic`` (a body on its rope)."""
-        return "rigid" if self.rope is None else "elastic"
+        return "level" if self.path == "level" else "rigid" if self.rope is None else "elastic"
 
     def shaft_speed(self, scenario) -> float:
         """rad/s: the speed of its shaft at the start."""
@@ -55,4 +61,9 @@ class LoadOnShaftSpec(OnShaft, LoadSpec):
         if self.rope is not None and self.mass <= 0.0:
             raise ScenarioError(".mass", "must be positive with an elastic rope (rope:): the load is a body of "
                                 "its own on it")
+        if self.path == "level":
+            lifted = next((key for key in ("rope", "ground", "bearings") if getattr(self, key) is not None), None)
+            if lifted is not None:
+                raise ScenarioError(f".{lifted}", "is a hoisted load's: a load on a level path (path: level) "
+                                    "moves rigidly with its shaft's radius, with no ground under it")
         return self

@@ -18,20 +18,25 @@ from .bearing_friction import BearingFriction as BearingFriction
 from .bearings import DrumShaftLoads as DrumShaftLoads
 from .clutch_heating import ClutchHeating as ClutchHeating
 from .constant_torque_motor import ConstantTorqueMotor as ConstantTorqueMotor
+from .eddy_current_brake import EddyCurrentBrake as EddyCurrentBrake
 from .elastic_load import ElasticLoad as ElasticLoad
 from .elasto_backlash import ElastoBacklash as ElastoBacklash
 from .flywheel import Flywheel as Flywheel
 from .friction_brake import FrictionBrake as FrictionBrake
 from .friction_clutch import FrictionClutch as FrictionClutch
+from .heat_capacitor import HeatCapacitor as HeatCapacitor
 from .ground import Ground as Ground
 from .holding_brake import HoldingBrake as HoldingBrake
+from .level_load import LevelLoad as LevelLoad
 from .linear_motor import LinearMotor as LinearMotor
+from .load_drag import LoadDrag as LoadDrag
 from .mesh_friction import MeshFriction as MeshFriction
 from .motor import Motor as Motor
 from .motor_ripple import MotorRipple as MotorRipple
 from .motor_table import TableMotor as TableMotor
 from .one_way_clutch import OneWayClutch as OneWayClutch
 from .periodic_regime import PeriodicRegime as PeriodicRegime
+from .quadratic_torque import QuadraticTorque as QuadraticTorque
 from .ratchet import Ratchet as Ratchet
 from .resisting_ripple import ResistingRipple as ResistingRipple
 from .rigid_load import RigidLoad as RigidLoad
@@ -39,6 +44,7 @@ from .rope import Rope as Rope
 from .shaft import Shaft as Shaft
 from .shaft_torque import ShaftTorque as ShaftTorque
 from .slider_crank import SliderCrank as SliderCrank
+from .speed_table_torque import SpeedTableTorque as SpeedTableTorque
 from .spring_damper import SpringDamper as SpringDamper
 from .wire_rope import WireRope as WireRope
 
@@ -53,19 +59,23 @@ REGISTRY: dict[str, object] = {
     "drivetrain.slider_cranks.*": SliderCrank,
     "drivetrain.motors.*": Motor,
     "drivetrain.motors.*.ripple": MotorRipple,
-    "drivetrain.torques.*": ShaftTorque,
+    "drivetrain.torques.*": {"time": ShaftTorque, "speed_table": SpeedTableTorque, "quadratic": QuadraticTorque},
     "drivetrain.clutches.*": FrictionClutch,
     "drivetrain.clutches.*.heating": ClutchHeating,
     "drivetrain.one_way_clutches.*": OneWayClutch,
     "drivetrain.bearing_frictions.*": BearingFriction,
     "drivetrain.springs.*": {"spring": SpringDamper, "backlash": ElastoBacklash},
     "drivetrain.gears.*.mesh": MeshFriction,  # a lossy stage's mesh
-    "drivetrain.load": {"rigid": RigidLoad, "elastic": ElasticLoad},  # on a rigid rope, or a body on its rope
+    "drivetrain.load": {"rigid": RigidLoad, "elastic": ElasticLoad,  # on a rigid rope, or a body on its rope,
+                        "level": LevelLoad},  # or moved along a level path
+    "drivetrain.load.drag": LoadDrag,
     "drivetrain.load.rope": {"stiffness": Rope, "modulus": WireRope},
     "drivetrain.load.ground": Ground,
     "drivetrain.brakes.*": {"holding": HoldingBrake, "friction": FrictionBrake},
     "drivetrain.ratchets.*": Ratchet,
     "drivetrain.load.bearings": DrumShaftLoads,
+    "drivetrain.eddy_current_brakes.*": EddyCurrentBrake,
+    "drivetrain.heat_capacitors.*": HeatCapacitor,  # after the brakes: a brake's heat warms one
     "periodic_regime": PeriodicRegime,  # an analysis of the hoist's run: given, or implied by a ripple
 }
 

@@ -1,0 +1,136 @@
+"""The schema of torques that follow a shaft's speed (values in SI): a torque entry's table of its shaft's speed
+or quadratic law (Modelica's QuadraticSpeedDependentTorque), an eddy-current brake (Modelica's
+EddyCurrentTorque) and the heat capacitor its heat warms (Modelica's HeatCapacitor), and the quadratic drag of
+a load on a level path (Modelica's QuadraticSpeedDependentForce).
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import Field, model_validator
+
+from ..errors import ScenarioError
+from . import tables
+from . import units as u
+from .schema_base import Section
+from .signals import TimeSignal, signal
+from .units import Dimension, Text
+
+SPEED = Dimension("speed", "m/s", "'5 m/s'")
+TEMPERATURE_COEFFICIENT = Dimension("temperature coefficient", "1/K", "'3.92e-3 1/K'")
+# Modelica's alpha20 is given at 20 degC (Modelica.Electrical.Machines.Thermal.convertAlpha)
+ALPHA_TEMPERATURE = 293.15  # K
+
+SPEED_PARTS = ("eddy_current_brakes", "heat_capacitors")  # the drivetrain's keys of these kinds
+
+
+class QuadraticSpeedSpec(Section):
+    """tau = nominal_torque (w / nominal_speed)^2, times sign(w) where the torque's direction ``reverses`` with
+    the turning (Modelica's TorqueDirection = false), or the same both ways where ``fixed`` (TorqueDirection =
+    true); positive in the shaft's positive sense, so a negative nominal_torque resists turning forwards."""
+
+    nominal_torque: u.quantity(u.TORQUE)
+    nominal_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0)
+    direction: Literal["reverses", "fixed"] = "reverses"
+
+
+class SpeedLaws(Section):
+    """A torque entry's laws of its shaft's speed, each in place of ``torque`` (a signal of time): a table
+    ``torque_by_speed`` [[speed, torque], ...] (speeds rising; piecewise linear, held beyond its ends) or
+    ``quadratic``."""
+
+    torque_by_speed: tables.TorqueSpeedTable | None = None
+    quadratic: QuadraticSpeedSpec | None = None
+
+    @model_validator(mode="after")
+    def _one_law(self):
+        given = [key for key in ("torque", "torque_by_speed", "quadratic") if getattr(self, key) is not None]
+        if len(given) != 1:
+            raise ScenarioError(f".{given[1] if given else 'torque'}", "give one of torque (a signal of time), "
+                                "torque_by_speed (a table [[speed, torque], ...]) or quadratic "
+                                "{nominal_torque, nominal_speed}" + (", not both" if given else ""))
+        return self
+
+    @property
+    def characteristic(self) -> str:
+        """Which variant: ``time`` (a signal), ``speed_table`` or ``quadratic``."""
+        return "speed_table" if self.torque_by_speed is not None else "quadratic" if self.quadratic else "time"
+
+
+class HeatCapacitorSpec(Section):
+    """A lumped heat capacity (Modelica's HeatCapacitor): C dT/dt = the heat flowing in."""
+
+    heat_capacity: u.quantity(u.HEAT_CAPACITY, gt=0.0)
+    temperature: u.quantity(u.TEMPERATURE, gt=0.0) = 293.15  # at t = 0
+    name: str = Field("", exclude=True)  # its key in drivetrain.heat_capacitors (set there, never written)
+
+
+class EddyCurrentBrakeSpec(Section):
+    """Modelica's EddyCurrentTorque on a shaft: it brakes with 2 nominal_torque e^2 w_n / (1 + w_n^2), w_n =
+    w / (nominal_speed (1 + alpha (T - reference_temperature))), e the excitation (a signal of time) and alpha the
+    temperature coefficient at 20 degC converted to the reference temperature; its heat goes into a heat capacitor
+    (``heat_to``), whose temperature is T, or T is ``temperature``."""
+
+    shaft: Text
+    nominal_torque: u.quantity(u.TORQUE, gt=0.0)  # the most it brakes, at nominal_speed
+    nominal_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0)  # where it brakes most, at reference_temperature
+    excitation: signal(u.DIMENSIONLESS) = TimeSignal(times=(0.0,), values=(1.0,))  # 1: the nominal torque
+    temperature_coefficient: u.quantity(TEMPERATURE_COEFFICIENT) = 0.0  # alpha20, the resistance's, at 20 degC
+    reference_temperature: u.quantity(u.TEMPERATURE, gt=0.0) = 293.15
+    heat_to: Text | None = None  # the heat capacitor its heat warms
+    temperature: u.quantity(u.TEMPERATURE, gt=0.0) | None = None  # without heat_to (default: the reference)
+    name: str = Field("", exclude=True)  # its key in drivetrain.eddy_current_brakes (set there, never written)
+
+    @model_validator(mode="after")
+    def _heat_to_or_temperature(self):
+        if self.heat_to is not None and self.temperature is not None:
+            raise ScenarioError(".temperature", "give either heat_to (a heat capacitor, whose temperature the brake "
+                                "has) or temperature (a constant), not both")
+        return self
+
+    def alpha_at_reference(self) -> float:
+        """1/K: the temperature coefficient at the reference temperature (Modelica's convertAlpha)."""
+        alpha = self.temperature_coefficient
+        return alpha / (1.0 + alpha * (self.reference_temperature - ALPHA_TEMPERATURE))
+
+
+class DragSpec(Section):
+    """A force resisting the load's motion along its path, quadratic in its speed: force (v / speed)^2 against
+    v (Modelica's QuadraticSpeedDependentForce with f_nominal = -force, ForceDirection = false)."""
+
+    force: u.quantity(u.FORCE, ge=0.0)  # at ``speed``
+    speed: u.quantity(SPEED, gt=0.0)
+
+
+def check_speed_parts(drivetrain, names_taken: set, is_name) -> None:
+    """Each eddy-current brake names a shaft there is and a heat capacitor there is, no capacitor takes two
+    brakes' heat and each takes one's; names are words (``is_name``, the drivetrain's rule) not taken by another
+    part (``names_taken``)."""
+    for kind in SPEED_PARTS:
+        for name in getattr(drivetrain, kind):
+            if not is_name(name) or name in names_taken:
+                raise ScenarioError(f"drivetrain.{kind}.{name}", "a name is a word of letters, digits and "
+                                    "underscores starting with a letter, not 'ground' and not the name of "
+                                    "another part (they name the outputs)")
+            names_taken.add(name)
+    heated: dict = {}
+    for name, brake in drivetrain.eddy_current_brakes.items():
+        if brake.shaft not in drivetrain.shafts:
+            raise ScenarioError(f"drivetrain.eddy_current_brakes.{name}.shaft", f"there is no shaft {brake.shaft!r} "
+                                f"(shafts: {', '.join(drivetrain.shafts)})")
+        if brake.heat_to is None:
+            continue
+        if brake.heat_to not in drivetrain.heat_capacitors:
+            known = ", ".join(drivetrain.heat_capacitors) or "none"
+            raise ScenarioError(f"drivetrain.eddy_current_brakes.{name}.heat_to", f"there is no heat capacitor "
+                                f"{brake.heat_to!r} (drivetrain.heat_capacitors: {known})")
+        if brake.heat_to in heated:
+            raise ScenarioError(f"drivetrain.eddy_current_brakes.{name}.heat_to", f"heat capacitor "
+                                f"{brake.heat_to!r} already takes brake {heated[brake.heat_to]!r}'s heat: give "
+                                "each brake a capacitor of its own")
+        heated[brake.heat_to] = name
+    for name in drivetrain.heat_capacitors:
+        if name not in heated:
+            raise ScenarioError(f"drivetrain.heat_capacitors.{name}", "no eddy-current brake puts its heat into it "
+                                "(give a brake heat_to: " + name + ")")
