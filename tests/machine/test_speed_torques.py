@@ -260,3 +260,35 @@ def test_a_bad_speed_dependent_part_is_one_line_naming_its_key(parts, key, says)
         _drawn(shafts=_SHAFT, **parts)
     assert err.value.key == key and says in err.value.message, (err.value.key, err.value.message)
     assert "\n" not in str(err.value)
+
+
+def test_every_knot_a_speed_crosses_ends_a_pass_even_turning_back_through_it(monkeypatch):
+    """A speed that reaches a knot and turns back through it before anything else stops the pass crosses that
+    knot again: the pass that started on it watches it behind (a hair past it), so each crossing, either way,
+    ends a pass and no step straddles a kink.  Counted where passes start (the knot coordinate there, recorded
+    from inside the compiled loop): the shaft swings about 0 rad/s, crossing that knot back and forth."""
+    import jax
+
+    from hoistsim.machine.core import switching
+
+    starts = []
+    anchors = switching.kink_anchors
+
+    def recorded(*args):
+        out = anchors(*args)
+        for value, _ in out.values():
+            jax.debug.callback(lambda v: starts.append(float(v)), value)
+        return out
+
+    monkeypatch.setattr(switching, "kink_anchors", recorded)
+    # six knots: a structure of its own, compiled here with the recording in it
+    speeds, torques = [-4.0, -1.0, 0.0, 2.0, 5.0, 50.0], [9.0, 2.0, 0.0, -3.0, -12.0, -12.0]
+    run = simulate(_drawn(duration="3 s", shafts={"rotor": {"inertia": "0.8 kg*m^2", "speed": "3 rad/s"}},
+                          torques=[{"shaft": "rotor", "torque_by_speed": [[f"{w} rad/s", f"{tq} N*m"]
+                                                                           for w, tq in zip(speeds, torques)]},
+                                   {"shaft": "rotor", "torque": {"harmonics": [{"amplitude": "6 N*m",
+                                                                                "frequency": "1 Hz"}]}}]))
+    knot = np.floor(np.interp(run["rotor_speed"], speeds, np.arange(6.0)))
+    crossings = int(np.sum(np.diff(knot) != 0.0))
+    on_knots = np.asarray(starts)[np.abs(np.asarray(starts) - np.round(starts)) < 1e-6]
+    assert crossings >= 6 and len(on_knots) == crossings, (crossings, starts)

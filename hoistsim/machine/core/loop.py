@@ -143,7 +143,7 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
     _, observations, kinks = _in_cycle(c)
     observing = observations < plan.max_switches
     kinking = kinks < KINK_BUDGET * plan.max_switches
-    anchors = switching.kink_anchors(plan.layout, _instant(plan, segment, c.t, c.y, c.modes, reply))
+    anchors = switching.kink_anchors(plan.layout, lambda t, y: _instant(plan, segment, t, y, c.modes, reply), c.t, c.y)
     unset = {name: jnp.zeros(()) for name in c.fired}
     orients = switching.orients(plan.layout, c.t, c.y,
                                 Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, unset,

@@ -173,17 +173,26 @@ def guards(layout: Layout) -> list[tuple[str, GuardId, object]]:
     kinks = []
     for element in layout.elements:
         for kink in element.kink_names():
-            # The knots either side of where the pass started (``args.anchors``): the
-            # distance to each falls monotonically to zero, so none is stepped over.
+            # The knots either side of where the pass started (``args.anchors``: the knot coordinate there and
+            # its rate): the distance to each falls monotonically to zero, so none is stepped over.  A pass that
+            # starts on a knot watches the next knot the way it moves and that same knot behind it (a speed
+            # that reaches a knot and turns back through it before anything else stops the pass), a hair past
+            # it (two knot resolutions) so that the guard starts above zero, armed, and off the knot.
             anchor = GuardId(element.section, kink)
 
             def ahead(at, element=element, kink=kink, anchor=anchor):
                 u = element.kinks(at.instant)[kink]
-                return jnp.where(at.args.kinking, jnp.floor(at.args.anchors[anchor] + KNOT_RESOLUTION) + 1.0 - u, 1.0)
+                start, rate = at.args.anchors[anchor]
+                knot = jnp.floor(start + KNOT_RESOLUTION)
+                target = jnp.where(on_knot(start) & (rate < 0.0), knot + 2.0 * KNOT_RESOLUTION, knot + 1.0)
+                return jnp.where(at.args.kinking, target - u, 1.0)
 
             def behind(at, element=element, kink=kink, anchor=anchor):
                 u = element.kinks(at.instant)[kink]
-                return jnp.where(at.args.kinking, u - jnp.ceil(at.args.anchors[anchor] - KNOT_RESOLUTION) + 1.0, 1.0)
+                start, rate = at.args.anchors[anchor]
+                knot = jnp.ceil(start - KNOT_RESOLUTION)
+                target = jnp.where(on_knot(start) & (rate > 0.0), knot - 2.0 * KNOT_RESOLUTION, knot - 1.0)
+                return jnp.where(at.args.kinking, u - target, 1.0)
             to_ahead, to_behind = knot_guards(element.section, kink)
             kinks += [("kink", to_ahead, ahead), ("kink", to_behind, behind)]
     every = switch + limit + observe + valley + kinks
@@ -270,9 +279,26 @@ def crossed_together(guards, values, armed: dict, masks: dict):
     return overtaken, limit_overtaken, coinciding
 
 
-def kink_anchors(layout: Layout, x: Instant) -> dict:
-    """Every knot coordinate at the start of a pass (see ``guards``)."""
-    return {GuardId(e.section, kink): value for e in layout.elements for kink, value in e.kinks(x).items()}
+def on_knot(start):
+    """Whether a knot coordinate where a pass starts is on a knot (within the knot resolution of one)."""
+    return jnp.abs(start - jnp.round(start)) <= KNOT_RESOLUTION
+
+
+def kink_anchors(layout: Layout, instant_at, t, y) -> dict:
+    """Every knot coordinate at the start of a pass and its rate along the motion there (see ``guards``):
+    ``instant_at(t, y)`` the machine at (t, y) under the pass's modes."""
+    kinked = [e for e in layout.elements if e.kink_names()]
+    if not kinked:
+        return {}
+
+    def coordinates(t, y):
+        x = instant_at(t, y)
+        return {GuardId(e.section, kink): jnp.asarray(value, dtype=jnp.float64) for e in kinked
+                for kink, value in e.kinks(x).items()}
+
+    at = jnp.asarray(t, dtype=jnp.float64)
+    values, rates = jax.jvp(coordinates, (at, y), (jnp.ones_like(at), rates_at(instant_at(t, y), y.dtype)))
+    return {name: (values[name], rates[name]) for name in values}
 
 
 def with_impacts(layout: Layout, y_before, y_after, modes_before, modes_after):
