@@ -23,6 +23,7 @@ from .schema_motor import MotorSpec, RippleSpec
 from .schema_parts import ClutchHeatingSpec, fade_tables, kinetic_within_static
 from .schema_load import LoadOnShaftSpec
 from .schema_spring import SpringSpec
+from .schema_linkage import PlanetarySpec, check_linkages, start_speeds
 from .schema_shaft_parts import (SHAFT_PARTS, BrakeOnShaftSpec, OnShaft, RatchetOnShaftSpec, RotorSpec,
                                  SliderCrankSpec, check_shaft_parts)
 from .signals import signal
@@ -43,8 +44,9 @@ class ShaftSpec(OnShaft, Section):
         """(the first shaft of its gear train, its speed over that one's, its speed at the start): shafts
         geared together turn as one body."""
         drawn = scenario.drivetrain
-        root, ratio = gear_groups(drawn)[self.name]
-        return root, ratio, drawn.shafts[root].speed * ratio
+        groups = gear_groups(drawn)
+        root, ratio = groups[self.name]
+        return root, ratio, start_speeds(drawn, groups)[self.name]
 
     def sets_speed_scale(self) -> bool:
         """Whether its speed at the start is one of the machine's speed scales (the slip resolution's)."""
@@ -118,6 +120,8 @@ class GearStageSpec(MeshSpec):
     between: tuple[Text, Text]  # [input shaft, output shaft]
     ratio: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = None  # the input's speed over the output's
     teeth: tuple[u.whole("teeth"), u.whole("teeth")] | None = None  # [z_in, z_out]: ratio z_out / z_in
+    # a third shaft the stage's housing turns with (its ratio then against it): schema_linkage
+    housing: Text | None = None
     name: str = Field("", exclude=True)  # its key in drivetrain.gears (set there, never written)
 
     def speed_ratio(self) -> float:
@@ -167,6 +171,7 @@ class DrivetrainSpec(Section):
     slider_cranks: dict[str, SliderCrankSpec] = {}
     brakes: dict[str, BrakeOnShaftSpec] = {}
     ratchets: dict[str, RatchetOnShaftSpec] = {}
+    planetaries: dict[str, PlanetarySpec] = {}
     load: LoadOnShaftSpec | None = None
 
     @model_validator(mode="before")
@@ -177,7 +182,7 @@ class DrivetrainSpec(Section):
         if not isinstance(data, dict):
             return data
         data = dict(data)
-        for kind in ("shafts", "clutches", "springs", "gears", "motors", *SHAFT_PARTS):
+        for kind in ("shafts", "clutches", "springs", "gears", "motors", *SHAFT_PARTS, "planetaries"):
             parts = data.get(kind)
             if not isinstance(parts, dict):
                 continue
@@ -236,8 +241,8 @@ class DrivetrainSpec(Section):
         for name, stage in self.gears.items():
             if stage.lossy:
                 beyond_stage(self, name)  # a lossy stage in a loop of stages is refused there
-        self._speeds_agree(groups)
-        speeds = {name: self.shafts[root].speed * ratio for name, (root, ratio) in groups.items()}
+        speeds = start_speeds(self, groups)
+        self._speeds_agree(groups, speeds)
         check_shaft_parts(self, speeds)
         self._load_may_start(speeds)
         self._every_body_has_inertia(groups)
@@ -284,10 +289,11 @@ class DrivetrainSpec(Section):
                     raise ScenarioError(f"drivetrain.gears.{name}.between", f"gears shaft {shafts[0]!r} to itself")
         if self.load is not None and self.load.shaft not in self.shafts:
             raise ScenarioError("drivetrain.load.shaft", f"there is no shaft {self.load.shaft!r} (shafts: {known})")
+        check_linkages(self, seen)
 
-    def _speeds_agree(self, groups):
+    def _speeds_agree(self, groups, speeds):
         for name, (root, ratio) in groups.items():
-            expected = self.shafts[root].speed * ratio
+            expected = speeds[name]
             given = self.shafts[name].speed
             if name != root and "speed" in self.shafts[name].model_fields_set and not math.isclose(
                     given, expected, rel_tol=1e-9, abs_tol=1e-12):
@@ -318,7 +324,7 @@ def gear_groups(spec: DrivetrainSpec) -> dict:
     """Each shaft's (root, speed over the root's): shafts geared together turn as one body, the first
     of them in ``shafts`` its root.  Gear stages that close a loop with ratios that disagree are refused,
     naming both (the machine could not turn)."""
-    stages = {name: stage for name, stage in spec.gears.items()}
+    stages = {name: stage for name, stage in spec.gears.items() if stage.housing is None}  # on a housing: a linkage
     groups: dict = {}
     via: dict = {}  # shaft -> the stage that reached it
     for start in spec.shafts:
@@ -355,7 +361,7 @@ def beyond_stage(spec: DrivetrainSpec, name: str) -> tuple:
     while reached:
         shaft = reached.pop()
         for other, stage in spec.gears.items():
-            if other == name or shaft not in stage.between:
+            if other == name or shaft not in stage.between or stage.housing is not None:
                 continue
             far = stage.between[1] if shaft == stage.between[0] else stage.between[0]
             if far == first:

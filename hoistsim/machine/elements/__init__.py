@@ -24,12 +24,14 @@ from .friction_brake import FrictionBrake as FrictionBrake
 from .friction_clutch import FrictionClutch as FrictionClutch
 from .ground import Ground as Ground
 from .holding_brake import HoldingBrake as HoldingBrake
+from .housed_gear import HousedGear as HousedGear
 from .linear_motor import LinearMotor as LinearMotor
 from .mesh_friction import MeshFriction as MeshFriction
 from .motor import Motor as Motor
 from .motor_ripple import MotorRipple as MotorRipple
 from .motor_table import TableMotor as TableMotor
 from .periodic_regime import PeriodicRegime as PeriodicRegime
+from .planetary import Planetary as Planetary
 from .ratchet import Ratchet as Ratchet
 from .resisting_ripple import ResistingRipple as ResistingRipple
 from .rigid_load import RigidLoad as RigidLoad
@@ -52,6 +54,10 @@ REGISTRY: dict[str, object] = {
     "drivetrain.motors.*": Motor,
     "drivetrain.motors.*.ripple": MotorRipple,
     "drivetrain.torques.*": ShaftTorque,
+    # linkages of three shafts, before the friction couplings: where stuck couplings hold one motion twice,
+    # the first in order takes the torque, and these hold any
+    "drivetrain.gears.*.housing": HousedGear,  # a stage whose housing turns
+    "drivetrain.planetaries.*": Planetary,
     "drivetrain.clutches.*": FrictionClutch,
     "drivetrain.clutches.*.heating": ClutchHeating,
     "drivetrain.springs.*": {"spring": SpringDamper, "backlash": ElastoBacklash},
