@@ -114,6 +114,31 @@ def test_a_brake_on_the_ring_slips_locks_and_breaks_away_in_closed_form():
     assert run.summary["energy_relative_residual"] < 1e-9
 
 
+def test_a_set_ties_shafts_geared_into_bodies():
+    """The sun geared to a motor shaft (2:1) and the ring to an output shaft (1:4), each pair one body: the set
+    ties the bodies by the shafts' ratios; in the sun's and ring's terms the motor's inertia is 4 J_m on the
+    sun, its torque 2 tau_m, the output's 1/16 J_o on the ring; the carrier's speed derived from the motor's
+    and the ring's."""
+    scene = planetary_scene(force=0.0)
+    drawn = scene["drivetrain"]
+    drawn["shafts"] = {"motor": {"inertia": "0.05 kg*m^2", "speed": f"{2 * SUN_SPEED} rad/s"},
+                       "sun": {"inertia": f"{J_SUN} kg*m^2"}, "carrier": drawn["shafts"]["carrier"],
+                       "ring": drawn["shafts"]["ring"], "output": {"inertia": "3.2 kg*m^2"}}
+    drawn["torques"] = [{"shaft": "motor", "torque": "2 N*m"}]
+    drawn["gears"] = {"primary": {"between": ["motor", "sun"], "ratio": 2},
+                      "final": {"between": ["ring", "output"], "ratio": 4}}
+    run = simulate(scenario_from_dict(scene))
+    accel, torque = uniform((J_SUN + 4 * 0.05, J_CARRIER, J_RING + 3.2 / 16), WEIGHTS, (2 * 2.0, 0.0, 0.0))
+    t = run["time"]
+    carrier_start = (SUN_SPEED + R * RING_SPEED) / (1 + R)
+    np.testing.assert_allclose(run["motor_speed"], 2 * (SUN_SPEED + accel[0] * t), rtol=0, atol=1e-10)
+    np.testing.assert_allclose(run["carrier_speed"], carrier_start + accel[1] * t, rtol=0, atol=1e-10)
+    np.testing.assert_allclose(run["output_speed"], (RING_SPEED + accel[2] * t) / 4, rtol=0, atol=1e-10)
+    np.testing.assert_allclose(run["set_sun_torque"], torque, rtol=1e-12)
+    assert np.max(np.abs(willis(run))) < 1e-13 * np.max(np.abs(run["sun_speed"]))
+    assert run.summary["energy_relative_residual"] < 1e-9
+
+
 def housed_scene() -> dict:
     return {"name": "housed-stage", "drivetrain": {
         "shafts": {"a": {"inertia": "0.5 kg*m^2", "speed": "30 rad/s"}, "b": {"inertia": "4 kg*m^2"},
