@@ -24,6 +24,7 @@ from .schema_bearing_friction import BearingFrictionSpec
 from .schema_drawn_clutches import FrictionClutchSpec, OneWayClutchSpec
 from .schema_spring import SpringSpec
 from .schema_speed_torques import SPEED_PARTS, EddyCurrentBrakeSpec, HeatCapacitorSpec, SpeedLaws, check_speed_parts
+from .schema_linkage import PlanetarySpec, check_linkages, start_speeds
 from .schema_shaft_parts import (SHAFT_PARTS, BrakeOnShaftSpec, OnShaft, RatchetOnShaftSpec, RotorSpec,
                                  SliderCrankSpec, check_shaft_parts)
 from .signals import signal
@@ -48,8 +49,9 @@ class ShaftSpec(OnShaft, Section):
         """(the first shaft of its gear train, its speed over that one's, its speed at the start): shafts
         geared together turn as one body."""
         drawn = scenario.drivetrain
-        root, ratio = gear_groups(drawn)[self.name]
-        return root, ratio, drawn.shafts[root].speed * ratio
+        groups = gear_groups(drawn)
+        root, ratio = groups[self.name]
+        return root, ratio, start_speeds(drawn, groups)[self.name]
 
     def sets_speed_scale(self) -> bool:
         """Whether its speed at the start is one of the machine's speed scales (the slip resolution's)."""
@@ -88,6 +90,8 @@ class GearStageSpec(MeshSpec):
     between: tuple[Text, Text]  # [input shaft, output shaft]
     ratio: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = None  # the input's speed over the output's
     teeth: tuple[u.whole("teeth"), u.whole("teeth")] | None = None  # [z_in, z_out]: ratio z_out / z_in
+    # a third shaft the stage's housing turns with (its ratio then against it): schema_linkage
+    housing: Text | None = None
     name: str = Field("", exclude=True)  # its key in drivetrain.gears (set there, never written)
 
     def speed_ratio(self) -> float:
@@ -139,6 +143,7 @@ class DrivetrainSpec(Section):
     slider_cranks: dict[str, SliderCrankSpec] = {}
     brakes: dict[str, BrakeOnShaftSpec] = {}
     ratchets: dict[str, RatchetOnShaftSpec] = {}
+    planetaries: dict[str, PlanetarySpec] = {}
     load: LoadOnShaftSpec | None = None
     eddy_current_brakes: dict[str, EddyCurrentBrakeSpec] = {}
     heat_capacitors: dict[str, HeatCapacitorSpec] = {}
@@ -152,7 +157,7 @@ class DrivetrainSpec(Section):
             return data
         data = dict(data)
         for kind in ("shafts", "clutches", "one_way_clutches", "bearing_frictions", "springs", "gears", "motors",
-                     *SHAFT_PARTS, *SPEED_PARTS):
+                     *SHAFT_PARTS, *SPEED_PARTS, "planetaries"):
             parts = data.get(kind)
             if not isinstance(parts, dict):
                 continue
@@ -213,8 +218,8 @@ class DrivetrainSpec(Section):
         for name, stage in self.gears.items():
             if stage.lossy:
                 beyond_stage(self, name)  # a lossy stage in a loop of stages is refused there
-        self._speeds_agree(groups)
-        speeds = {name: self.shafts[root].speed * ratio for name, (root, ratio) in groups.items()}
+        speeds = start_speeds(self, groups)
+        self._speeds_agree(groups, speeds)
         check_shaft_parts(self, speeds)
         self._freewheels_may_start(speeds)
         self._load_may_start(speeds)
@@ -272,10 +277,11 @@ class DrivetrainSpec(Section):
         if self.load is not None and self.load.shaft not in self.shafts:
             raise ScenarioError("drivetrain.load.shaft", f"there is no shaft {self.load.shaft!r} (shafts: {known})")
         check_speed_parts(self, set(seen), lambda name: bool(_NAME.match(name)) and name != GROUND)
+        check_linkages(self, seen)
 
-    def _speeds_agree(self, groups):
+    def _speeds_agree(self, groups, speeds):
         for name, (root, ratio) in groups.items():
-            expected = self.shafts[root].speed * ratio
+            expected = speeds[name]
             given = self.shafts[name].speed
             if name != root and "speed" in self.shafts[name].model_fields_set and not math.isclose(
                     given, expected, rel_tol=1e-9, abs_tol=1e-12):
@@ -306,7 +312,7 @@ def gear_groups(spec: DrivetrainSpec) -> dict:
     """Each shaft's (root, speed over the root's): shafts geared together turn as one body, the first
     of them in ``shafts`` its root.  Gear stages that close a loop with ratios that disagree are refused,
     naming both (the machine could not turn)."""
-    stages = {name: stage for name, stage in spec.gears.items()}
+    stages = {name: stage for name, stage in spec.gears.items() if stage.housing is None}  # on a housing: a linkage
     groups: dict = {}
     via: dict = {}  # shaft -> the stage that reached it
     for start in spec.shafts:
@@ -343,7 +349,7 @@ def beyond_stage(spec: DrivetrainSpec, name: str) -> tuple:
     while reached:
         shaft = reached.pop()
         for other, stage in spec.gears.items():
-            if other == name or shaft not in stage.between:
+            if other == name or shaft not in stage.between or stage.housing is not None:
                 continue
             far = stage.between[1] if shaft == stage.between[0] else stage.between[0]
             if far == first:

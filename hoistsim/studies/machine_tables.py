@@ -55,8 +55,7 @@ def parts_table(scenario) -> str:
     rows = []
     for (section, _, _), part in zip(element_sections(scenario), machine_elements(scenario)):
         if isinstance(part, AbstractCoupling):
-            a, b = part.joins()
-            where = f"{a} - {b or 'ground'}"
+            where = " - ".join(side or "ground" for side in part.joins())  # a linkage: its three shafts
         elif getattr(part, "geared_to", None):
             where = f"shaft, {fmt(float(part.speed_ratio))} x {part.geared_to}"
         elif part.bodies():

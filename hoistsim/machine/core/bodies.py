@@ -93,18 +93,23 @@ class Bodies:
         self.layout = layout
         self.y = y
         count = len(layout.bodies)
-        self.ends = []  # (body a, ratio a, body b or None, ratio b) of each coupling
+        # (body a, ratio a, body b or None, ratio b) of each coupling; None for one that ties more shafts
+        self.ends = []
         self.rows = []  # G, one row per coupling over the bodies; 0.0 where it does not touch a body
         for coupling in layout.coupling_elements:
-            a, b = coupling.joins()
-            body_a, ratio_a = layout.shaft(a, coupling)
-            body_b, ratio_b = layout.shaft(b, coupling) if b is not None else (None, 0.0)
             row = [0.0] * count
-            row[body_a] = ratio_a
-            if body_b is not None:
-                row[body_b] = row[body_b] - ratio_b
-            self.ends.append((body_a, ratio_a, body_b, ratio_b))
+            for shaft, weight in coupling.weights():
+                body, ratio = layout.shaft(shaft, coupling)
+                row[body] = weight * ratio if _absent(row[body]) else row[body] + weight * ratio
             self.rows.append(row)
+            sides = coupling.joins()
+            if len(sides) == 2:
+                a, b = sides
+                body_a, ratio_a = layout.shaft(a, coupling)
+                body_b, ratio_b = layout.shaft(b, coupling) if b is not None else (None, 0.0)
+                self.ends.append((body_a, ratio_a, body_b, ratio_b))
+            else:
+                self.ends.append(None)
 
     @cached_property
     def inertia(self) -> list:
@@ -161,16 +166,25 @@ class Bodies:
         two locked shafts would drift apart by ulps a step, and a held shaft would
         creep.  Ground couplings fix their body at zero first; then each stuck
         coupling carries a settled body's value to the other (once per coupling,
-        enough for any chain).
+        enough for any chain).  A stuck coupling that ties three shafts, after them,
+        gives one of its bodies not yet settled the value its relation leaves it:
+        the one its row weighs most against its inertia (g^2 / m), whose value the
+        solve finds as a small difference of large terms (a light shaft's, drifting
+        off the relation and its torque doing work on round-off, else); its bodies
+        are settled then.
         """
         values = list(values)
         settled = [jnp.zeros((), bool) for _ in values]
-        for (body_a, _, body_b, _), s in zip(self.ends, stuck):
-            if body_b is None:
+        for end, s in zip(self.ends, stuck):
+            if end is not None and end[2] is None:
+                body_a = end[0]
                 values[body_a] = jnp.where(s, 0.0, values[body_a])
                 settled[body_a] = settled[body_a] | s
         for _ in self.ends:
-            for (body_a, ratio_a, body_b, ratio_b), s in zip(self.ends, stuck):
+            for end, s in zip(self.ends, stuck):
+                if end is None:
+                    continue
+                body_a, ratio_a, body_b, ratio_b = end
                 if body_b is None or body_a == body_b:
                     continue
                 to_a = s & settled[body_b] & ~settled[body_a]
@@ -179,6 +193,20 @@ class Bodies:
                 values[body_b] = jnp.where(to_b, values[body_a] * (ratio_a / ratio_b), values[body_b])
                 settled[body_a] = settled[body_a] | to_a | (s & to_b)
                 settled[body_b] = settled[body_b] | to_b | to_a
+        for end, row, s in zip(self.ends, self.rows, stuck):
+            if end is not None:
+                continue
+            touched = [j for j, g in enumerate(row) if not _absent(g)]
+            given = [dot(row, [0.0 if i == j else v for i, v in enumerate(values)]) for j in touched]
+            best, chosen = -1.0, -1
+            for j in touched:  # the unsettled body of the largest g^2 / m
+                score = row[j] ** 2 / self.inertia[j]
+                better = ~settled[j] & (score > best)
+                best, chosen = jnp.where(better, score, best), jnp.where(better, j, chosen)
+            for j, rest in zip(touched, given):
+                values[j] = jnp.where(s & (chosen == j), -rest / row[j], values[j])
+            for j in touched:
+                settled[j] = settled[j] | s
         return values
 
 

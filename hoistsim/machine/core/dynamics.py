@@ -158,8 +158,8 @@ class Instant:
             if applied:
                 taken = taken - self.shaft_torques.get(shaft, 0.0)
             for k, coupling in enumerate(self.layout.coupling_elements):
-                a, b = coupling.joins()
-                taken = taken + (passed[k] if a == shaft else 0.0) - (passed[k] if b == shaft else 0.0)
+                for on, weight in coupling.weights():
+                    taken = taken + (weight * passed[k] if on == shaft else 0.0)
             # torque at this shaft, at the first: the power it passes is the same
             into = taken if shaft == shafts[0] else into + taken * ratio / self.layout.shaft(shafts[0])[1]
         return into

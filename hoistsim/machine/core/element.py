@@ -219,7 +219,15 @@ class AbstractCoupling(AbstractElement):
 
     @abc.abstractmethod
     def joins(self) -> tuple:
-        """The shafts it ties, (a, b), b None for the ground; the torque it passes is positive a driving b."""
+        """The shafts it ties, (a, b), b None for the ground; the torque it passes is positive a driving b.
+        One that ties more than two shafts (a linear relation among their speeds) names them all."""
+
+    def weights(self) -> tuple:
+        """(shaft, weight) pairs: its relative speed is the sum of weight times speed, and it takes weight
+        times its torque from each shaft.  Side a's weight 1 and side b's -1 unless it says otherwise (one
+        that ties three shafts holds sum w_i speed_i = 0: its weights sum to zero, its torques balance)."""
+        a, b = self.joins()
+        return ((a, 1.0),) if b is None else ((a, 1.0), (b, -1.0))
 
     @abc.abstractmethod
     def capacity(self, x):

@@ -28,6 +28,7 @@ from .heat_capacitor import HeatCapacitor as HeatCapacitor
 from .ground import Ground as Ground
 from .holding_brake import HoldingBrake as HoldingBrake
 from .level_load import LevelLoad as LevelLoad
+from .housed_gear import HousedGear as HousedGear
 from .linear_motor import LinearMotor as LinearMotor
 from .load_drag import LoadDrag as LoadDrag
 from .mesh_friction import MeshFriction as MeshFriction
@@ -37,6 +38,7 @@ from .motor_table import TableMotor as TableMotor
 from .one_way_clutch import OneWayClutch as OneWayClutch
 from .periodic_regime import PeriodicRegime as PeriodicRegime
 from .quadratic_torque import QuadraticTorque as QuadraticTorque
+from .planetary import Planetary as Planetary
 from .ratchet import Ratchet as Ratchet
 from .resisting_ripple import ResistingRipple as ResistingRipple
 from .rigid_load import RigidLoad as RigidLoad
@@ -60,6 +62,10 @@ REGISTRY: dict[str, object] = {
     "drivetrain.motors.*": Motor,
     "drivetrain.motors.*.ripple": MotorRipple,
     "drivetrain.torques.*": {"time": ShaftTorque, "speed_table": SpeedTableTorque, "quadratic": QuadraticTorque},
+    # linkages of three shafts, before the friction couplings: where stuck couplings hold one motion twice,
+    # the first in order takes the torque, and these hold any
+    "drivetrain.gears.*.housing": HousedGear,  # a stage whose housing turns
+    "drivetrain.planetaries.*": Planetary,
     "drivetrain.clutches.*": FrictionClutch,
     "drivetrain.clutches.*.heating": ClutchHeating,
     "drivetrain.one_way_clutches.*": OneWayClutch,
