@@ -65,6 +65,8 @@ EXAMPLES = {
     "OneWayClutch": (lambda run: {**_shaft(run, "inertiaIn"), **{f"oneWayClutch.{k}": v for k, v in
                                                                 _relative(run, "inertiaIn", "inertiaOut").items()}},
                      ()),
+    "SimpleGearShift": (lambda run: {**_shaft(run, "engine"), **_shaft(run, "load"), **{
+        f"clutch.{k}": v for k, v in _relative(run, "engine", "ring").items()}}, ("clutch", "brake")),
     "OneWayClutchDisengaged": (lambda run: {**_shaft(run, "inertiaIn"), **{
         f"oneWayClutch.{k}": v for k, v in _relative(run, "inertiaIn", "inertiaOut").items()}}, ()),
 }

@@ -39,8 +39,10 @@ def dot(weights, values):
 
 
 # A stuck coupling whose pivot, once the couplings before it are eliminated, is below this fraction of
-# its own diagonal holds a motion those couplings already hold (exactly zero but for round-off).
-REDUNDANT_PIVOT = 1e-9
+# its own diagonal holds a motion those couplings already hold (exactly zero but for round-off, some 1e-16).
+# Not larger: a hold on a light shaft that a three-shaft linkage ties to heavy ones (1e-9 kg*m^2 against 1 and
+# 10) has a pivot 7e-10 of its diagonal, and taken for a motion held twice it would hold nothing.
+REDUNDANT_PIVOT = 1e-12
 
 
 def solve_stuck(matrix, columns, stuck, order=None):
