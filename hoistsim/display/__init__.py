@@ -10,11 +10,13 @@ from __future__ import annotations
 from .bearings import DRUM_SHAFT_LOADS
 from .clutch_heating import CLUTCH_HEATING
 from .cone_clutch import CONE_CLUTCH
+from .eddy_current_brake import EDDY_CURRENT_BRAKE
 from .friction_brake import FRICTION_BRAKE
 from .friction_clutch import FRICTION_CLUTCH
 from .gear_pair import GEAR_PAIR
 from .ground import GROUND
 from .holding_brake import HOLDING_BRAKE
+from .linkage import LINKAGE
 from .load import LOAD
 from .mesh_friction import MESH_FRICTION
 from .motor import MOTOR
@@ -23,11 +25,12 @@ from .periodic_regime import PERIODIC_REGIME
 from .ratchet import RATCHET
 from .rope import ROPE
 from .shaft import SHAFT
+from .shaft_torque import SHAFT_TORQUE
 from .spring_damper import SPRING_DAMPER
 
 DISPLAYS: tuple[Display, ...] = (MOTOR, GEAR_PAIR, MESH_FRICTION, CONE_CLUTCH, CLUTCH_HEATING, LOAD, ROPE, GROUND,
                                  HOLDING_BRAKE, FRICTION_BRAKE, RATCHET, DRUM_SHAFT_LOADS, PERIODIC_REGIME, SHAFT,
-                                 FRICTION_CLUTCH, SPRING_DAMPER)
+                                 SHAFT_TORQUE, FRICTION_CLUTCH, LINKAGE, SPRING_DAMPER, EDDY_CURRENT_BRAKE)
 
 
 def headline(summary: dict) -> list[str]:

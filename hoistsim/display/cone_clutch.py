@@ -47,4 +47,5 @@ CONE_CLUTCH = Display(
                 lambda row: row["lockup_time"] == 0 and row.get("slip_duration", 0.0) == 0, "#1b7837", "D"),
     ),
     headline=_headline,
+    names_part="hoist",
 )

@@ -20,4 +20,5 @@ FRICTION_BRAKE = Display(
     ), zero_line=True, height=0.8),),
     summary_panels=(SummaryPanel("brake_energy", "brake heat [kJ]", 40, scale=1e-3),),
     headline=_headline,
+    names_part=("brakes", "brake"),
 )

@@ -1,4 +1,5 @@
-"""A drawn drivetrain's friction clutches: a panel of each one's torque, one of every clutch's slip."""
+"""A drawn drivetrain's friction couplings (clutches, one-way clutches, bearing frictions): a panel of each one's
+torque, one of every one's slip."""
 
 from __future__ import annotations
 
@@ -14,10 +15,14 @@ def _headline(summary: dict) -> str | None:
     return ", ".join(said)
 
 
+# the drivetrain's kinds of friction coupling, each drawn as a clutch: the torque it passes, its slip
+KINDS = ("clutches", "one_way_clutches", "bearing_frictions")
+
+
 def _panels_for(run: dict) -> tuple:
-    """A panel per clutch: the torque it passes and the force pressing it (a right-hand scale's worth
-    of story: where it opens), and one panel of every clutch's slip, its locks marked."""
-    clutches = (run.get("parameters", {}).get("drivetrain") or {}).get("clutches") or {}
+    """A panel per clutch: the torque it passes, and one panel of every clutch's slip, its locks marked."""
+    drawn = run.get("parameters", {}).get("drivetrain") or {}
+    clutches = [name for kind in KINDS for name in drawn.get(kind) or {}]
     panels = [Panel(f"{name}_torque", f"{name}\ntorque [N*m]", 20 + i, (Trace("torque", f"{name}_torque"),),
                     zero_line=True, height=0.8) for i, name in enumerate(clutches)]
     slips = tuple(Trace(name, f"{name}_slip", marks=("lock",), marks_of=name) for name in clutches)

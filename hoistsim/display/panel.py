@@ -132,8 +132,24 @@ class Display:
     headline: Callable[[dict], str | None] | None = None
     panels_for: Callable[[dict], tuple] | None = None
     reads: Callable[[str], bool] | None = None
+    # a hoist part's display, whose columns its name names: in a drawn drivetrain's run it draws only where the
+    # drivetrain has that part, (kind, name) (a clutch the user named "brake" is no brake); "hoist": never (a
+    # drawn part of its kind has a display of its own)
+    names_part: tuple[str, str] | str | None = None
+
+    def shows(self, run: dict) -> bool:
+        """Whether it draws in this run (read back: ``run["parameters"]`` the resolved scenario)."""
+        drawn = (run.get("parameters") or {}).get("drivetrain")
+        if drawn is None or self.names_part is None:
+            return True
+        if self.names_part == "hoist":
+            return False
+        kind, name = self.names_part
+        return name in (drawn.get(kind) or {})
 
     def panels_of(self, run: dict) -> tuple:
+        if not self.shows(run):
+            return ()
         return self.panels if self.panels_for is None else self.panels_for(run)
 
     def reads_column(self, column: str) -> bool:

@@ -44,7 +44,7 @@ def runs_figure(runs, plt, swept, frames=None):
         _parameters(run)
     present = set(runs[0])
     panels = _panels(present, runs[0])
-    shading = list({id(phase): phase for display in DISPLAYS for phase in display.shading
+    shading = list({id(phase): phase for display in DISPLAYS if display.shows(runs[0]) for phase in display.shading
                     if phase.column in present}.values())
 
     heights = [panel.height for panel in panels]
