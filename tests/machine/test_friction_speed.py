@@ -229,3 +229,19 @@ def test_peak_makes_the_static_friction_of_the_friction_at_rest():
         ["0 rad/s", 0.3], ["10 rad/s", 0.2]]}})
     clutch = scene.drivetrain.clutches["c"]
     assert clutch.static_friction == pytest.approx(0.75) and clutch.kinetic_at_rest == 0.3
+
+
+def test_new_values_of_the_friction_keys_compile_nothing():
+    """A bearing friction's table and peak, a one-way clutch's peak, friction and force are traced numbers: runs of
+    one structure with new values reuse its program."""
+    from hoistsim.machine.core import loop
+
+    simulate(_one_way(3.0, 1.0))
+    simulate(_bearing(ramp=4.0, speed=0.0))
+    before = loop.trace_count
+    simulate(_one_way(1.2, 7.0))
+    scene = _bearing(ramp=1.0, speed=3.0)
+    scene.drivetrain.bearing_frictions["bearing"] = scene.drivetrain.bearing_frictions["bearing"].model_copy(
+        update={"peak": 2.5, "torque": ((0.0, 1.0), (3.0, 2.0), (90.0, 2.5))})
+    simulate(scene)
+    assert loop.trace_count == before

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from helpers import SCENARIOS
 from scipy.integrate import solve_ivp
-from test_modelica_examples import _events, _reference
+from test_modelica_examples import deviations
 
 from hoistsim import load_scenario, scenario_from_dict, simulate
 from hoistsim.errors import ScenarioError
@@ -24,17 +24,6 @@ def _drawn(duration="1 s", interval="1 ms", **parts):
                               name="speed_torques")
 
 
-def _worst_deviations(run, example: str, ours: dict) -> dict:
-    """Each comparison signal's largest deviation from the reference, over its range, at every reference row more
-    than 1 ms from a reference event (a repeated time)."""
-    reference = _reference(example)
-    times = reference["time"]
-    events = _events(times)
-    far = np.min(np.abs(times[:, None] - events[None, :]), axis=1) > 1e-3
-    return {signal: float(np.max(np.abs(np.interp(times, run.time, series) - reference[signal])[far])
-                          / np.ptp(reference[signal])) for signal, series in ours.items()}
-
-
 def _closes(run) -> None:
     assert run.summary["energy_relative_residual"] < 1e-9, run.energy_balance
 
@@ -46,7 +35,7 @@ def test_eddy_current_brake_against_dymolas_published_trajectories():
     """MSL 4.0's EddyCurrentBrake: inertia.phi, heatCapacitor.T and eddyCurrentTorque.lossPower within 1e-5 of
     their ranges (measured 9.8e-7, 4.2e-6, 1.4e-6); the capacitor's heat C (T - T_0) is the brake's loss."""
     run = simulate(load_scenario(SCENARIOS / "modelica" / "EddyCurrentBrake.yaml"))
-    worst = _worst_deviations(run, "EddyCurrentBrake", {
+    worst = deviations(run, "EddyCurrentBrake", {
         "inertia.phi": run["inertia_angle"], "heatCapacitor.T": run["heatCapacitor_temperature"],
         "eddyCurrentTorque.lossPower": run["eddyCurrentTorque_loss_power"]})
     assert all(value < 1e-5 for value in worst.values()), worst
@@ -64,7 +53,7 @@ def test_rolling_wheel_against_dymolas_published_trajectories():
     """MSL 4.0's RollingWheel: inertia.phi and inertia.w within 1e-5 of their ranges (measured 3.7e-7, 7.2e-7);
     the drag's heat and the kinetic energy account for the torque's work."""
     run = simulate(load_scenario(SCENARIOS / "modelica" / "RollingWheel.yaml"))
-    worst = _worst_deviations(run, "RollingWheel", {"inertia.phi": run["inertia_angle"],
+    worst = deviations(run, "RollingWheel", {"inertia.phi": run["inertia_angle"],
                                                     "inertia.w": run["inertia_speed"]})
     assert all(value < 1e-5 for value in worst.values()), worst
     np.testing.assert_allclose(run["load_position"], run["inertia_angle"], rtol=0, atol=1e-12)  # radius 1 m
@@ -125,7 +114,7 @@ def test_a_torque_table_of_speed_turns_a_shaft_as_scipy_with_its_knots():
         return [y[1], (np.interp(y[1], speeds, torques) + 6.0 * np.sin(2 * np.pi * t)) / 0.8]
 
     knots = [lambda t, y, w=w: y[1] - w for w in speeds]
-    t, y, times, ys = 0.0, np.array([0.0, 3.0]), [], []
+    t, y, times = 0.0, np.array([0.0, 3.0]), []
     while t < 3.0:  # restarted past each knot, so no step straddles one
         sol = solve_ivp(rate, (t, 3.0), y, method="DOP853", rtol=1e-12, atol=1e-12, dense_output=True,
                         events=knots)
