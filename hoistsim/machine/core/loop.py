@@ -199,7 +199,8 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
             over = (over | (by_name[GuardId(name, BREAKAWAY_FORWARD)] < 0.0)
                     | (by_name[GuardId(name, BREAKAWAY_BACKWARD)] < 0.0))
     missed = missed | (margin_valley & over)
-    overtaken, limit_overtaken, coinciding = switching.crossed_together(guards, at_end, armed, masks)
+    events = {GuardId(e.section, kind) for e in layout.elements for kind in e.crossing_events}
+    overtaken, limit_overtaken, coinciding = switching.crossed_together(guards, at_end, armed, masks, events)
     # An observation or a limit below zero at the switch located, yet not the crossing found (it crossed and
     # came back within the step, so that only part of the step showed it): the pass is solved again once, only
     # up to that switch's instant and with the switches held off, so that its own root is found; the next

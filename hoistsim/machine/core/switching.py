@@ -243,7 +243,7 @@ def orients(layout: Layout, t, y, args) -> dict:
     return out
 
 
-def crossed_together(guards, values, armed: dict, masks: dict):
+def crossed_together(guards, values, armed: dict, masks: dict, events=frozenset()):
     """Which guards crossed zero in the same step as the one located at (t, y).
 
     A pass ends at the earliest crossing of the guards that changed sign over a
@@ -255,10 +255,12 @@ def crossed_together(guards, values, armed: dict, masks: dict):
     started (``armed``), a root so close that the row already there misses its
     extreme by ~1e-8; a limit by less than 1e-9 of it (a threshold's instant is
     an answer, not a row beside one).  Returns (an observation overtaken, a
-    limit overtaken, the knots reached and the limits crossed at (t, y) along
-    with the located guard: a period that ends on a table's knot is reached; a
-    limit reached as a coupling locks was crossed, there).  ``values``: every
-    guard at (t, y) (:func:`guard_values`).
+    limit overtaken, the knots reached and the limits and events crossed at (t, y)
+    along with the located guard: a period that ends on a table's knot is reached;
+    a limit reached as a coupling locks was crossed, there; a backlash's sides
+    parting where the shaft they let go of turns round was an event, there).
+    ``values``: every guard at (t, y) (:func:`guard_values`); ``events``: the
+    observations that are events (their elements' ``crossing_events``).
     """
     overtaken, limit_overtaken, coinciding = jnp.zeros((), bool), jnp.zeros((), bool), {}
     for i, (role, name, _) in enumerate(guards):
@@ -274,7 +276,7 @@ def crossed_together(guards, values, armed: dict, masks: dict):
             overtaken = overtaken | passed
         if role == "kink":
             coinciding[name] = (armed[name] > 0.0) & (value <= KNOT_RESOLUTION)
-        if role == "limit":
+        if role == "limit" or name in events:
             coinciding[name] = (armed[name] > 0.0) & ~masks[name] & (value <= 0.0)
     return overtaken, limit_overtaken, coinciding
 

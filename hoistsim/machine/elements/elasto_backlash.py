@@ -21,7 +21,8 @@ class ElastoBacklash(SpringDamper):
     ``separation``, named after the part.  Ledger: the strain energy 1/2 tau_c^2 / c, and what the damper
     and a release shed, (tau - tau_c) w_rel >= 0.  With damping, where the damping's torque stops being
     limited to the spring's (a kink of the law) is a row, ``backlash_damping_limit``; so is each crossing of
-    the play's edges, ``backlash_edge`` (where the spring's strain begins: Modelica's events).  Output ``<name>_contact``: 1 pressed forwards (beyond
+    the play's edges inwards, ``backlash_edge`` (where a release ends: Modelica's events; outwards, and without
+    damping either way, the edge is the contact or the separation).  Output ``<name>_contact``: 1 pressed forwards (beyond
     +b/2), -1 backwards, 0 apart.
     """
 
@@ -67,7 +68,8 @@ class ElastoBacklash(SpringDamper):
         return (self.torque(x) - self.stiffness * self.stored_strain(x)) * self.twist_speed(x)
 
     def observes(self, kind: str) -> bool:
-        return kind != "backlash_damping_limit" or self.damped
+        # undamped, its contact and separation are where the edges are crossed: the edges add no guard of their own
+        return kind not in ("backlash_damping_limit", "backlash_edge") or self.damped
 
     def observations(self, x) -> dict:
         forwards, backwards = self.pressing(x)
@@ -76,8 +78,13 @@ class ElastoBacklash(SpringDamper):
         damping = self.damping * self.twist_speed(x)
         spring = self.stiffness * self.stored_strain(x)
         limited = jnp.where(forwards > 0.0, damping - spring, jnp.where(backwards > 0.0, spring - damping, 1.0))
-        # the sides' edges, where the spring's strain begins (the strain energy's kink, a release's end)
-        edge = jnp.abs(self.strain(x)) - self.half_play
+        # the sides' edges, where the spring's strain begins (the strain energy's kink, a release's end); moving
+        # outwards, the edge is where the sides meet (their contact, found as such), and a second guard on that
+        # same root would end a pass a few ulps after the first: there it keeps its sign and crosses nothing
+        strain = self.strain(x)
+        edge = jnp.abs(strain) - self.half_play
+        outwards = jnp.sign(strain) * self.twist_speed(x) > 0.0
+        edge = jnp.where(outwards, jnp.sign(edge), edge)
         return {"backlash_forward": forwards, "backlash_backward": backwards, "backlash_damping_limit": limited,
                 "backlash_edge": edge}
 
