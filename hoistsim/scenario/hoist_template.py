@@ -155,10 +155,12 @@ class TemplateMotorSpec(TemplateNames, ShaftMotorSpec):
 def motor_as_drawn(spec, scenario) -> TemplateMotorSpec:
     """The hoist's ``motor:`` as the drivetrain's motor ``motor`` on the motor shaft (outputs motor_torque,
     motor_work; its ripple's ripple_torque, motor_ripple_work)."""
-    return TemplateMotorSpec.model_construct(**{name: getattr(spec, name) for name in type(spec).model_fields},
-                                             shaft="motor", name="motor",
-                                             outputs_named={"{name}_ripple_torque": "ripple_torque"} if spec.ripple
-                                             else {})
+    drawn = TemplateMotorSpec.model_construct(**{name: getattr(spec, name) for name in type(spec).model_fields},
+                                              shaft="motor", name="motor",
+                                              outputs_named={"{name}_ripple_torque": "ripple_torque"} if spec.ripple
+                                              else {})
+    drawn._derived = spec.derived()  # a stall torque from the nameplate stays the nameplate's to say
+    return drawn
 
 
 def motor_ripple_as_drawn(spec, scenario) -> TemplateMotorSpec:

@@ -2,13 +2,24 @@
 
 from __future__ import annotations
 
-from pydantic import BaseModel, ConfigDict
+from pydantic import BaseModel, ConfigDict, PrivateAttr
 
 from ..errors import ScenarioError
 
 
 class Section(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+    _derived: tuple = PrivateAttr(default=())  # the keys set from others
+
+    def _derive(self, key: str, value) -> None:
+        """Set ``key`` from the keys given (a stall torque from the nameplate, a ratio from teeth): read as such
+        from here on, and never written back into a scenario beside the keys it came from."""
+        object.__setattr__(self, key, value)
+        self._derived = self._derived + (key,)
+
+    def derived(self) -> tuple[str, ...]:
+        """The keys set from others (:meth:`_derive`)."""
+        return self._derived
 
     def _one_value_or_group(self, section: str, single: str, group: tuple, both: str, required: str) -> bool:
         """Check that the section gives ``single`` or every key of ``group``, not both (one-line errors

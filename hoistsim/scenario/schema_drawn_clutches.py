@@ -38,7 +38,7 @@ class FrictionClutchSpec(OnShaft, FrictionSpec):
             raise ScenarioError(".static_friction", "give either static_friction or peak (static_friction = peak * "
                                 "the kinetic friction at zero slip), one of them")
         if self.peak is not None:
-            object.__setattr__(self, "static_friction", self.peak * self.kinetic_at_rest)  # read as such from here
+            self._derive("static_friction", self.peak * self.kinetic_at_rest)
         elif self.kinetic_at_rest > self.static_friction:
             raise ScenarioError(".kinetic_friction", f"must not exceed static_friction ({self.static_friction:g}) at "
                                 f"zero slip, got {self.kinetic_at_rest:g}")

@@ -97,6 +97,7 @@ STIFFNESS = Dimension("stiffness", "N/m", "'2.5e5 N/m'")
 PRESSURE = Dimension("modulus (a pressure)", "Pa", "'100 GPa'")
 AREA = Dimension("area", "m^2", "'95 mm^2'")
 FREQUENCY = Dimension("frequency", "Hz", "'5 Hz'")
+POWER = Dimension("power", "W", "'15 kW'")
 TORSIONAL_STIFFNESS = Dimension("torsional stiffness", "N*m/rad", "'1e4 N*m/rad'", radians=-1)
 TORSIONAL_DAMPING = Dimension("torsional damping", "N*m*s/rad", "'10 N*m*s/rad'", radians=-1)
 

@@ -115,9 +115,11 @@ def _place(drawn: dict, path: list, spec, scenario, renamed: dict, inertias: dic
 def _plain(model) -> dict:
     """A section's keys as a scenario writes them: numbers with their SI units, None left out."""
     out = {}
+    derived = model.derived() if hasattr(model, "derived") else ()
     for name, field in type(model).model_fields.items():
         value = getattr(model, name, None)
-        if value is None or field.exclude:  # (a template's own keys are excluded, as a part's name is)
+        # (a template's own keys are excluded, as a part's name is; a key set from others is theirs to say)
+        if value is None or field.exclude or name in derived:
             continue
         out[name] = _written(name, value, field)
     return out
