@@ -220,7 +220,7 @@ def _motion_changes(modes: dict, times) -> np.ndarray:
                                             ("LossyGearDemo3", ("gear",))])
 def test_a_lossy_gear_demo_against_dymolas_published_trajectories(example, moded):
     """Inertia2's angle and speed within 1e-3 of their ranges (measured: Demo1 2.7e-6, Demo2 4.1e-6, Demo3
-    9.8e-9); the machine starting and stopping where Dymola's modes say it does, within 1e-4 s (measured: 4e-8 s);
+    9.8e-9); the machine starting and stopping where Dymola's modes say it does, within 1e-4 s (measured: 3.3e-8 s);
     every mode change of the gear and the bearing friction at one of hoistsim's switches.
 
     Dymola starts the gear stuck and leaves that mode at once (its first change, at ~5e-11 s); hoistsim decides

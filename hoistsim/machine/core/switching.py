@@ -32,7 +32,7 @@ so a guard that is exactly zero at a restart cannot fire.
   it is pushed (``margin_each_way``: a mesh whose losses depend on the side that
   drives) has a margin that jumps where its torque changes sign, and a step
   across such a jump reads the margin falling at both ends, the valley between
-  unseen (LossyGearDemo1's gear, held, missed its start forwards so): each way's
+  unseen (a held mesh missed its start forwards so in a Modelica example): each way's
   margin (capacity less / plus the torque, smooth) has its valley guard instead
   (``margin_valley+``, ``margin_valley-``).
 
