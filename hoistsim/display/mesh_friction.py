@@ -19,7 +19,7 @@ def _panels_for(run: dict) -> tuple:
     if not drawn:
         return PANELS
     lossy = [name for name, stage in (drawn.get("gears") or {}).items()
-             if stage.get("efficiency") is not None or stage.get("backdrive_efficiency") is not None]
+             if any(stage.get(key) is not None for key in ("efficiency", "backdrive_efficiency", "loss_table"))]
     traces = tuple(Trace(name, f"{name}_mesh_torque") for name in lossy)
     return (Panel("meshes", "tooth load [N*m]\n(at each stage's output)", 45, traces, zero_line=True,
                   height=0.8),) if traces else ()

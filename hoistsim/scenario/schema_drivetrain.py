@@ -20,6 +20,7 @@ from . import units as u
 from .schema_base import Section
 from .schema_motor import MotorSpec, RippleSpec
 from .schema_load import LoadOnShaftSpec
+from .schema_loss_table import LossTable
 from .schema_bearing_friction import BearingFrictionSpec
 from .schema_drawn_clutches import FrictionClutchSpec, OneWayClutchSpec
 from .schema_spring import SpringSpec
@@ -88,6 +89,9 @@ class MeshSpec(Section):
 
 class GearStageSpec(MeshSpec):
     between: tuple[Text, Text]  # [input shaft, output shaft]
+    # or Modelica's LossyGear lossTable: rows [speed, efficiency input drives, output drives, bearing torque input
+    # drives, output drives] (schema_loss_table), read at the input's speed; refused beside an efficiency
+    loss_table: LossTable | None = None
     ratio: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = None  # the input's speed over the output's
     teeth: tuple[u.whole("teeth"), u.whole("teeth")] | None = None  # [z_in, z_out]: ratio z_out / z_in
     # a third shaft the stage's housing turns with (its ratio then against it): schema_linkage
@@ -112,8 +116,27 @@ class GearStageSpec(MeshSpec):
         """The lossy mesh's friction (the stage itself), or None for an ideal stage."""
         return self if self.lossy else None
 
+    @property
+    def lossy(self) -> bool:
+        return super().lossy or self.loss_table is not None
+
+    @property
+    def characteristic(self) -> str:
+        """Which lossy mesh: ``efficiency`` (constant efficiencies, the hoist's mesh) or ``loss_table``."""
+        return "efficiency" if self.loss_table is None else "loss_table"
+
+    @property
+    def loss_key(self) -> str:
+        """The key that makes it lossy, to blame where a lossy stage is refused."""
+        return self.characteristic
+
     @model_validator(mode="after")
     def _one_ratio(self):
+        if self.loss_table is not None and MeshSpec.lossy.fget(self):
+            given = "efficiency" if self.efficiency is not None else "backdrive_efficiency"
+            raise ScenarioError(f".{given}", "give either loss_table or efficiency (and backdrive_efficiency), not "
+                                "both: constant efficiencies are the table's one row [0, efficiency, "
+                                "backdrive_efficiency, 0, 0]")
         if (self.ratio is None) == (self.teeth is None):
             raise ScenarioError(".ratio", "give either ratio (the input's speed over the output's) or teeth "
                                 "[input, output], one of them")
@@ -353,9 +376,10 @@ def beyond_stage(spec: DrivetrainSpec, name: str) -> tuple:
                 continue
             far = stage.between[1] if shaft == stage.between[0] else stage.between[0]
             if far == first:
-                raise ScenarioError(f"drivetrain.gears.{name}.efficiency", f"the stage is in a loop of gear "
+                key = spec.gears[name].loss_key
+                raise ScenarioError(f"drivetrain.gears.{name}.{key}", f"the stage is in a loop of gear "
                                     f"stages (through {other!r}): the torque its teeth pass is not determined, "
-                                    "give it no efficiency")
+                                    f"give it no {key}")
             if far not in beyond:
                 beyond.append(far)
                 reached.append(far)

@@ -92,7 +92,8 @@ def check_linkages(drivetrain, seen: dict) -> None:
         if stage.housing not in drivetrain.shafts:
             raise ScenarioError(f"{key}.housing", f"there is no shaft {stage.housing!r} (shafts: {known})")
         if stage.lossy:
-            raise ScenarioError(f"{key}.efficiency", "a stage on a housing is ideal here: give it no efficiency")
+            raise ScenarioError(f"{key}.{stage.loss_key}", "a stage on a housing is ideal here: give it no "
+                                f"{stage.loss_key}")
 
 
 def start_speeds(drivetrain, groups: dict) -> dict:

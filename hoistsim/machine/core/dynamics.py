@@ -126,13 +126,16 @@ class Instant:
         slips' signs), solved together (one's pressing torque carries what those beyond it pass to the ground).
 
         The pressing torque of coupling k, P_k = P0_k + sum_j dP_k/dsigma_j sigma_j, responds to what each
-        passes (``solved``: the machine without them; ``columns``: their responses to a unit of each), and
+        passes (``solved``: the machine without them, with what presses them besides (``pressed_beside``);
+        ``columns``: their responses to a unit of each), and
         k passes sigma_k = s f |P_k| = F_k P_k: with the side fixed by the sign of P0_k (the same as P_k's,
         the factors being positive and the machine passive), sigma = (I - F C)^-1 F P0.
         """
         couplings = self.layout.coupling_elements
         signs = [slip_sign(self.modes[k]) for k in pressed]
         pressing = [self._into(couplings[k].pressed_by, *solved, applied=True) for k in pressed]
+        beside = [couplings[k].pressed_beside(self) for k in pressed]  # a constant of the pass's law: with P0
+        pressing = [p if b is None else p + s * b for p, b, s in zip(pressing, beside, signs)]
         factor = [s * couplings[k].sliding_per_load(self, jnp.sign(s * p)) * jnp.sign(p)
                   for k, s, p in zip(pressed, signs, pressing)]
         change = [[self._into(couplings[k].pressed_by, *column, applied=False) for column in columns] for k in pressed]

@@ -212,6 +212,10 @@ class AbstractCoupling(AbstractElement):
     # passes into the coupling, x.torque_into(shaft), which the core solves for with the sliding torque
     pressed_by: ClassVar[str | None] = None
     switch_names: ClassVar[dict[str, str]] = {}  # the core's switch kind -> this coupling's event kind
+    # Its capacity differs with the way it is pushed (a mesh's, whose losses depend on the side that drives):
+    # its margin (capacity less |torque|) jumps where the torque changes sign, so a step from one side to the
+    # other hides the valley between; each way's margin (capacity -+ torque, smooth) has a valley guard instead.
+    margin_each_way: ClassVar[bool] = False
     # A contact (one with a gap) meets where the gap closes, not where the speeds do (a body at the top of
     # its flight is not caught in mid-air), with the reset of a lock: a plastic impact, whose kinetic energy
     # the core adds to this state (a loss of the ledger).
@@ -245,6 +249,12 @@ class AbstractCoupling(AbstractElement):
     def sliding_per_load(self, x, side):
         """The sliding torque's growth per N*m of ``pressed_by``'s torque, ``side`` +1 pushing the way it slips."""
         return 0.0
+
+    def pressed_beside(self, x):
+        """A torque that presses the faces besides ``pressed_by``'s, pushing the way it slips (N*m where that
+        torque is read: a friction beyond the faces, which they carry too, as a mesh's teeth carry the output
+        bearings' friction), or None: none (no term traced)."""
+        return None
 
     def is_open(self, segment):
         """Whether it carries nothing over a whole segment."""

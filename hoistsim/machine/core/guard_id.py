@@ -17,6 +17,8 @@ BREAKAWAY_BACKWARD = "breakaway-"
 SLIP_PEAK = "slip_peak"
 SLIP_VALLEY = "slip_valley"
 MARGIN_VALLEY = "margin_valley"
+# a coupling whose capacity differs with the way it is pushed: a margin valley each way (see switching)
+MARGIN_VALLEYS_EACH_WAY = ("margin_valley+", "margin_valley-")
 # a knot coordinate's two guards: the next knot ahead of where the pass started, and the one behind
 AHEAD, BEHIND = "+", "-"
 

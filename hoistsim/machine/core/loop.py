@@ -28,7 +28,8 @@ from .columns import row_outputs, summary_values
 from .dynamics import Instant, slip_sign
 from .element import STUCK
 from .eventlog import LOG_FIELDS, unpack
-from .guard_id import BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, MARGIN_VALLEY, SLIP_VALLEY, GuardId
+from .guard_id import (BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, MARGIN_VALLEY, MARGIN_VALLEYS_EACH_WAY, SLIP_VALLEY,
+                       GuardId)
 from .layout import Layout
 from .ledger import ledger_values
 from .plan import CHATTERING, KINK_BUDGET, OK, SOLVER_FAILED, TOO_MANY_SEGMENTS, Plan
@@ -195,7 +196,8 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
             wrong = slip_sign(c.modes[k]) * end.relative_speed(name) < 0 if gap is None else gap < 0
             missed = missed | (masks[GuardId(name, SLIP_VALLEY)] & wrong)
             # (one valley is located where several couplings' margins dip at once: any of them may be over)
-            margin_valley = margin_valley | masks[GuardId(name, MARGIN_VALLEY)]
+            for kind in MARGIN_VALLEYS_EACH_WAY if coupling.margin_each_way else (MARGIN_VALLEY,):
+                margin_valley = margin_valley | masks[GuardId(name, kind)]
             over = (over | (by_name[GuardId(name, BREAKAWAY_FORWARD)] < 0.0)
                     | (by_name[GuardId(name, BREAKAWAY_BACKWARD)] < 0.0))
     missed = missed | (margin_valley & over)

@@ -28,7 +28,13 @@ so a guard that is exactly zero at a restart cannot fire.
   at rest has nothing for the step size to resolve, so a torque in time may
   rise over the capacity and fall back within one step; the margin's valley is
   always seen, and if the coupling is over its capacity there the loop
-  re-solves with shorter steps.
+  re-solves with shorter steps.  A coupling whose capacity differs with the way
+  it is pushed (``margin_each_way``: a mesh whose losses depend on the side that
+  drives) has a margin that jumps where its torque changes sign, and a step
+  across such a jump reads the margin falling at both ends, the valley between
+  unseen (a held mesh missed its start forwards so in a Modelica example): each way's
+  margin (capacity less / plus the torque, smooth) has its valley guard instead
+  (``margin_valley+``, ``margin_valley-``).
 
 Switching guards come first: a pass ends at the earliest crossing of a step, and
 where two guards reach zero at one instant the first in this order fired: a
@@ -48,6 +54,7 @@ or below zero and cannot fire before it has genuinely risen again (``offsets``).
 
 from __future__ import annotations
 
+import functools
 from functools import cached_property
 
 import jax
@@ -55,8 +62,8 @@ import jax.numpy as jnp
 
 from .dynamics import Instant, rates_at, slip_sign, vector_field
 from .element import OPEN, SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STICK_TOLERANCE, STUCK, TORQUE_RESOLUTION
-from .guard_id import (BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, MARGIN_VALLEY, SLIP, SLIP_PEAK, SLIP_VALLEY, GuardId,
-                       knot_guards)
+from .guard_id import (BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, MARGIN_VALLEY, MARGIN_VALLEYS_EACH_WAY, SLIP, SLIP_PEAK,
+                       SLIP_VALLEY, GuardId, knot_guards)
 from .layout import DISENGAGE, ENGAGE, LOCK, NO_EVENT, REVERSAL, UNLOCK, Layout
 
 # A pass that starts within this of a knot (in knots) starts at it: the next ones are a whole knot away.
@@ -97,6 +104,27 @@ class GuardInstant:
         at = jnp.asarray(self.t, dtype=jnp.float64)
         _, rates = jax.jvp(margins, (at, self.y), (jnp.ones_like(at), rates_at(self.instant, self.y.dtype)))
         return jnp.where(jnp.isfinite(rates), rates, -1.0)  # a coupling that holds whatever it carries: no valley
+
+    @cached_property
+    def margin_rates_each_way(self) -> dict:
+        """d/dt of each way's margin (capacity less / plus the torque) of every coupling whose capacity
+        differs with the way it is pushed (``margin_each_way``), by coupling index: (forwards, backwards)."""
+        args, layout = self.args, self.args.layout
+        each = [k for k, c in enumerate(layout.coupling_elements) if c.margin_each_way]
+
+        def margins(t, y):
+            x = Instant(layout, t, y, args.modes, args.segment.table, args.reply)
+            out = []
+            for k in each:
+                c = layout.coupling_elements[k]
+                q = jnp.asarray(x.coupling_torque(c.section), dtype=jnp.float64)
+                out += [holding_capacity(c, x, 1.0) - q, holding_capacity(c, x, -1.0) + q]
+            return jnp.stack(out)
+
+        at = jnp.asarray(self.t, dtype=jnp.float64)
+        _, rates = jax.jvp(margins, (at, self.y), (jnp.ones_like(at), rates_at(self.instant, self.y.dtype)))
+        rates = jnp.where(jnp.isfinite(rates), rates, -1.0)
+        return {k: (rates[2 * i], rates[2 * i + 1]) for i, k in enumerate(each)}
 
 
 def touching(coupling, x):
@@ -149,8 +177,8 @@ def guards(layout: Layout) -> list[tuple[str, GuardId, object]]:
                        else -s * x.relative_acceleration(name))
             return jnp.where((s != 0.0) & args.observing, closing - args.offsets[dip_id], 1.0)
 
-        def margin_dip(at, k=k, margin_id=margin_id):
-            falling = -at.margin_rates[k]
+        def margin_dip(at, k=k, margin_id=margin_id, way=None):
+            falling = -(at.margin_rates[k] if way is None else at.margin_rates_each_way[k][way])
             return jnp.where((at.args.modes[k] == STUCK) & at.args.observing,
                              falling - at.args.offsets[margin_id], 1.0)
 
@@ -159,7 +187,13 @@ def guards(layout: Layout) -> list[tuple[str, GuardId, object]]:
                    ("switch", GuardId(name, BREAKAWAY_BACKWARD), held_off(breakaway(-1.0)))]
         if coupling.observes_slip_peak:
             observe.append(("observe", peak_id, peak))
-        valley += [("valley", dip_id, dip), ("valley", margin_id, margin_dip)]
+        valley.append(("valley", dip_id, dip))
+        if coupling.margin_each_way:
+            valley += [("valley", GuardId(name, kind), functools.partial(margin_dip, margin_id=GuardId(name, kind),
+                                                                          way=way))
+                       for way, kind in enumerate(MARGIN_VALLEYS_EACH_WAY)]
+        else:
+            valley.append(("valley", margin_id, margin_dip))
     for element in layout.elements:
         for kind in (k for k in element.observation_kinds if element.observes(k)):
             guard_id = GuardId(element.section, kind)

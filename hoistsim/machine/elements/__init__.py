@@ -31,6 +31,7 @@ from .level_load import LevelLoad as LevelLoad
 from .housed_gear import HousedGear as HousedGear
 from .linear_motor import LinearMotor as LinearMotor
 from .load_drag import LoadDrag as LoadDrag
+from .lossy_gear import LossyGear as LossyGear
 from .mesh_friction import MeshFriction as MeshFriction
 from .motor import Motor as Motor
 from .motor_ripple import MotorRipple as MotorRipple
@@ -71,7 +72,8 @@ REGISTRY: dict[str, object] = {
     "drivetrain.one_way_clutches.*": OneWayClutch,
     "drivetrain.bearing_frictions.*": BearingFriction,
     "drivetrain.springs.*": {"spring": SpringDamper, "backlash": ElastoBacklash},
-    "drivetrain.gears.*.mesh": MeshFriction,  # a lossy stage's mesh
+    # a lossy stage's mesh: constant efficiencies (the hoist's), or Modelica's lossTable
+    "drivetrain.gears.*.mesh": {"efficiency": MeshFriction, "loss_table": LossyGear},
     "drivetrain.load": {"rigid": RigidLoad, "elastic": ElasticLoad,  # on a rigid rope, or a body on its rope,
                         "level": LevelLoad},  # or moved along a level path
     "drivetrain.load.drag": LoadDrag,
