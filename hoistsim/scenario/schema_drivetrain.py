@@ -39,10 +39,14 @@ _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 
 
 class ShaftSpec(OnShaft, Section):
-    inertia: u.quantity(u.INERTIA, ge=0.0)  # zero: only with something of inertia tied to it
-    speed: u.quantity(u.ANGULAR_SPEED) = 0.0  # at t = 0
-    angle: u.quantity(u.ANGLE) = 0.0  # at t = 0 (where anything reads it: a spring, a ripple)
-    resisting_ripple: RippleSpec | None = None  # a torque resisting its turning, periodic in its angle
+    """A shaft: a rigid body turning, with its inertia; its name names its outputs (``<shaft>_speed``)."""
+
+    inertia: u.quantity(u.INERTIA, ge=0.0) = Field(description="its own (zero: only with something of inertia "
+                                                   "tied to it)")
+    speed: u.quantity(u.ANGULAR_SPEED) = Field(0.0, description="at t = 0 (a geared shaft's follows its stage)")
+    angle: u.quantity(u.ANGLE) = Field(0.0, description="at t = 0 (given: <shaft>_angle is an output)")
+    resisting_ripple: RippleSpec | None = Field(None, description="a torque resisting its turning, periodic in its "
+                                                "angle")
     name: str = Field("", exclude=True)  # its key in drivetrain.shafts (set there, never written)
 
     def train(self, scenario) -> tuple:
@@ -63,17 +67,24 @@ class ShaftSpec(OnShaft, Section):
 
 
 class TorqueSpec(SpeedLaws, Section):
-    shaft: Text
-    torque: signal(u.TORQUE) | None = None  # positive in the shaft's positive sense; or a law of its speed
+    """An external torque on a shaft, named by its place (torque1, torque2, ...)."""
+
+    shaft: Text = Field(description="the shaft it turns")
+    torque: signal(u.TORQUE) | None = Field(None, description="a signal of time, positive in the shaft's positive "
+                                            "sense")
     name: str = Field("", exclude=True)  # torque1, torque2, ... in the order of drivetrain.torques (set there)
+
+
+_EFFICIENCY = u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0)
 
 
 class MeshSpec(Section):
     """A gear mesh's losses: its efficiency when the input (the pinion) drives the output, and when the output
     drives the input (default: the same); either given, the mesh is lossy (absent: ideal)."""
 
-    efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
-    backdrive_efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
+    efficiency: _EFFICIENCY | None = Field(None, description="eta, where the input (the pinion) drives")
+    backdrive_efficiency: _EFFICIENCY | None = Field(None, description="eta_b, where the output drives it back "
+                                                     "(default: efficiency)")
 
     @property
     def lossy(self) -> bool:
@@ -87,11 +98,16 @@ class MeshSpec(Section):
 
 
 class GearStageSpec(MeshSpec):
-    between: tuple[Text, Text]  # [input shaft, output shaft]
-    ratio: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = None  # the input's speed over the output's
-    teeth: tuple[u.whole("teeth"), u.whole("teeth")] | None = None  # [z_in, z_out]: ratio z_out / z_in
+    """A gear stage: shafts geared together turn as one body; lossy with an efficiency."""
+
+    alternatives = (("ratio", "teeth"),)
+    between: tuple[Text, Text] = Field(description="[input shaft, output shaft]")
+    ratio: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = Field(None, description="the input's speed over the output's")
+    teeth: tuple[u.whole("teeth"), u.whole("teeth")] | None = Field(None, description="[z_in, z_out]: ratio z_out "
+                                                                    "/ z_in")
     # a third shaft the stage's housing turns with (its ratio then against it): schema_linkage
-    housing: Text | None = None
+    housing: Text | None = Field(None, description="a third shaft the housing turns with (ideal only): w_in - w_h "
+                                 "= ratio (w_out - w_h)")
     name: str = Field("", exclude=True)  # its key in drivetrain.gears (set there, never written)
 
     def speed_ratio(self) -> float:
@@ -126,11 +142,12 @@ class ShaftMotorSpec(OnShaft, MotorSpec):
     """A motor on a shaft: the hoist motor's characteristics and inertia (the rotor turns with the shaft), and
     its torque's ripple, periodic in the shaft's angle."""
 
-    shaft: Text
+    shaft: Text = Field(description="the shaft its rotor turns with")
     name: str = Field("", exclude=True)  # its key in drivetrain.motors (set there, never written)
 
 
 class DrivetrainSpec(Section):
+    """A machine drawn as shafts and the parts on and between them; each part's key names it and its outputs."""
     shafts: dict[str, ShaftSpec]
     torques: list[TorqueSpec] = []
     clutches: dict[str, FrictionClutchSpec] = {}

@@ -4,8 +4,7 @@ angle (a motor's or a drum's ``ripple``), values in SI."""
 from __future__ import annotations
 
 import math
-
-from pydantic import model_validator
+from pydantic import Field, model_validator
 
 from ..errors import ScenarioError
 from . import tables
@@ -14,17 +13,22 @@ from .schema_base import Section
 
 
 class HarmonicSpec(Section):
-    order: u.whole("periods per ripple period")  # k: amplitude * sin(k * 2 pi * angle / period + phase)
-    amplitude: u.quantity(u.TORQUE)
-    phase: u.quantity(u.ANGLE) = 0.0
+    """One harmonic of a ripple: amplitude * sin(order * 2 pi * angle / period + phase)."""
+
+    order: u.whole("periods per ripple period") = Field(description="k: its periods in one period of the ripple")
+    amplitude: u.quantity(u.TORQUE) = Field(description="its torque's amplitude")
+    phase: u.quantity(u.ANGLE) = Field(0.0, description="its phase at angle 0")
 
 
 class RippleSpec(Section):
     """A torque periodic in a shaft's angle: harmonics, or one period as a table (not both)."""
 
-    period: u.quantity(u.ANGLE, gt=0.0) = 2 * math.pi
-    harmonics: list[HarmonicSpec] | None = None
-    table: tables.AngleTorqueTable | None = None
+    alternatives = (("harmonics", "table"),)
+    period: u.quantity(u.ANGLE, gt=0.0) = Field(2 * math.pi, description="the angle it repeats over (720 deg for "
+                                                "a four-stroke engine)")
+    harmonics: list[HarmonicSpec] | None = Field(None, description="summed")
+    table: tables.AngleTorqueTable | None = Field(None, description="one period, from 0 to the period, piecewise "
+                                                  "linear, ending where it starts")
 
     @model_validator(mode="after")
     def _one_form(self):
@@ -46,15 +50,24 @@ class RippleSpec(Section):
 
 
 class MotorSpec(Section):
+    """A motor: one characteristic (its torque against its speed) and its rotor's inertia."""
+
     # exactly one characteristic: linear (C0 and omega0), a torque-speed table, or a constant torque
-    stall_torque: u.quantity(u.TORQUE, gt=0.0) | None = None  # C0, torque at standstill
-    no_load_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) | None = None  # omega0, where the torque reaches 0
-    torque_speed: tables.TorqueSpeedTable | None = None
-    torque: u.quantity(u.TORQUE) | None = None  # 0 N*m: the motor is off and its shaft coasts
-    inertia: u.quantity(u.INERTIA, gt=0.0) | None = None
-    rotor_mass: u.quantity(u.MASS, gt=0.0) | None = None
-    radius_of_gyration: u.quantity(u.LENGTH, gt=0.0) | None = None
-    ripple: RippleSpec | None = None  # a torque added to the characteristic, periodic in the motor angle
+    alternatives = (("stall_torque + no_load_speed", "torque_speed", "torque"),
+                              ("inertia", "rotor_mass + radius_of_gyration"))
+    stall_torque: u.quantity(u.TORQUE, gt=0.0) | None = Field(None, description="C0, the torque at standstill "
+                                                              "(linear: C = C0 (1 - omega / omega0))")
+    no_load_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) | None = Field(None, description="omega0, where the linear "
+                                                                      "torque reaches 0")
+    torque_speed: tables.TorqueSpeedTable | None = Field(None, description="the characteristic as a table, linear "
+                                                         "between rows and beyond its ends")
+    torque: u.quantity(u.TORQUE) | None = Field(None, description="a constant torque (0 N*m: the motor is off, its "
+                                                "shaft coasts)")
+    inertia: u.quantity(u.INERTIA, gt=0.0) | None = Field(None, description="the rotor's")
+    rotor_mass: u.quantity(u.MASS, gt=0.0) | None = Field(None, description="the rotor's mass (I = m k^2)")
+    radius_of_gyration: u.quantity(u.LENGTH, gt=0.0) | None = Field(None, description="the rotor's, k")
+    ripple: RippleSpec | None = Field(None, description="a torque added to the characteristic, periodic in the "
+                                      "motor's angle")
 
     @model_validator(mode="after")
     def _one_characteristic(self):
