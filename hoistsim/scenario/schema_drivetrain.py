@@ -41,12 +41,10 @@ _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 class ShaftSpec(OnShaft, Section):
     """A shaft: a rigid body turning, with its inertia; its name names its outputs (``<shaft>_speed``)."""
 
-    inertia: u.quantity(u.INERTIA, ge=0.0) = Field(description="its own (zero: only with something of inertia "
-                                                   "tied to it)")
+    inertia: u.quantity(u.INERTIA, ge=0.0) = Field(description="its own (0: only with inertia tied to it)")
     speed: u.quantity(u.ANGULAR_SPEED) = Field(0.0, description="at t = 0 (a geared shaft's follows its stage)")
     angle: u.quantity(u.ANGLE) = Field(0.0, description="at t = 0 (given: <shaft>_angle is an output)")
-    resisting_ripple: RippleSpec | None = Field(None, description="a torque resisting its turning, periodic in its "
-                                                "angle")
+    resisting_ripple: RippleSpec | None = Field(None, description="a torque resisting it, periodic in its angle")
     name: str = Field("", exclude=True)  # its key in drivetrain.shafts (set there, never written)
 
     def train(self, scenario) -> tuple:
@@ -70,8 +68,7 @@ class TorqueSpec(SpeedLaws, Section):
     """An external torque on a shaft, named by its place (torque1, torque2, ...)."""
 
     shaft: Text = Field(description="the shaft it turns")
-    torque: signal(u.TORQUE) | None = Field(None, description="a signal of time, positive in the shaft's positive "
-                                            "sense")
+    torque: signal(u.TORQUE) | None = Field(None, description="a signal of time, in the shaft's positive sense")
     name: str = Field("", exclude=True)  # torque1, torque2, ... in the order of drivetrain.torques (set there)
 
 
@@ -103,11 +100,9 @@ class GearStageSpec(MeshSpec):
     alternatives = (("ratio", "teeth"),)
     between: tuple[Text, Text] = Field(description="[input shaft, output shaft]")
     ratio: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = Field(None, description="the input's speed over the output's")
-    teeth: tuple[u.whole("teeth"), u.whole("teeth")] | None = Field(None, description="[z_in, z_out]: ratio z_out "
-                                                                    "/ z_in")
-    # a third shaft the stage's housing turns with (its ratio then against it): schema_linkage
-    housing: Text | None = Field(None, description="a third shaft the housing turns with (ideal only): w_in - w_h "
-                                 "= ratio (w_out - w_h)")
+    teeth: tuple[u.whole("teeth"), u.whole("teeth")] | None = Field(None, description="[z_in, z_out]: z_out / z_in")
+    # a stage on a housing is a linkage of three shafts (schema_linkage)
+    housing: Text | None = Field(None, description="a third shaft its housing turns with, the ratio against it (ideal)")
     name: str = Field("", exclude=True)  # its key in drivetrain.gears (set there, never written)
 
     def speed_ratio(self) -> float:
@@ -148,6 +143,7 @@ class ShaftMotorSpec(OnShaft, MotorSpec):
 
 class DrivetrainSpec(Section):
     """A machine drawn as shafts and the parts on and between them; each part's key names it and its outputs."""
+
     shafts: dict[str, ShaftSpec]
     torques: list[TorqueSpec] = []
     clutches: dict[str, FrictionClutchSpec] = {}
