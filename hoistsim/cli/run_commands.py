@@ -33,7 +33,10 @@ from .terminal import compiling, progress_printer
 @debug_option
 @one_line_errors
 def run(scenario, output, overrides, sweeps, summary_only, resume, workers, scheduler):
-    """Simulate SCENARIO (every sweep value, when it has a sweep) and write OUTPUT."""
+    """Simulate SCENARIO (every sweep value, when it has a sweep) and write OUTPUT.
+
+    Every key of a scenario file, its unit, default and range: docs/scenario.md.
+    """
     from ..program_hints import command_hint, programs_wanted, remember_programs
 
     scenario_path = scenario

@@ -19,6 +19,7 @@ from pydantic import BaseModel
 from ..errors import ScenarioError
 from . import tables
 from . import units as u
+from .reference import PATH as REFERENCE
 from .schema import Scenario, Section
 from .yamlsource import line_of
 from .yamlsource import to_plain as _to_plain
@@ -77,6 +78,9 @@ def _all_keys(model: type[BaseModel] = Scenario, prefix: str = "") -> list[str]:
 
 
 
+EVERY_KEY = f"; every key: {REFERENCE}"  # an unknown key's message ends with where every key is
+
+
 def _suggest(word: str, choices: list[str], prefix: str = "") -> str:
     near = difflib.get_close_matches(word, choices, n=1, cutoff=0.6)
     if near:
@@ -114,7 +118,8 @@ def check_tree(data: dict, model: type[BaseModel], path: tuple, tree: Any, sourc
         where = Where(".".join(map(str, (*path, key))), source, tree, (*path, key))
         if key not in model.model_fields:
             known = list(model.model_fields)
-            raise ScenarioError(message="unknown key" + _suggest(key, known, ".".join(map(str, path))), **where)
+            raise ScenarioError(message="unknown key" + _suggest(key, known, ".".join(map(str, path))) + EVERY_KEY,
+                                **where)
         if key == "sweep" and model is Scenario and not isinstance(value, dict):
             raise ScenarioError(message=f"must map keys to lists of values, {SWEEP_EXAMPLE}", **where)
         members = members_of(model, key)
@@ -185,8 +190,8 @@ def check_key(dotted: str, origin: str, raw: dict | None = None) -> None:
             raise ScenarioError("sweep", f"cannot be {what}", source=origin)
         if part not in model.model_fields:
             known = [k for k in model.model_fields if k != "sweep"]
-            raise ScenarioError(".".join(parts[: i + 1]), "unknown key" + _suggest(part, known, ".".join(parts[:i])),
-                                source=origin)
+            raise ScenarioError(".".join(parts[: i + 1]), "unknown key" + _suggest(part, known, ".".join(parts[:i]))
+                                + EVERY_KEY, source=origin)
         members = members_of(model, part)
         node = node.get(part) if isinstance(node, dict) else None
         if members is not None and i < len(parts) - 1:

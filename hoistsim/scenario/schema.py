@@ -10,7 +10,7 @@ import json
 import math
 from typing import Any, Literal
 
-from pydantic import PrivateAttr, model_validator
+from pydantic import Field, PrivateAttr, model_validator
 
 from ..errors import ScenarioError
 from . import units as u
@@ -38,22 +38,23 @@ class ClutchSpec(FrictionSpec, ConeSpec):
     """The hoist's cone clutch: a cone's faces and their friction (the keys a drawn clutch has too), pressed by
     an engagement force that is a table of time, with its halves' inertias on the motor and pinion shafts."""
 
-    engagement_force: EngagementForce
-    driving_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0  # clutch half on the motor shaft
-    driven_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0  # clutch half on the pinion shaft
+    engagement_force: EngagementForce = Field(description="the axial force pressing the cone: a constant, or a "
+                                              "table of time (a repeated time a step; held beyond its ends)")
+    driving_inertia: u.quantity(u.INERTIA, ge=0.0) = Field(0.0, description="the clutch half on the motor shaft")
+    driven_inertia: u.quantity(u.INERTIA, ge=0.0) = Field(0.0, description="the clutch half on the pinion shaft")
 
 
 class GearSpec(MeshSpec):
     """The hoist's spur gears: pinion 1 on the clutch's output shaft, wheel 2 on the drum shaft, and the mesh's
-    losses (:class:`.schema_drivetrain.MeshSpec`, the keys a drawn gear stage has too; absent: ideal, as in
-    exercise 6)."""
+    losses (the keys a drawn gear stage has too, schema_drivetrain's MeshSpec; absent: ideal, as in exercise 6)."""
 
-    pinion_teeth: u.whole("teeth")
-    wheel_teeth: u.whole("teeth")
-    module: u.quantity(u.LENGTH, gt=0.0)
-    pressure_angle: u.quantity(u.ANGLE, gt=0.0, lt=math.pi / 2) = math.radians(20.0)
-    pinion_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0
-    wheel_inertia: u.quantity(u.INERTIA, ge=0.0) = 0.0
+    pinion_teeth: u.whole("teeth") = Field(description="z1, the pinion's on the clutch's output shaft")
+    wheel_teeth: u.whole("teeth") = Field(description="z2, the wheel's on the drum shaft (ratio z2 / z1)")
+    module: u.quantity(u.LENGTH, gt=0.0) = Field(description="m: the pitch diameters are m z1 and m z2")
+    pressure_angle: u.quantity(u.ANGLE, gt=0.0, lt=math.pi / 2) = Field(math.radians(20.0), description=(
+        "of the teeth: the tooth force's radial part (the bearings' loads)"))
+    pinion_inertia: u.quantity(u.INERTIA, ge=0.0) = Field(0.0, description="the pinion's, on its shaft")
+    wheel_inertia: u.quantity(u.INERTIA, ge=0.0) = Field(0.0, description="the wheel's, on the drum shaft")
 
     @property
     def characteristic(self) -> str:
@@ -67,17 +68,24 @@ class GearSpec(MeshSpec):
 
 
 class DrumSpec(Section):
-    diameter: u.quantity(u.LENGTH, gt=0.0)
-    inertia: u.quantity(u.INERTIA, gt=0.0)
-    resisting_ripple: RippleSpec | None = None  # a torque resisting the lift, periodic in the drum angle
+    """The rope drum on the wheel's shaft: the rope winds at half its diameter."""
+
+    diameter: u.quantity(u.LENGTH, gt=0.0) = Field(description="where the rope winds (the load's lever: half of it)")
+    inertia: u.quantity(u.INERTIA, gt=0.0) = Field(description="the drum's own, on its shaft")
+    resisting_ripple: RippleSpec | None = Field(None, description="a torque resisting the lift, periodic in the "
+                                                "drum angle")
 
 
 class InitialSpec(Section):
-    motor_speed: u.quantity(u.ANGULAR_SPEED) = 0.0
-    drum_speed: u.quantity(u.ANGULAR_SPEED) = 0.0
+    """How the hoist starts: its shafts' speeds at t = 0 (default: at rest)."""
+
+    alternatives = (("steady_lift", "motor_speed + drum_speed"),)
+    motor_speed: u.quantity(u.ANGULAR_SPEED) = Field(0.0, description="the motor shaft's at t = 0")
+    drum_speed: u.quantity(u.ANGULAR_SPEED) = Field(0.0, description="the drum shaft's at t = 0 (0 with a brake)")
     # Start already lifting at the steady locked speed, where the motor torque
     # equals the load torque: the constant-speed condition of the exercise.
-    steady_lift: bool = False
+    steady_lift: bool = Field(False, description="start lifting, clutch locked, at the speed where the motor's "
+                              "torque equals the load's")
 
     @model_validator(mode="after")
     def _one_way_to_start(self):
@@ -91,7 +99,9 @@ class InitialSpec(Section):
 
 
 class PeriodicSpec(Section):
-    periods: u.whole("periods") = 5  # analysed once the regime has settled
+    """The periodic regime's analysis (implied by a ripple or a slider-crank)."""
+
+    periods: u.whole("periods") = Field(5, description="analysed once the regime has settled")
 
 
 
@@ -99,12 +109,15 @@ class PeriodicSpec(Section):
 
 
 class SimulationSpec(Section):
-    duration: u.quantity(u.TIME, gt=0.0)
-    output_interval: u.quantity(u.TIME, gt=0.0)
-    rtol: u.quantity(u.DIMENSIONLESS, gt=0.0, lt=1.0) = 1e-8
-    atol: u.quantity(u.DIMENSIONLESS, gt=0.0) = 1e-10
-    solver: Literal[SOLVERS] = "tsit5"  # type: ignore[valid-type]
-    max_switches: u.whole("mode switches") = 200  # before a run is declared chattering
+    """How long to run, how often to write a row, and the integration's tolerances."""
+
+    duration: u.quantity(u.TIME, gt=0.0) = Field(description="the run, from t = 0")
+    output_interval: u.quantity(u.TIME, gt=0.0) = Field(description="output rows at these times, plus every event's")
+    rtol: u.quantity(u.DIMENSIONLESS, gt=0.0, lt=1.0) = Field(1e-8, description="the steps' relative tolerance")
+    atol: u.quantity(u.DIMENSIONLESS, gt=0.0) = Field(1e-10, description="the steps' absolute tolerance")
+    solver: Literal[SOLVERS] = Field("tsit5", description="diffrax's solver")  # type: ignore[valid-type]
+    max_switches: u.whole("mode switches") = Field(200, description="more mode switches than this: the run is "
+                                                   "reported as chattering")
 
     @model_validator(mode="after")
     def _grid(self):
@@ -118,28 +131,34 @@ class SimulationSpec(Section):
 
 
 class Scenario(Section):
-    name: Text
-    description: FreeText = ""
+    """One YAML file: the hoist by its sections, or a machine drawn as a drivetrain; the run; a sweep."""
+
+    alternatives = (("motor + clutch + gears + drum + load", "drivetrain"),)
+    name: Text = Field(description="labels the outputs")
+    description: FreeText = Field("", description="free text")
     # the hoist's sections, or (instead of them, never with them) a drivetrain drawn as shafts and clutches
-    motor: MotorSpec | None = None
-    clutch: ClutchSpec | None = None
-    gears: GearSpec | None = None
-    drum: DrumSpec | None = None
-    load: LoadSpec | None = None
-    drivetrain: DrivetrainSpec | None = None
-    gravity: u.quantity(u.ACCELERATION, ge=0.0) = 9.81
-    initial: InitialSpec = InitialSpec()
-    flywheel: FlywheelSpec | None = None
-    reciprocating: ReciprocatingSpec | None = None
-    periodic: PeriodicSpec | None = None
-    brake: BrakeSpec | None = None
-    ratchet: RatchetSpec | None = None
-    clutch_heating: ClutchHeatingSpec | None = None
-    bearings: BearingsSpec | None = None
-    rope: RopeSpec | None = None
-    ground: GroundSpec | None = None
-    simulation: SimulationSpec
-    sweep: dict[str, Any] | None = None  # checked by check_sweep
+    motor: MotorSpec | None = Field(None, description="the hoist's motor (required without drivetrain)")
+    clutch: ClutchSpec | None = Field(None, description="the hoist's cone clutch (required without drivetrain)")
+    gears: GearSpec | None = Field(None, description="the hoist's spur gears (required without drivetrain)")
+    drum: DrumSpec | None = Field(None, description="the hoist's drum (required without drivetrain)")
+    load: LoadSpec | None = Field(None, description="the hoist's load (required without drivetrain)")
+    drivetrain: DrivetrainSpec | None = Field(None, description="a machine drawn as shafts and parts, instead of "
+                                              "the hoist's sections")
+    gravity: u.quantity(u.ACCELERATION, ge=0.0) = Field(9.81, description="g, on the load")
+    initial: InitialSpec = Field(InitialSpec(), description="the hoist's speeds at t = 0")
+    flywheel: FlywheelSpec | None = Field(None, description="a flywheel on the motor or drum shaft")
+    reciprocating: ReciprocatingSpec | None = Field(None, description="a slider-crank on the motor shaft")
+    periodic: PeriodicSpec | None = Field(None, description="the periodic regime's analysis")
+    brake: BrakeSpec | None = Field(None, description="a brake holding the drum until its release")
+    ratchet: RatchetSpec | None = Field(None, description="a pawl on the drum shaft: it turns to lift only")
+    clutch_heating: ClutchHeatingSpec | None = Field(None, description="the clutch faces' temperature, and "
+                                                     "their friction against it")
+    bearings: BearingsSpec | None = Field(None, description="the drum shaft's bearing loads in time")
+    rope: RopeSpec | None = Field(None, description="an elastic rope: the load a body of its own")
+    ground: GroundSpec | None = Field(None, description="the load starts resting on the ground")
+    simulation: SimulationSpec = Field(description="the run's length, output rows and tolerances")
+    sweep: dict[str, Any] | None = Field(None, description="one run per value of the keys it names (two keys: "
+                                         "every combination)")  # checked by check_sweep
 
     _provenance: Provenance = PrivateAttr(default_factory=Provenance)  # given by with_provenance only
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 from pydantic import BaseModel, ConfigDict, PrivateAttr
 
 from ..errors import ScenarioError
@@ -9,6 +11,9 @@ from ..errors import ScenarioError
 
 class Section(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+    # the ways of giving one thing, one of each group ("a + b": keys given together), for the scenario reference
+    # (the section's validators hold them)
+    alternatives: ClassVar[tuple[tuple[str, ...], ...]] = ()
     _derived: tuple = PrivateAttr(default=())  # the keys set from others
 
     def _derive(self, key: str, value) -> None:

@@ -17,10 +17,14 @@ class BearingFrictionSpec(Section):
     torque at rest, and slips at its friction torque, a constant or a table of the slip speed's size
     (Modelica's tau_pos), the same either way."""
 
-    shaft: Text | None = None  # on a shaft: against the ground (its housing), or
-    between: tuple[Text, Text] | None = None  # [shaft a, shaft b]: between two shafts (b may be ground)
-    torque: tables.SlipTorque  # a constant, or rows [slip speed, torque]: flat beyond the rows
-    peak: u.quantity(u.DIMENSIONLESS, ge=1.0) = 1.0  # the most it holds stuck: peak * its torque at rest
+    alternatives = (("shaft", "between"),)
+    shaft: Text | None = Field(None, description="on a shaft: friction against the ground (its housing)")
+    between: tuple[Text, Text] | None = Field(None, description="[shaft a, shaft b]: between two shafts (b may be "
+                                              "ground)")
+    torque: tables.SlipTorque = Field(description="its friction torque: a constant, or a table of the slip "
+                                      "speed's size, flat beyond the rows")
+    peak: u.quantity(u.DIMENSIONLESS, ge=1.0) = Field(1.0, description="the most it holds stuck: peak times its "
+                                                      "torque at rest")
     name: str = Field("", exclude=True)  # its key in drivetrain.bearing_frictions (set there, never written)
 
     @model_validator(mode="after")

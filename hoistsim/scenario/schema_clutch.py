@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from typing import Literal
 
-from pydantic import model_validator
+from pydantic import Field, model_validator
 
 from ..components import ConeClutch
 from ..errors import ScenarioError
@@ -17,9 +17,10 @@ from .schema_base import Section
 class FrictionSpec(Section):
     """Faces that stick below static_friction * force * lever and slide at kinetic_friction * force * lever."""
 
-    static_friction: u.quantity(u.DIMENSIONLESS, gt=0.0)
-    kinetic_friction: u.quantity(u.DIMENSIONLESS, ge=0.0)
-    surfaces: u.whole("friction surfaces") = 1
+    static_friction: u.quantity(u.DIMENSIONLESS, gt=0.0) = Field(description="mu_s: the faces stick below it")
+    kinetic_friction: u.quantity(u.DIMENSIONLESS, ge=0.0) = Field(description="mu_k, sliding (not above "
+                                                                  "static_friction)")
+    surfaces: u.whole("friction surfaces") = Field(1, description="n, the faces in contact")
 
     @model_validator(mode="after")
     def _sliding_within_sticking(self):
@@ -32,10 +33,13 @@ class FrictionSpec(Section):
 class ConeSpec(Section):
     """A cone's faces: their wedge multiplies the axial force pressing them (the effective radius n r_m / sin beta)."""
 
-    inner_radius: u.quantity(u.LENGTH, gt=0.0)
-    outer_radius: u.quantity(u.LENGTH, gt=0.0)
-    half_angle: u.quantity(u.ANGLE, " (the cone half-angle beta = 90 deg - delta)", gt=0.0, lt=math.pi / 2)
-    mean_radius: Literal["uniform_wear", "uniform_pressure"] = "uniform_wear"
+    inner_radius: u.quantity(u.LENGTH, gt=0.0) = Field(description="r_i of the faces (less than outer_radius)")
+    outer_radius: u.quantity(u.LENGTH, gt=0.0) = Field(description="r_e of the faces")
+    half_angle: u.quantity(u.ANGLE, " (the cone half-angle beta = 90 deg - delta)", gt=0.0, lt=math.pi / 2) = Field(
+        description="beta, the cone's half-angle (exercise 6's delta = 65 deg is 90 deg - beta)")
+    mean_radius: Literal["uniform_wear", "uniform_pressure"] = Field("uniform_wear", description="r_m: "
+                                                                     "uniform_wear (r_i + r_e) / 2, or "
+                                                                     "uniform_pressure's")
 
     @model_validator(mode="after")
     def _an_annulus(self):

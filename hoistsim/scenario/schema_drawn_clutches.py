@@ -16,21 +16,27 @@ from .units import Text
 
 
 class FrictionClutchSpec(OnShaft, FrictionSpec):
-    """Faces (static_friction, kinetic_friction, surfaces: :class:`.schema_clutch.FrictionSpec`) on a lever: an
-    effective radius, or a cone's, pressed by a force that is a time signal; their heat, where ``heating`` is
+    """A friction clutch between two shafts, or a shaft and the ground (a brake): faces (static_friction,
+    kinetic_friction, surfaces: as the hoist's clutch's) on a lever, an effective radius or a cone's, pressed
+    by a force that is a time signal; their heat, where ``heating`` is
     given, a lump with its temperature (the friction against it, where it gives tables).  The kinetic friction
     may be a table of the slip speed (Modelica's mu_pos), the static friction then given as its ``peak``
     factor over the kinetic friction at zero slip (Modelica's peak) or as a coefficient."""
 
-    static_friction: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = None  # or peak
+    alternatives = (("static_friction", "peak"), ("effective_radius", "cone"))
+    static_friction: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = Field(None, description="mu_s: the faces stick "
+                                                                        "below it")
     # a constant, or rows [slip speed, coefficient]: the friction at a slip either way, flat beyond the rows
-    kinetic_friction: tables.SlipFriction
-    peak: u.quantity(u.DIMENSIONLESS, ge=1.0) | None = None  # static_friction = peak * kinetic at zero slip
-    between: tuple[Text, Text]  # [shaft a, shaft b or ground]: its torque passes from a to b
-    effective_radius: u.quantity(u.LENGTH, gt=0.0) | None = None  # or a cone's, from its geometry
-    cone: ConeSpec | None = None
-    force: signal(u.FORCE)  # N pressing the faces; at or below zero the clutch is open
-    heating: ClutchHeatingSpec | None = None
+    kinetic_friction: tables.SlipFriction = Field(description="mu_k: a constant, or a table of the slip speed's "
+                                                  "size (Modelica's mu_pos), flat beyond the rows")
+    peak: u.quantity(u.DIMENSIONLESS, ge=1.0) | None = Field(None, description="static_friction = peak times the "
+                                                             "kinetic friction at zero slip (Modelica's peak)")
+    between: tuple[Text, Text] = Field(description="[shaft a, shaft b or ground]: its torque passes from a to b")
+    effective_radius: u.quantity(u.LENGTH, gt=0.0) | None = Field(None, description="the faces' lever: torque = "
+                                                                  "mu force effective_radius surfaces")
+    cone: ConeSpec | None = Field(None, description="a cone's faces, whose geometry gives the lever")
+    force: signal(u.FORCE) = Field(description="pressing the faces; at or below zero the clutch is open")
+    heating: ClutchHeatingSpec | None = Field(None, description="its faces' heat: a lump with its temperature")
     name: str = Field("", exclude=True)  # its key in drivetrain.clutches (set there, never written)
 
     def _sliding_within_sticking(self):  # in place of FrictionSpec's: static_friction or peak, over a table

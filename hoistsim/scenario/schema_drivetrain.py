@@ -22,6 +22,7 @@ from .schema_motor import MotorSpec, RippleSpec
 from .schema_load import LoadOnShaftSpec
 from .schema_loss_table import LossTable
 from .schema_bearing_friction import BearingFrictionSpec
+from .schema_gear_groups import beyond_stage, gear_groups
 from .schema_drawn_clutches import FrictionClutchSpec, OneWayClutchSpec
 from .schema_spring import SpringSpec
 from .schema_speed_torques import SPEED_PARTS, EddyCurrentBrakeSpec, HeatCapacitorSpec, SpeedLaws, check_speed_parts
@@ -40,10 +41,12 @@ _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 
 
 class ShaftSpec(OnShaft, Section):
-    inertia: u.quantity(u.INERTIA, ge=0.0)  # zero: only with something of inertia tied to it
-    speed: u.quantity(u.ANGULAR_SPEED) = 0.0  # at t = 0
-    angle: u.quantity(u.ANGLE) = 0.0  # at t = 0 (where anything reads it: a spring, a ripple)
-    resisting_ripple: RippleSpec | None = None  # a torque resisting its turning, periodic in its angle
+    """A shaft: a rigid body turning, with its inertia; its name names its outputs (``<shaft>_speed``)."""
+
+    inertia: u.quantity(u.INERTIA, ge=0.0) = Field(description="its own (0: only with inertia tied to it)")
+    speed: u.quantity(u.ANGULAR_SPEED) = Field(0.0, description="at t = 0 (a geared shaft's follows its stage)")
+    angle: u.quantity(u.ANGLE) = Field(0.0, description="at t = 0 (given: <shaft>_angle is an output)")
+    resisting_ripple: RippleSpec | None = Field(None, description="a torque resisting it, periodic in its angle")
     name: str = Field("", exclude=True)  # its key in drivetrain.shafts (set there, never written)
 
     def train(self, scenario) -> tuple:
@@ -64,17 +67,23 @@ class ShaftSpec(OnShaft, Section):
 
 
 class TorqueSpec(SpeedLaws, Section):
-    shaft: Text
-    torque: signal(u.TORQUE) | None = None  # positive in the shaft's positive sense; or a law of its speed
+    """An external torque on a shaft, named by its place (torque1, torque2, ...)."""
+
+    shaft: Text = Field(description="the shaft it turns")
+    torque: signal(u.TORQUE) | None = Field(None, description="a signal of time, in the shaft's positive sense")
     name: str = Field("", exclude=True)  # torque1, torque2, ... in the order of drivetrain.torques (set there)
+
+
+_EFFICIENCY = u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0)
 
 
 class MeshSpec(Section):
     """A gear mesh's losses: its efficiency when the input (the pinion) drives the output, and when the output
     drives the input (default: the same); either given, the mesh is lossy (absent: ideal)."""
 
-    efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
-    backdrive_efficiency: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None
+    efficiency: _EFFICIENCY | None = Field(None, description="eta, where the input (the pinion) drives")
+    backdrive_efficiency: _EFFICIENCY | None = Field(None, description="eta_b, where the output drives it back "
+                                                     "(default: efficiency)")
 
     @property
     def lossy(self) -> bool:
@@ -88,14 +97,17 @@ class MeshSpec(Section):
 
 
 class GearStageSpec(MeshSpec):
-    between: tuple[Text, Text]  # [input shaft, output shaft]
-    # or Modelica's LossyGear lossTable: rows [speed, efficiency input drives, output drives, bearing torque input
-    # drives, output drives] (schema_loss_table), read at the input's speed; refused beside an efficiency
-    loss_table: LossTable | None = None
-    ratio: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = None  # the input's speed over the output's
-    teeth: tuple[u.whole("teeth"), u.whole("teeth")] | None = None  # [z_in, z_out]: ratio z_out / z_in
-    # a third shaft the stage's housing turns with (its ratio then against it): schema_linkage
-    housing: Text | None = None
+    """A gear stage: shafts geared together turn as one body; lossy with an efficiency or a loss table."""
+
+    alternatives = (("ratio", "teeth"),)
+    between: tuple[Text, Text] = Field(description="[input shaft, output shaft]")
+    loss_table: LossTable | None = Field(None, description="Modelica's LossyGear lossTable: rows [speed, efficiency "
+                                         "when the input drives, when the output drives, bearing torque when the "
+                                         "input drives, when the output drives], at the input's speed")
+    ratio: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = Field(None, description="the input's speed over the output's")
+    teeth: tuple[u.whole("teeth"), u.whole("teeth")] | None = Field(None, description="[z_in, z_out]: z_out / z_in")
+    # a stage on a housing is a linkage of three shafts (schema_linkage)
+    housing: Text | None = Field(None, description="a third shaft its housing turns with, the ratio against it (ideal)")
     name: str = Field("", exclude=True)  # its key in drivetrain.gears (set there, never written)
 
     def speed_ratio(self) -> float:
@@ -149,11 +161,13 @@ class ShaftMotorSpec(OnShaft, MotorSpec):
     """A motor on a shaft: the hoist motor's characteristics and inertia (the rotor turns with the shaft), and
     its torque's ripple, periodic in the shaft's angle."""
 
-    shaft: Text
+    shaft: Text = Field(description="the shaft its rotor turns with")
     name: str = Field("", exclude=True)  # its key in drivetrain.motors (set there, never written)
 
 
 class DrivetrainSpec(Section):
+    """A machine drawn as shafts and the parts on and between them; each part's key names it and its outputs."""
+
     shafts: dict[str, ShaftSpec]
     torques: list[TorqueSpec] = []
     clutches: dict[str, FrictionClutchSpec] = {}
@@ -329,61 +343,6 @@ class DrivetrainSpec(Section):
                 tied = [name for name, (r, _) in groups.items() if r == root]
                 raise ScenarioError(f"drivetrain.shafts.{tied[0]}.inertia", "has no inertia and nothing of "
                                     f"inertia rigidly tied to it ({', '.join(tied)}): it could not be accelerated")
-
-
-def gear_groups(spec: DrivetrainSpec) -> dict:
-    """Each shaft's (root, speed over the root's): shafts geared together turn as one body, the first
-    of them in ``shafts`` its root.  Gear stages that close a loop with ratios that disagree are refused,
-    naming both (the machine could not turn)."""
-    stages = {name: stage for name, stage in spec.gears.items() if stage.housing is None}  # on a housing: a linkage
-    groups: dict = {}
-    via: dict = {}  # shaft -> the stage that reached it
-    for start in spec.shafts:
-        if start in groups:
-            continue
-        groups[start] = (start, 1.0)
-        reached = [start]
-        while reached:
-            shaft = reached.pop()
-            _, ratio = groups[shaft]
-            for name, stage in stages.items():
-                a, b = stage.between
-                if shaft not in (a, b):
-                    continue
-                other, other_ratio = (b, ratio / stage.ratio) if shaft == a else (a, ratio * stage.ratio)
-                if other not in groups:
-                    groups[other] = (start, other_ratio)
-                    via[other] = name
-                    reached.append(other)
-                elif not math.isclose(groups[other][1], other_ratio, rel_tol=1e-12) and via.get(other) != name:
-                    raise ScenarioError(f"drivetrain.gears.{name}.ratio", f"closes a loop with gears "
-                                        f"{via.get(other, via.get(shaft))!r} whose ratios disagree: shaft "
-                                        f"{other!r} would turn {groups[other][1]:.6g} and {other_ratio:.6g} times "
-                                        f"as fast as {start!r} (the machine could not turn)")
-    return groups
-
-
-def beyond_stage(spec: DrivetrainSpec, name: str) -> tuple:
-    """The shafts on a gear stage's output side: its output shaft first, then every shaft geared to it
-    by other stages.  The tooth load is what these take; a stage in a loop of stages has no such side
-    (its tooth load is not determined by the machine's motion): refused for a lossy one."""
-    first, out = spec.gears[name].between
-    reached, beyond = [out], [out]
-    while reached:
-        shaft = reached.pop()
-        for other, stage in spec.gears.items():
-            if other == name or shaft not in stage.between or stage.housing is not None:
-                continue
-            far = stage.between[1] if shaft == stage.between[0] else stage.between[0]
-            if far == first:
-                key = spec.gears[name].loss_key
-                raise ScenarioError(f"drivetrain.gears.{name}.{key}", f"the stage is in a loop of gear "
-                                    f"stages (through {other!r}): the torque its teeth pass is not determined, "
-                                    f"give it no {key}")
-            if far not in beyond:
-                beyond.append(far)
-                reached.append(far)
-    return tuple(beyond)
 
 
 def hoist_only(scenario, command: str) -> None:

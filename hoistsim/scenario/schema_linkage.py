@@ -25,11 +25,13 @@ class PlanetarySpec(Section):
     """A planetary set: sun, carrier and ring, (1 + r) w_carrier = w_sun + r w_ring (Willis), r the ring's teeth
     over the sun's (Modelica's IdealPlanetary)."""
 
-    sun: Text
-    carrier: Text
-    ring: Text
-    ratio: u.quantity(u.DIMENSIONLESS) | None = None  # r = z_ring / z_sun, above 1
-    teeth: tuple[u.whole("teeth"), u.whole("teeth")] | None = None  # [z_sun, z_ring]: ratio z_ring / z_sun
+    alternatives = (("ratio", "teeth"),)
+    sun: Text = Field(description="the sun's shaft")
+    carrier: Text = Field(description="the carrier's shaft")
+    ring: Text = Field(description="the ring's shaft")
+    ratio: u.quantity(u.DIMENSIONLESS) | None = Field(None, description="r = z_ring / z_sun, above 1")
+    teeth: tuple[u.whole("teeth"), u.whole("teeth")] | None = Field(None, description="[z_sun, z_ring]: ratio "
+                                                                    "z_ring / z_sun")
     name: str = Field("", exclude=True)  # its key in drivetrain.planetaries (set there, never written)
 
     @model_validator(mode="after")

@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 from typing import Literal
 
-from pydantic import model_validator
+from pydantic import Field, model_validator
 
 from ..errors import ScenarioError
 from . import units as u
@@ -22,15 +22,17 @@ from .units import Text
 class LoadSpec(Section):
     """A load hanging on a rope: the hoist's (``load:``, from its drum), and a drawn drivetrain's."""
 
-    mass: u.quantity(u.MASS, ge=0.0)
+    mass: u.quantity(u.MASS, ge=0.0) = Field(description="M, lifted against gravity")
 
 
 class LoadBearingsSpec(BearingsSpec):
     """The bearings of the shaft the load hangs from, which a gear's wheel drives: the tooth forces (from the
     torque the shaft receives, at the wheel's pitch circle), the rope's pull, and the two bearings' reactions."""
 
-    wheel_pitch_diameter: u.quantity(u.LENGTH, gt=0.0)
-    pressure_angle: u.quantity(u.ANGLE, gt=0.0, lt=math.pi / 2) = math.radians(20.0)
+    wheel_pitch_diameter: u.quantity(u.LENGTH, gt=0.0) = Field(description="the wheel's, where its teeth are "
+                                                               "pressed")
+    pressure_angle: u.quantity(u.ANGLE, gt=0.0, lt=math.pi / 2) = Field(math.radians(20.0), description="of the "
+                                                                        "wheel's teeth")
 
 
 class LoadOnShaftSpec(OnShaft, LoadSpec):
@@ -39,13 +41,15 @@ class LoadOnShaftSpec(OnShaft, LoadSpec):
     moves through the radius (a wheel's) with no gravity along it; ``drag``: a force against its motion,
     quadratic in its speed."""
 
-    shaft: Text  # the drum's shaft
-    rope_radius: u.quantity(u.LENGTH, gt=0.0)  # half the drum's diameter
-    rope: RopeSpec | None = None
-    ground: GroundSpec | None = None
-    bearings: LoadBearingsSpec | None = None
-    path: Literal["vertical", "level"] = "vertical"  # level: no gravity along it
-    drag: DragSpec | None = None
+    shaft: Text = Field(description="the drum's shaft")
+    rope_radius: u.quantity(u.LENGTH, gt=0.0) = Field(description="where the rope winds: half the drum's diameter")
+    rope: RopeSpec | None = Field(None, description="an elastic rope (absent: rigid)")
+    ground: GroundSpec | None = Field(None, description="the load starts resting on the ground")
+    bearings: LoadBearingsSpec | None = Field(None, description="the shaft's bearing loads in time (a gear "
+                                              "stage's output shaft)")
+    path: Literal["vertical", "level"] = Field("vertical", description="level: moved along a level path through "
+                                               "rope_radius (a wheel's), no gravity along it")
+    drag: DragSpec | None = Field(None, description="a force against its motion, quadratic in its speed")
 
     @property
     def characteristic(self) -> str:

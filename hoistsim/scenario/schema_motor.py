@@ -4,8 +4,7 @@ angle (a motor's or a drum's ``ripple``), values in SI."""
 from __future__ import annotations
 
 import math
-
-from pydantic import model_validator
+from pydantic import Field, model_validator
 
 from ..errors import ScenarioError
 from . import tables
@@ -14,17 +13,22 @@ from .schema_base import Section
 
 
 class HarmonicSpec(Section):
-    order: u.whole("periods per ripple period")  # k: amplitude * sin(k * 2 pi * angle / period + phase)
-    amplitude: u.quantity(u.TORQUE)
-    phase: u.quantity(u.ANGLE) = 0.0
+    """One harmonic of a ripple: amplitude * sin(order * 2 pi * angle / period + phase)."""
+
+    order: u.whole("periods per ripple period") = Field(description="k: its periods in one period of the ripple")
+    amplitude: u.quantity(u.TORQUE) = Field(description="its torque's amplitude")
+    phase: u.quantity(u.ANGLE) = Field(0.0, description="its phase at angle 0")
 
 
 class RippleSpec(Section):
     """A torque periodic in a shaft's angle: harmonics, or one period as a table (not both)."""
 
-    period: u.quantity(u.ANGLE, gt=0.0) = 2 * math.pi
-    harmonics: list[HarmonicSpec] | None = None
-    table: tables.AngleTorqueTable | None = None
+    alternatives = (("harmonics", "table"),)
+    period: u.quantity(u.ANGLE, gt=0.0) = Field(2 * math.pi, description="the angle it repeats over (720 deg for "
+                                                "a four-stroke engine)")
+    harmonics: list[HarmonicSpec] | None = Field(None, description="summed")
+    table: tables.AngleTorqueTable | None = Field(None, description="one period, from 0 to the period, piecewise "
+                                                  "linear, ending where it starts")
 
     @model_validator(mode="after")
     def _one_form(self):
@@ -52,22 +56,38 @@ _FORMS = ("stall_torque + no_load_speed (linear), or rated_power + rated_speed +
 
 
 class MotorSpec(Section):
+    """A motor: one characteristic (its torque against its speed) and its rotor's inertia."""
+
     # exactly one characteristic: linear (C0 and omega0, or the nameplate's rated power and speed with omega0), an
     # induction motor's Kloss curve (its breakdown torque, and its breakdown slip or its rated point), a
     # torque-speed table, or a constant torque
-    stall_torque: u.quantity(u.TORQUE, gt=0.0) | None = None  # C0, torque at standstill
-    # omega0, where the torque reaches 0 (an induction motor's synchronous speed)
-    no_load_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) | None = None
-    rated_power: u.quantity(u.POWER, gt=0.0) | None = None  # P_N, the nameplate's, at rated_speed
-    rated_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) | None = None  # n_N, below no_load_speed
-    breakdown_torque: u.quantity(u.TORQUE, gt=0.0) | None = None  # T_b, the most an induction motor gives (Kloss)
-    breakdown_slip: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = None  # s_b, where it gives it
-    torque_speed: tables.TorqueSpeedTable | None = None
-    torque: u.quantity(u.TORQUE) | None = None  # 0 N*m: the motor is off and its shaft coasts
-    inertia: u.quantity(u.INERTIA, gt=0.0) | None = None
-    rotor_mass: u.quantity(u.MASS, gt=0.0) | None = None
-    radius_of_gyration: u.quantity(u.LENGTH, gt=0.0) | None = None
-    ripple: RippleSpec | None = None  # a torque added to the characteristic, periodic in the motor angle
+    alternatives = (("stall_torque + no_load_speed", "rated_power + rated_speed + no_load_speed",
+                     "breakdown_torque + breakdown_slip + no_load_speed",
+                     "breakdown_torque + rated_power + rated_speed + no_load_speed", "torque_speed", "torque"),
+                    ("inertia", "rotor_mass + radius_of_gyration"))
+    stall_torque: u.quantity(u.TORQUE, gt=0.0) | None = Field(None, description="C0, the torque at standstill "
+                                                              "(linear: C = C0 (1 - omega / omega0))")
+    no_load_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) | None = Field(None, description="omega0, where the torque "
+                                                                      "reaches 0 (an induction motor's synchronous "
+                                                                      "speed)")
+    rated_power: u.quantity(u.POWER, gt=0.0) | None = Field(None, description="P_N, the nameplate's, at rated_speed: "
+                                                            "the line through the rated point, C0 = T_N / s_N")
+    rated_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) | None = Field(None, description="n_N, the nameplate's, below "
+                                                                    "no_load_speed")
+    breakdown_torque: u.quantity(u.TORQUE, gt=0.0) | None = Field(None, description="T_b, an induction motor's "
+                                                                  "greatest torque (Kloss: T = 2 T_b / (s / s_b + "
+                                                                  "s_b / s))")
+    breakdown_slip: u.quantity(u.DIMENSIONLESS, gt=0.0, le=1.0) | None = Field(
+        None, description="s_b, the slip (1 - omega / omega0) where it gives T_b; or from the rated point")
+    torque_speed: tables.TorqueSpeedTable | None = Field(None, description="the characteristic as a table, linear "
+                                                         "between rows and beyond its ends")
+    torque: u.quantity(u.TORQUE) | None = Field(None, description="a constant torque (0 N*m: the motor is off, its "
+                                                "shaft coasts)")
+    inertia: u.quantity(u.INERTIA, gt=0.0) | None = Field(None, description="the rotor's")
+    rotor_mass: u.quantity(u.MASS, gt=0.0) | None = Field(None, description="the rotor's mass (I = m k^2)")
+    radius_of_gyration: u.quantity(u.LENGTH, gt=0.0) | None = Field(None, description="the rotor's, k")
+    ripple: RippleSpec | None = Field(None, description="a torque added to the characteristic, periodic in the "
+                                      "motor's angle")
 
     @model_validator(mode="after")
     def _one_characteristic(self):
@@ -75,7 +95,9 @@ class MotorSpec(Section):
                  "kloss": ("breakdown_torque", "breakdown_slip", "rated_power", "rated_speed", "no_load_speed")}
         given = [name for name in ("stall_torque", "rated_power", "rated_speed", "breakdown_torque", "breakdown_slip",
                                    "no_load_speed", "torque_speed", "torque") if getattr(self, name) is not None]
+        # the form its keys point to, a linear one before a table or a constant (the other keys are the strays)
         kind = ("kloss" if self.breakdown_torque is not None or self.breakdown_slip is not None
+                else "linear" if set(given) & set(forms["linear"])
                 else "torque_speed" if self.torque_speed is not None else "torque" if self.torque is not None
                 else "linear")
         allowed = forms.get(kind, (kind,))

@@ -8,7 +8,7 @@ import math
 from typing import Literal
 
 import numpy as np
-from pydantic import model_validator
+from pydantic import Field, model_validator
 
 from ..errors import ScenarioError
 from . import tables
@@ -17,13 +17,17 @@ from .schema_base import Section
 
 
 class FlywheelSpec(Section):
-    shaft: Literal["motor", "drum"] = "motor"
-    inertia: u.quantity(u.INERTIA, ge=0.0) | None = None
+    """An inertia keyed to a shaft: given as such, or a rim's, I = pi density width (R_outer^4 - R_inner^4) / 2."""
+
+    alternatives = (("inertia", "density + outer_diameter + inner_diameter + width"),)
+    shaft: Literal["motor", "drum"] = Field("motor", description="the shaft it is keyed to")
+    inertia: u.quantity(u.INERTIA, ge=0.0) | None = Field(None, description="its moment of inertia")
     # or a rim: I = pi * density * width * (R_outer^4 - R_inner^4) / 2
-    density: u.quantity(u.DENSITY, gt=0.0) | None = None
-    outer_diameter: u.quantity(u.LENGTH, gt=0.0) | None = None
-    inner_diameter: u.quantity(u.LENGTH, ge=0.0) | None = None
-    width: u.quantity(u.LENGTH, gt=0.0) | None = None
+    density: u.quantity(u.DENSITY, gt=0.0) | None = Field(None, description="the rim's material's")
+    outer_diameter: u.quantity(u.LENGTH, gt=0.0) | None = Field(None, description="the rim's")
+    inner_diameter: u.quantity(u.LENGTH, ge=0.0) | None = Field(None, description="the rim's bore (less than "
+                                                                "outer_diameter)")
+    width: u.quantity(u.LENGTH, gt=0.0) | None = Field(None, description="the rim's, along the shaft")
 
     @model_validator(mode="after")
     def _inertia_or_rim(self):
@@ -48,9 +52,9 @@ class FlywheelSpec(Section):
 class ReciprocatingSpec(Section):
     """A slider-crank (on the motor shaft, the hoist's): its reciprocating mass has an inertia that varies with angle."""
 
-    mass: u.quantity(u.MASS, gt=0.0)
-    crank_radius: u.quantity(u.LENGTH, gt=0.0)
-    rod_length: u.quantity(u.LENGTH, gt=0.0)
+    mass: u.quantity(u.MASS, gt=0.0) = Field(description="the reciprocating mass: I = mass (dx/dangle)^2")
+    crank_radius: u.quantity(u.LENGTH, gt=0.0) = Field(description="r")
+    rod_length: u.quantity(u.LENGTH, gt=0.0) = Field(description="l, longer than the crank")
 
     @model_validator(mode="after")
     def _rod_longer_than_crank(self):
@@ -61,10 +65,15 @@ class ReciprocatingSpec(Section):
 
 
 class BrakeSpec(Section):
-    release_time: u.quantity(u.TIME, ge=0.0)  # the brake frees its shaft (the drum) at this time
-    static_torque: u.quantity(u.TORQUE, gt=0.0) | None = None  # the most it holds, at the drum (absent: any)
-    kinetic_torque: u.quantity(u.TORQUE, ge=0.0) | None = None  # what it passes slipping (default: static)
-    apply_time: u.quantity(u.TIME, ge=0.0) | None = None  # it closes again at this time
+    """A brake holding its shaft (the hoist's: the drum) until its release: any torque, or up to a static torque."""
+
+    release_time: u.quantity(u.TIME, ge=0.0) = Field(description="the brake frees its shaft at this time")
+    static_torque: u.quantity(u.TORQUE, gt=0.0) | None = Field(None, description="the most it holds (absent: any, "
+                                                               "never slipping)")
+    kinetic_torque: u.quantity(u.TORQUE, ge=0.0) | None = Field(None, description="what it passes slipping "
+                                                                "(default: static_torque)")
+    apply_time: u.quantity(u.TIME, ge=0.0) | None = Field(None, description="it closes again at this time (with "
+                                                          "static_torque)")
 
     @model_validator(mode="after")
     def _consistent(self):
@@ -89,20 +98,28 @@ class BrakeSpec(Section):
 
 
 class RatchetSpec(Section):
-    release_time: u.quantity(u.TIME, ge=0.0) | None = None  # the pawl is lifted at this time (absent: never)
+    """A pawl: its shaft (the hoist's: the drum) may turn forwards (to lift), never back, until it is lifted."""
+
+    release_time: u.quantity(u.TIME, ge=0.0) | None = Field(None, description="the pawl is lifted at this time "
+                                                            "(absent: never)")
 
 
 class ClutchHeatingSpec(Section):
     """The clutch's friction surfaces as one lump of heat: C dT/dt = slip power - G (T - T_ambient)."""
 
-    heat_capacity: u.quantity(u.HEAT_CAPACITY, gt=0.0)
-    cooling: u.quantity(u.CONDUCTANCE, " (the conductance to ambient)", ge=0.0)
-    ambient_temperature: u.quantity(u.TEMPERATURE, gt=0.0)
-    initial_temperature: u.quantity(u.TEMPERATURE, gt=0.0) | None = None  # ambient
+    heat_capacity: u.quantity(u.HEAT_CAPACITY, gt=0.0) = Field(description="C, of the friction surfaces")
+    cooling: u.quantity(u.CONDUCTANCE, " (the conductance to ambient)", ge=0.0) = Field(
+        description="G, the conductance to ambient (0: none)")
+    ambient_temperature: u.quantity(u.TEMPERATURE, gt=0.0) = Field(description="T_ambient")
+    initial_temperature: u.quantity(u.TEMPERATURE, gt=0.0) | None = Field(None, description="at t = 0 (default: "
+                                                                          "ambient)")
     # friction against temperature, replacing clutch.static_friction / kinetic_friction where given
-    static_friction: tables.StaticFrictionTable | None = None
-    kinetic_friction: tables.KineticFrictionTable | None = None
-    max_temperature: u.quantity(u.TEMPERATURE, gt=0.0) | None = None  # overheat event
+    static_friction: tables.StaticFrictionTable | None = Field(None, description="in place of the clutch's, linear "
+                                                               "between rows, flat beyond")
+    kinetic_friction: tables.KineticFrictionTable | None = Field(None, description="in place of the clutch's, "
+                                                                 "linear between rows, flat beyond")
+    max_temperature: u.quantity(u.TEMPERATURE, gt=0.0) | None = Field(None, description="an overheat event where "
+                                                                      "it is crossed")
 
     @property
     def start_temperature(self) -> float:
@@ -123,9 +140,11 @@ class ClutchHeatingSpec(Section):
 
 
 class BearingsSpec(Section):
-    gear_offset: u.quantity(u.LENGTH, gt=0.0)  # a: bearing A to the gear, away from B
-    rope_offset: u.quantity(u.LENGTH, gt=0.0)  # bearing A to the rope, towards B
-    span: u.quantity(u.LENGTH, gt=0.0)  # bearing A to bearing B
+    """The drum shaft's two bearings, A and B: the tooth forces, the rope's pull and their reactions in time."""
+
+    gear_offset: u.quantity(u.LENGTH, gt=0.0) = Field(description="a: bearing A to the gear, away from B")
+    rope_offset: u.quantity(u.LENGTH, gt=0.0) = Field(description="bearing A to the rope, towards B")
+    span: u.quantity(u.LENGTH, gt=0.0) = Field(description="bearing A to bearing B")
 
 
 def kinetic_within_static(heating: ClutchHeatingSpec, static_friction: float, kinetic_friction: float,

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import model_validator
+from pydantic import Field, model_validator
 
 from . import units as u
 from .schema_base import Section
@@ -14,12 +14,15 @@ from .schema_base import Section
 class RopeSpec(Section):
     """An elastic rope from the drum to the load: a stiffness, or a wire rope's modulus, area and length."""
 
-    stiffness: u.quantity(u.STIFFNESS, gt=0.0) | None = None  # k, N/m
-    modulus: u.quantity(u.PRESSURE, gt=0.0) | None = None  # E of the rope (steel wire rope: 80-110 GPa)
-    metallic_area: u.quantity(u.AREA, gt=0.0) | None = None  # A: the wires' cross-section
-    free_length: u.quantity(u.LENGTH, gt=0.0) | None = None  # drum to load at t = 0
-    damping_ratio: u.quantity(u.DIMENSIONLESS, ge=0.0) = 0.0  # c = 2 zeta sqrt(k M), k at t = 0
-    initial_slack: u.quantity(u.LENGTH, ge=0.0) = 0.0  # rope paid out beyond taut at t = 0
+    alternatives = (("stiffness", "modulus + metallic_area + free_length"),)
+    stiffness: u.quantity(u.STIFFNESS, gt=0.0) | None = Field(None, description="k, the rope's")
+    modulus: u.quantity(u.PRESSURE, gt=0.0) | None = Field(None, description="E of the rope (steel wire rope: "
+                                                           "80-110 GPa): k = E A / L")
+    metallic_area: u.quantity(u.AREA, gt=0.0) | None = Field(None, description="A: the wires' cross-section")
+    free_length: u.quantity(u.LENGTH, gt=0.0) | None = Field(None, description="L: drum to load at t = 0")
+    damping_ratio: u.quantity(u.DIMENSIONLESS, ge=0.0) = Field(0.0, description="zeta: c = 2 zeta sqrt(k M), k "
+                                                               "at t = 0")
+    initial_slack: u.quantity(u.LENGTH, ge=0.0) = Field(0.0, description="rope paid out beyond taut at t = 0")
 
     @model_validator(mode="after")
     def _one_stiffness(self):
@@ -38,4 +41,5 @@ class RopeSpec(Section):
 class GroundSpec(Section):
     """The load starts resting on the ground, which holds it up and never down."""
 
-    hoisting_class: Literal["HC1", "HC2", "HC3", "HC4"] | None = None  # EN 13001-2, for phi2 beside the run
+    hoisting_class: Literal["HC1", "HC2", "HC3", "HC4"] | None = Field(None, description="EN 13001-2's, for its "
+                                                                       "dynamic factor phi2 beside the run's")

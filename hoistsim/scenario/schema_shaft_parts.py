@@ -26,14 +26,14 @@ class OnShaft:
 class RotorSpec(OnShaft, FlywheelSpec):
     """An inertia keyed to a shaft: a flywheel, a drum (given as an inertia or as a rim)."""
 
-    shaft: Text
+    shaft: Text = Field(description="the shaft it sits on")
     name: str = Field("", exclude=True)
 
 
 class SliderCrankSpec(OnShaft, ReciprocatingSpec):
     """A reciprocating mass on a rod and crank keyed to a shaft."""
 
-    shaft: Text
+    shaft: Text = Field(description="the shaft it sits on")
     name: str = Field("", exclude=True)
 
 
@@ -41,14 +41,14 @@ class BrakeOnShaftSpec(OnShaft, BrakeSpec):
     """A brake from a shaft to the ground: holding (any torque) or friction (static and kinetic torques),
     released and applied at times."""
 
-    shaft: Text
+    shaft: Text = Field(description="the shaft it sits on")
     name: str = Field("", exclude=True)
 
 
 class RatchetOnShaftSpec(OnShaft, RatchetSpec):
     """A pawl from a shaft to the ground: the shaft may turn forwards, never backwards, until released."""
 
-    shaft: Text
+    shaft: Text = Field(description="the shaft it sits on")
     name: str = Field("", exclude=True)
 
 

@@ -30,9 +30,11 @@ class QuadraticSpeedSpec(Section):
     the turning (Modelica's TorqueDirection = false), or the same both ways where ``fixed`` (TorqueDirection =
     true); positive in the shaft's positive sense, so a negative nominal_torque resists turning forwards."""
 
-    nominal_torque: u.quantity(u.TORQUE)
-    nominal_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0)
-    direction: Literal["reverses", "fixed"] = "reverses"
+    nominal_torque: u.quantity(u.TORQUE) = Field(description="tau at nominal_speed (negative: it resists turning "
+                                                 "forwards)")
+    nominal_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) = Field(description="where the torque is nominal_torque")
+    direction: Literal["reverses", "fixed"] = Field("reverses", description="reverses: times sign(w); fixed: the "
+                                                    "same whichever way it turns")
 
 
 class SpeedLaws(Section):
@@ -40,8 +42,10 @@ class SpeedLaws(Section):
     ``torque_by_speed`` [[speed, torque], ...] (speeds rising; piecewise linear, held beyond its ends) or
     ``quadratic``."""
 
-    torque_by_speed: tables.TorqueSpeedTable | None = None
-    quadratic: QuadraticSpeedSpec | None = None
+    alternatives = (("torque", "torque_by_speed", "quadratic"),)
+    torque_by_speed: tables.TorqueSpeedTable | None = Field(None, description="a law of its shaft's speed, "
+                                                            "piecewise linear, held beyond its ends")
+    quadratic: QuadraticSpeedSpec | None = Field(None, description="tau = nominal_torque (w / nominal_speed)^2")
 
     @model_validator(mode="after")
     def _one_law(self):
@@ -61,8 +65,8 @@ class SpeedLaws(Section):
 class HeatCapacitorSpec(Section):
     """A lumped heat capacity (Modelica's HeatCapacitor): C dT/dt = the heat flowing in."""
 
-    heat_capacity: u.quantity(u.HEAT_CAPACITY, gt=0.0)
-    temperature: u.quantity(u.TEMPERATURE, gt=0.0) = 293.15  # at t = 0
+    heat_capacity: u.quantity(u.HEAT_CAPACITY, gt=0.0) = Field(description="C")
+    temperature: u.quantity(u.TEMPERATURE, gt=0.0) = Field(293.15, description="at t = 0")
     name: str = Field("", exclude=True)  # its key in drivetrain.heat_capacitors (set there, never written)
 
 
@@ -72,14 +76,20 @@ class EddyCurrentBrakeSpec(Section):
     temperature coefficient at 20 degC converted to the reference temperature; its heat goes into a heat capacitor
     (``heat_to``), whose temperature is T, or T is ``temperature``."""
 
-    shaft: Text
-    nominal_torque: u.quantity(u.TORQUE, gt=0.0)  # the most it brakes, at nominal_speed
-    nominal_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0)  # where it brakes most, at reference_temperature
-    excitation: signal(u.DIMENSIONLESS) = TimeSignal(times=(0.0,), values=(1.0,))  # 1: the nominal torque
-    temperature_coefficient: u.quantity(TEMPERATURE_COEFFICIENT) = 0.0  # alpha20, the resistance's, at 20 degC
-    reference_temperature: u.quantity(u.TEMPERATURE, gt=0.0) = 293.15
-    heat_to: Text | None = None  # the heat capacitor its heat warms
-    temperature: u.quantity(u.TEMPERATURE, gt=0.0) | None = None  # without heat_to (default: the reference)
+    alternatives = (("heat_to", "temperature"),)
+    shaft: Text = Field(description="the shaft it brakes")
+    nominal_torque: u.quantity(u.TORQUE, gt=0.0) = Field(description="the most it brakes, at nominal_speed")
+    nominal_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) = Field(description="where it brakes most, at "
+                                                               "reference_temperature")
+    excitation: signal(u.DIMENSIONLESS) = Field(TimeSignal(times=(0.0,), values=(1.0,)), description="e (1: the "
+                                                "nominal torque)")
+    temperature_coefficient: u.quantity(TEMPERATURE_COEFFICIENT) = Field(0.0, description="alpha20, the disc's "
+                                                                         "resistance's, at 20 degC")
+    reference_temperature: u.quantity(u.TEMPERATURE, gt=0.0) = Field(293.15, description="where nominal_speed "
+                                                                     "holds")
+    heat_to: Text | None = Field(None, description="the heat capacitor its heat warms, whose temperature it has")
+    temperature: u.quantity(u.TEMPERATURE, gt=0.0) | None = Field(None, description="a constant temperature, "
+                                                                  "without heat_to (default: the reference)")
     name: str = Field("", exclude=True)  # its key in drivetrain.eddy_current_brakes (set there, never written)
 
     @model_validator(mode="after")
@@ -99,8 +109,8 @@ class DragSpec(Section):
     """A force resisting the load's motion along its path, quadratic in its speed: force (v / speed)^2 against
     v (Modelica's QuadraticSpeedDependentForce with f_nominal = -force, ForceDirection = false)."""
 
-    force: u.quantity(u.FORCE, ge=0.0)  # at ``speed``
-    speed: u.quantity(SPEED, gt=0.0)
+    force: u.quantity(u.FORCE, ge=0.0) = Field(description="the drag at speed")
+    speed: u.quantity(SPEED, gt=0.0) = Field(description="where the drag is force")
 
 
 def check_speed_parts(drivetrain, names_taken: set, is_name) -> None:

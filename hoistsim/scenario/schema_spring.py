@@ -18,16 +18,21 @@ class SpringSpec(Section):
     tau = c (phi_rel - unstretched_angle) + d w_rel, phi_rel and w_rel b's angle and speed less a's (Modelica's
     SpringDamper; a Spring without damping, a Damper without stiffness)."""
 
-    between: tuple[Text, Text]  # [shaft a, shaft b]: either may be ground (the housing), not both
-    stiffness: u.quantity(u.TORSIONAL_STIFFNESS, ge=0.0) | None = None  # c (default 0: a damper)
+    alternatives = (("stiffness", "shear_modulus + diameter + length", "damping alone (a damper)"),)
+    between: tuple[Text, Text] = Field(description="[shaft a, shaft b]: either may be ground (the housing), not "
+                                       "both")
+    stiffness: u.quantity(u.TORSIONAL_STIFFNESS, ge=0.0) | None = Field(None, description="c (absent: a damper)")
     # or a round shaft's: c = G pi (D^4 - D_i^4) / (32 L)
-    shear_modulus: u.quantity(u.PRESSURE, gt=0.0) | None = None  # G (steel: 79-81 GPa)
-    diameter: u.quantity(u.LENGTH, gt=0.0) | None = None  # D
-    inner_diameter: u.quantity(u.LENGTH, ge=0.0) = 0.0  # D_i, a hollow shaft's bore
-    length: u.quantity(u.LENGTH, gt=0.0) | None = None  # L, between the parts it joins
-    damping: u.quantity(u.TORSIONAL_DAMPING, ge=0.0) = 0.0  # d
-    unstretched_angle: u.quantity(u.ANGLE) = 0.0  # phi_rel0: the twist at which it passes no torque
-    backlash: u.quantity(u.ANGLE, ge=0.0) | None = None  # b: the total play (Modelica's ElastoBacklash)
+    shear_modulus: u.quantity(u.PRESSURE, gt=0.0) | None = Field(None, description="G of a round shaft (steel: "
+                                                                 "79-81 GPa): c = G pi (D^4 - D_i^4) / (32 L)")
+    diameter: u.quantity(u.LENGTH, gt=0.0) | None = Field(None, description="D, the round shaft's")
+    inner_diameter: u.quantity(u.LENGTH, ge=0.0) = Field(0.0, description="D_i, a hollow shaft's bore")
+    length: u.quantity(u.LENGTH, gt=0.0) | None = Field(None, description="L, between the parts it joins")
+    damping: u.quantity(u.TORSIONAL_DAMPING, ge=0.0) = Field(0.0, description="d")
+    unstretched_angle: u.quantity(u.ANGLE) = Field(0.0, description="phi_rel0: the twist at which it passes no "
+                                                   "torque")
+    backlash: u.quantity(u.ANGLE, ge=0.0) | None = Field(None, description="b: the total play (Modelica's "
+                                                         "ElastoBacklash)")
     name: str = Field("", exclude=True)  # its key in drivetrain.springs (set there, never written)
 
     @model_validator(mode="after")

@@ -148,6 +148,13 @@ class FirstColumn:
     dimension: Dimension
 
 
+@dataclass(frozen=True)
+class Columns:
+    """Metadata of a table field: each column's name and dimension, for the scenario reference."""
+
+    columns: tuple[tuple[str, Dimension], ...]
+
+
 def first_column_of(field) -> Dimension | None:
     """The dimension of a table field's first column (a FirstColumn in its metadata), or None."""
     found = [m for m in field.metadata if isinstance(m, FirstColumn)]
@@ -178,15 +185,18 @@ def _to_force_table(value: Any) -> ForceTable:
     return ForceTable(times=times, forces=forces)
 
 
-EngagementForce = Annotated[ForceTable, BeforeValidator(_to_force_table), FORCE]  # swept as its force
+EngagementForce = Annotated[ForceTable, BeforeValidator(_to_force_table), FORCE,  # swept as its force
+                            Columns((("time", TIME), ("force", FORCE)))]
 TorqueSpeedTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
-    lambda value: value if isinstance(value, tuple) else torque_speed_table(value))]
+    lambda value: value if isinstance(value, tuple) else torque_speed_table(value)),
+    Columns((("speed", ANGULAR_SPEED), ("torque", TORQUE)))]
+_FRICTION_COLUMNS = Columns((("temperature", TEMPERATURE), ("friction coefficient", DIMENSIONLESS)))
 StaticFrictionTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
     lambda value: value if isinstance(value, tuple) else friction_temperature_table(value, positive=True)),
-    FirstColumn(TEMPERATURE)]
+    FirstColumn(TEMPERATURE), _FRICTION_COLUMNS]
 KineticFrictionTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
     lambda value: value if isinstance(value, tuple) else friction_temperature_table(value, positive=False)),
-    FirstColumn(TEMPERATURE)]
+    FirstColumn(TEMPERATURE), _FRICTION_COLUMNS]
 
 
 def constant_or_slip_table(dimension: Dimension, what: str, example: str):
@@ -205,10 +215,12 @@ def constant_or_slip_table(dimension: Dimension, what: str, example: str):
         return check_range(number, value, dimension, ge=0, hint=f" ({what} opposes the slip)")
 
     return Annotated[float | tuple[tuple[float, float], ...], BeforeValidator(convert), dimension,
-                     FirstColumn(ANGULAR_SPEED)]
+                     FirstColumn(ANGULAR_SPEED), Columns((("slip speed", ANGULAR_SPEED), (what.split(" ", 1)[1],
+                                                                                         dimension)))]
 
 
 SlipFriction = constant_or_slip_table(DIMENSIONLESS, "a friction coefficient", "like [[0 rad/s, 0.5], [10 rad/s, 0.4]]")
 SlipTorque = constant_or_slip_table(TORQUE, "a friction torque", "like [[0 rad/s, 2 N*m], [100 rad/s, 3 N*m]]")
 AngleTorqueTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
-    lambda value: value if isinstance(value, tuple) else angle_torque_table(value))]
+    lambda value: value if isinstance(value, tuple) else angle_torque_table(value)),
+    Columns((("angle", ANGLE), ("torque", TORQUE)))]

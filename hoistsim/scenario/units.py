@@ -291,14 +291,24 @@ def count(value: object, what: str, minimum: int = 1) -> int:
 # the value types of the scenario schema (pydantic fields)
 
 
+@dataclass(frozen=True)
+class Limits:
+    """Metadata of a quantity field: the limits ``check_range`` holds it to (SI), for the scenario reference."""
+
+    gt: float | None = None
+    ge: float | None = None
+    lt: float | None = None
+    le: float | None = None
+
+
 def quantity(dimension: Dimension, hint: str = "", **limits: float):
     """A float field given as a number (SI) or text with units, checked against ``limits`` (gt, ge, lt, le)."""
 
     def convert(value: Any) -> float:
         return check_range(to_si(value, dimension), value, dimension, hint=hint, **limits)
 
-    # the dimension rides along as metadata, for checks that read the schema (bare angles, speeds)
-    return Annotated[float, BeforeValidator(convert), dimension]
+    # the dimension and the limits ride along as metadata, for what reads the schema (bare angles, the reference)
+    return Annotated[float, BeforeValidator(convert), dimension, Limits(**limits)]
 
 
 def dimension_of(field) -> Dimension | None:
@@ -327,9 +337,17 @@ def bare_number_note(value: float, dimension: Dimension) -> str | None:
             f"write the unit, like {dimension.example}, to say which you mean")
 
 
+@dataclass(frozen=True)
+class Count:
+    """Metadata of a whole-number field: what it counts and its least value, for the scenario reference."""
+
+    what: str
+    minimum: int
+
+
 def whole(what: str, minimum: int = 1):
     """An int field that counts ``what`` ("teeth")."""
-    return Annotated[int, BeforeValidator(lambda value: count(value, what, minimum))]
+    return Annotated[int, BeforeValidator(lambda value: count(value, what, minimum)), Count(what, minimum)]
 
 
 def _text(value: Any, required: bool = True) -> str:

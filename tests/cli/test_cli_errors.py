@@ -480,7 +480,7 @@ def test_real_console_script_has_no_traceback(tmp_path):
     assert proc.stdout == ""
     line = line_of(scenario.read_text(), "static_friciton")
     assert proc.stderr == (f"hoistsim: error: {scenario}:{line}: clutch.static_friciton: unknown key "
-                           "(did you mean clutch.static_friction?)\n")
+                           "(did you mean clutch.static_friction?); every key: docs/scenario.md\n")
     assert not output.exists()
 
 

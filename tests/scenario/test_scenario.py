@@ -316,7 +316,7 @@ def test_error_has_key_source_line_and_one_line_text():
     err = error_for(text)
     assert err.key == "clutch.static_friciton"
     assert err.source == "s.yaml" and err.line == line_of(text, "static_friciton")
-    assert str(err) == f"s.yaml:{err.line}: clutch.static_friciton: unknown key (did you mean clutch.static_friction?)"
+    assert str(err) == f"s.yaml:{err.line}: clutch.static_friciton: unknown key (did you mean clutch.static_friction?); every key: docs/scenario.md"
     assert isinstance(err, ValueError)
 
 
