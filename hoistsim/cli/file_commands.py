@@ -2,43 +2,40 @@
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import click
 
 from .group import debug_option, fail, main, one_line_errors
+from .terminal import table_width
 
 
 @main.command()
 @click.argument("results", type=click.Path(dir_okay=False))
 @click.option("--csv", "as_csv", is_flag=True,
               help="Every summary column as CSV on stdout: a header row, a units row, then the runs (SI).")
-@click.option("--columns", metavar="NAME,NAME,...", help="The summary columns to show, in this order.")
+@click.option("--columns", metavar="NAME,NAME,...",
+              help="The summary columns to show, in this order (in stacked blocks where they do not fit).")
+@click.option("--wide", is_flag=True, help="Every column in one table, however wide the terminal.")
 @debug_option
 @one_line_errors
-def compare(results, as_csv, columns):
+def compare(results, as_csv, columns, wide):
     """Compare the runs of RESULTS (an HDF5 file): one row per run, the summary as columns.
 
-    By default as many columns as fit 120 characters, the questions first (lock-up, heat, torque,
-    where the load went); units under the names.
+    By default as many columns as fit the terminal (COLUMNS, or 100 characters when not a terminal),
+    the questions first (lock-up, heat, torque, where the load went); units under the names.
     """
     from ..results.reading import read_summary, read_summary_units
-    from ..results.report import compare_table
+    from ..results.report import compare_table, csv_text
 
     rows = _read(read_summary, results)
     units = _read(read_summary_units, results)
     if as_csv:
-        import csv
-
-        writer = csv.writer(sys.stdout, lineterminator="\n")
-        writer.writerow(list(rows[0]))
-        writer.writerow([units.get(name, "") for name in rows[0]])
-        writer.writerows([list(row.values()) for row in rows])
+        click.echo(csv_text(rows, units), nl=False)
         return
     chosen = [c.strip() for c in columns.split(",") if c.strip()] if columns else None
     try:
-        click.echo(compare_table(rows, units, chosen))
+        click.echo(compare_table(rows, units, chosen, table_width(wide)))
     except ValueError as exc:
         fail(f"--columns: {exc}")
 

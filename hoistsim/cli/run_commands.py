@@ -9,7 +9,7 @@ import click
 
 from .group import (RESULT_SUFFIXES, RUN_FAILED, debug_option, exit_when_done, fail, main, one_line_errors,
                     read_scenario)
-from .terminal import compiling, progress_printer
+from .terminal import compiling, progress_printer, table_width
 
 
 @main.command()
@@ -30,9 +30,15 @@ from .terminal import compiling, progress_printer
               help="Run the sweep on a local Dask cluster of N processes (pip install -e \".[cluster]\").")
 @click.option("--scheduler", metavar="ADDRESS",
               help="Run the sweep on a running Dask cluster, e.g. tcp://10.0.0.5:8786.")
+@click.option("--wide", is_flag=True,
+              help="Print the summary table in one piece, however wide (by default its columns are stacked in "
+                   "blocks that fit the terminal: COLUMNS, or 100 characters when not a terminal).")
+@click.option("--csv", "as_csv", is_flag=True,
+              help="Print every run's summary as CSV on stdout instead of the table (as hoistsim compare --csv; "
+                   "the closing line goes to stderr).")
 @debug_option
 @one_line_errors
-def run(scenario, output, overrides, sweeps, summary_only, resume, workers, scheduler):
+def run(scenario, output, overrides, sweeps, summary_only, resume, workers, scheduler, wide, as_csv):
     """Simulate SCENARIO (every sweep value, when it has a sweep) and write OUTPUT.
 
     Every key of a scenario file, its unit, default and range: docs/scenario.md.
@@ -59,7 +65,7 @@ def run(scenario, output, overrides, sweeps, summary_only, resume, workers, sche
 
     from .. import _jax
     from ..results.output import write_runs
-    from ..results.report import periodic_table, summary_table
+    from ..results.report import csv_text, periodic_table, summary_table
     from ..running.simulation import SimulationError, simulate
 
     _jax.enable_compilation_cache()
@@ -108,13 +114,19 @@ def run(scenario, output, overrides, sweeps, summary_only, resume, workers, sche
     if len(warnings) > 5:
         click.echo(f"hoistsim: warning: ... and {len(warnings) - 5} more runs like these", err=True)
     elapsed = time.perf_counter() - started
-    click.echo(summary_table(summaries))
-    if "irregularity" in summaries[0]:
-        click.echo("periodic regime of the motor shaft:")
-        click.echo(periodic_table(summaries))
+    if as_csv:  # the file's own summary, as compare --csv reads it: the swept keys, the units row
+        from ..results.reading import read_summary, read_summary_units
+
+        click.echo(csv_text(read_summary(target), read_summary_units(target)), nl=False)
+    else:
+        width = table_width(wide)
+        click.echo(summary_table(summaries, width=width))
+        if "irregularity" in summaries[0]:
+            click.echo("periodic regime of the motor shaft:")
+            click.echo(periodic_table(summaries, width=width))
     count = len(summaries)
     click.echo(f"wrote {output} ({count} run{'s' if count != 1 else ''}"
-               f"{', summaries only' if summary_only else ''}, {elapsed:.2f} s)")
+               f"{', summaries only' if summary_only else ''}, {elapsed:.2f} s)", err=as_csv)
     if not clustered:  # a cluster's processes are stopped by the interpreter's teardown
         exit_when_done()
 

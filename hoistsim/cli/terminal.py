@@ -1,16 +1,30 @@
-"""What the command line says on a terminal while it works: a compilation under way, a sweep's progress.
+"""What the command line says on a terminal while it works (a compilation under way, a sweep's progress), and how
+wide its tables may be.
 
-Both write to stderr, so stdout keeps only the tables a user may pipe.
+The first two write to stderr, so stdout keeps only the tables a user may pipe.
 """
 
 from __future__ import annotations
 
 import contextlib
+import shutil
 import sys
 import threading
 import time
 
 import click
+
+
+# A table's width where stdout is not a terminal (a pipe, a file) and COLUMNS is not set.
+PIPED_WIDTH = 100
+
+
+def table_width(wide: bool = False) -> int | None:
+    """How wide a table may print: COLUMNS where set, else the terminal's width, else PIPED_WIDTH; None with
+    ``wide`` (the whole table, however wide)."""
+    if wide:
+        return None
+    return max(shutil.get_terminal_size((PIPED_WIDTH, 24)).columns, 40)
 
 
 @contextlib.contextmanager

@@ -1,8 +1,10 @@
-"""Tables for the terminal: aligned columns, units in the headers."""
+"""Tables for the terminal: aligned columns, units in the headers, within the terminal's width (stacked blocks of
+columns, or the columns that fit), and the same summaries as CSV."""
 
 from __future__ import annotations
 
 import math
+import re
 
 
 def table(headers: list[str], rows: list[list[str]], align: str | None = None) -> str:
@@ -16,6 +18,85 @@ def table(headers: list[str], rows: list[list[str]], align: str | None = None) -
 
     rule = "  ".join("-" * w for w in widths)
     return "\n".join([line(headers), rule, *(line(r) for r in rows)])
+
+
+def fitted_table(headers: list[str], rows: list[list[str]], width: int | None = None, align: str | None = None,
+                 keep: int = 1) -> str:
+    """A table within ``width`` characters: each header "name [unit]" with its unit on a line of its own under the
+    name, the name wrapped (:func:`_wrap`) where its column's values are narrower than it; the columns in blocks
+    stacked one under the other, each block repeating the first ``keep`` columns (the row's label) and as many
+    of the others as fit.  ``width`` None: one block however wide, the names unwrapped.  ``align`` as for
+    :func:`table` (default: the kept columns left, the rest right)."""
+    align = align or "l" * keep + "r" * (len(headers) - keep)
+    name_lines, units, widths = _columns(headers, rows, wrap=width is not None)
+    blocks = _blocks(widths, keep, width)
+    if len(blocks) > 1:  # as few blocks, evened out: the narrowest width that needs no more of them
+        blocks = next((b for limit in range(sum(widths[:keep]), width + 1)
+                       if len(b := _blocks(widths, keep, limit)) == len(blocks)), blocks)
+
+    def line(cells, shown):
+        return "  ".join(str(cells[i]).ljust(widths[i]) if align[i] == "l" else str(cells[i]).rjust(widths[i])
+                         for i in shown).rstrip()
+
+    texts = []
+    for block in blocks:
+        shown = [*range(keep), *block]
+        tall = max(len(name_lines[i]) for i in shown)
+        # the names' lines sit on the unit's line: a shorter name is padded above
+        head = [line([([""] * (tall - len(lines)) + lines)[k] for lines in name_lines], shown) for k in range(tall)]
+        head += [line(units, shown)] if any(units[i] for i in shown) else []
+        texts.append("\n".join([*head, "  ".join("-" * widths[i] for i in shown), *(line(r, shown) for r in rows)]))
+    return "\n\n".join(texts)
+
+
+def _columns(headers: list[str], rows: list[list[str]], wrap: bool = True):
+    """Each column's name as lines (wrapped to its values' width unless not ``wrap``), its unit, its width."""
+    names, units = zip(*(_name_and_unit(h) for h in headers))
+    widths = [max(len(str(x)) for x in col) for col in zip(units, *rows)]
+    name_lines = [_wrap(name, w) if wrap else [name] for name, w in zip(names, widths)]
+    return name_lines, units, [max(w, *(len(line) for line in lines)) for w, lines in zip(widths, name_lines)]
+
+
+def _wrap(name: str, width: int) -> list[str]:
+    """A column's name on lines of at most ``width`` where it can be: broken after a space, an underscore or a dot
+    (a summary's key, ``peak_clutch_`` over ``torque``), never inside a word."""
+    lines = [""]
+    for piece in re.split(r"(?<=[ _.])", name):
+        if lines[-1] and len((lines[-1] + piece).rstrip()) > width:
+            lines.append("")
+        lines[-1] += piece
+    return [line.rstrip() for line in lines]
+
+
+def _blocks(widths: list[int], keep: int, width: int | None) -> list[list[int]]:
+    """The columns after the first ``keep``, in order, as many to a block as fit ``width`` beside those."""
+    blocks, block, used = [], [], sum(widths[:keep]) + 2 * (keep - 1)
+    for i in range(keep, len(widths)):
+        if block and width is not None and used + 2 + widths[i] > width:
+            blocks.append(block)
+            block, used = [], sum(widths[:keep]) + 2 * (keep - 1)
+        block.append(i)
+        used += 2 + widths[i]
+    return [*blocks, block]
+
+
+def _name_and_unit(header: str) -> tuple[str, str]:
+    """"peak torque [N*m]" -> ("peak torque", "[N*m]"); a header without a unit keeps an empty one."""
+    name, bracket, unit = header.partition(" [")
+    return (name, f"[{unit}") if bracket and unit.endswith("]") else (header, "")
+
+
+def csv_text(rows: list[dict], units: dict[str, str]) -> str:
+    """Every run's summary as CSV: a header row, a units row, then the runs (SI)."""
+    import csv
+    import io
+
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow(list(rows[0]))
+    writer.writerow([units.get(name, "") for name in rows[0]])
+    writer.writerows([list(row.values()) for row in rows])
+    return out.getvalue()
 
 
 def fmt(value: float, digits: int = 4) -> str:
@@ -52,8 +133,9 @@ OPTIONAL_COLUMNS = {"slip_energy": [("peak_clutch_temperature", "peak clutch [de
                                             ("dynamic_factor_standard", "phi2 EN 13001", 1.0)]}
 
 
-def summary_table(summaries: list[dict], head: int = 12, tail: int = 6) -> str:
-    """Runs as rows, the summary as columns; long sweeps show their first and last runs."""
+def summary_table(summaries: list[dict], head: int = 12, tail: int = 6, width: int | None = None) -> str:
+    """Runs as rows, the summary as columns, in blocks within ``width`` (None: one block); long sweeps show their
+    first and last runs."""
     first = summaries[0]
     columns = [(key, f"{key[:-len('_lockup_time')]} lock-up [s]", 1.0) for key in first
                if key.endswith("_lockup_time")]  # a drawn drivetrain's clutches, by name
@@ -70,7 +152,7 @@ def summary_table(summaries: list[dict], head: int = 12, tail: int = 6) -> str:
     shown = summaries if len(summaries) <= head + tail else summaries[:head] + [None] + summaries[-tail:]
     rows = [[s["label"]] + [cell(s[key], scale) for key, _, scale in columns] if s is not None
             else ["..."] + [""] * len(columns) for s in shown]
-    text = table(["run"] + [header for _, header, _ in columns], rows)
+    text = fitted_table(["run"] + [header for _, header, _ in columns], rows, width)
     if len(summaries) > head + tail:
         text += f"\n({len(summaries)} runs; all of them: hoistsim compare OUT.h5 [--csv])"
     return text
@@ -88,12 +170,13 @@ PERIODIC_COLUMNS = [  # (summary key, header, scale)
 ]
 
 
-def periodic_table(summaries: list[dict], head: int = 12, tail: int = 6) -> str:
-    """The periodic regime of each run (motor shaft, analysed periods), Tredgold beside the simulation."""
+def periodic_table(summaries: list[dict], head: int = 12, tail: int = 6, width: int | None = None) -> str:
+    """The periodic regime of each run (motor shaft, analysed periods), Tredgold beside the simulation, in blocks
+    within ``width`` (None: one block)."""
     shown = summaries if len(summaries) <= head + tail else summaries[:head] + summaries[-tail:]
     rows = [[s["label"]] + [fmt(s[key] * scale if scale != 1 else s[key]) for key, _, scale in PERIODIC_COLUMNS]
             for s in shown]
-    return table(["run"] + [header for _, header, _ in PERIODIC_COLUMNS], rows)
+    return fitted_table(["run"] + [header for _, header, _ in PERIODIC_COLUMNS], rows, width)
 
 
 def flywheel_table(name: str, sizing, elapsed: float) -> str:
@@ -133,11 +216,12 @@ COMPARE_FIRST = ["lockup_time", "slip_energy", "peak_clutch_torque", "lowest_loa
 
 
 def compare_table(rows: list[dict], units: dict[str, str], columns: list[str] | None = None,
-                  width: int = 120) -> str:
+                  width: int | None = 120) -> str:
     """The runs of a file as rows, chosen columns (names, then units, as headers), within ``width``.
 
     Without ``columns``: the label, the swept keys, then COMPARE_FIRST and the rest of the summary,
-    as many as fit; a last line says how many were left out and how to see them.
+    as many as fit; a last line says how many were left out and how to see them.  With ``columns``: those,
+    in stacked blocks within ``width``.  ``width`` None: every column, one block however wide.
     """
     names = list(rows[0])
     swept = [n for n in names if "." in n and n != "label"]  # swept keys (dotted) come before the summary
@@ -150,19 +234,16 @@ def compare_table(rows: list[dict], units: dict[str, str], columns: list[str] | 
     def cell(value):
         return value if isinstance(value, str) else fmt(value)
 
-    shown, used = [], 0
-    for name in chosen:
-        cells = [name, units.get(name, ""), *(cell(r[name]) for r in rows)]
-        need = max(len(c) for c in cells) + (2 if shown else 0)
-        if columns is None and shown and used + need > width:
-            break
-        shown.append(name)
-        used += need
-    unit_row = [f"[{units[n]}]" if units.get(n) else "" for n in shown]
-    names, rule, under, *body = table(shown, [unit_row] + [[cell(r[n]) for n in shown] for r in rows]).split("\n")
-    text = "\n".join([names, under.rstrip(), rule, *body])  # the units under the names, above the rule
+    headers = [f"{n} [{units[n]}]" if units.get(n) else n for n in chosen]
+    cells = [[cell(r[n]) for n in chosen] for r in rows]
+    count = len(chosen)
+    if columns is None and width is not None:  # as many as fit beside the label, as fitted_table lays them out
+        widths = _columns(headers, cells)[2]
+        count = max(1, sum(1 for i in range(len(chosen)) if sum(widths[:i + 1]) + 2 * i <= width))
+    shown = chosen[:count]
+    text = fitted_table(headers[:count], [row[:count] for row in cells], width, align="l" + "r" * (count - 1))
     left = len(chosen) - len(shown)
     if left:
-        text += (f"\n({left} more column{'s' if left != 1 else ''}: --columns NAME,NAME,... to choose them, "
-                 "--csv for all)")
+        text += (f"\n({left} more column{'s' if left != 1 else ''}: --wide or --csv for all, "
+                 "--columns A,B,... to choose)")
     return text

@@ -1,25 +1,24 @@
-"""The machine a scenario stands for, as ``hoistsim check`` prints it: each body's inertia and the hoist's
-two-shaft reduced model, or a drawn drivetrain's shafts and clutches; then the parts the machine is built from
-(the hoist's as its template draws them)."""
+"""The machine a scenario stands for, as ``hoistsim check`` prints it: each body in its own quantity (a shaft's
+inertia, a load's mass), an elastic rope's stiffness, the load's static stretch and natural frequency on it, and
+the hoist's two-shaft reduced model, or a drawn drivetrain's shafts and clutches; then the parts the machine is
+built from (the hoist's as its template draws them)."""
 
 from __future__ import annotations
 
+import math
 import re
 
 from ..results.report import fmt, table
 
 
 def reduced_model_table(scenario) -> str:
-    """The machine as the simulator sees it: each body's inertia, then the two-shaft numbers of exercise 6."""
+    """The machine as the simulator sees it: each body, the rope, then the two-shaft numbers of exercise 6."""
     from ..errors import ScenarioError
     from ..machine.assemble import machine_elements
-    from ..machine.core.bodies import Bodies
-    from ..machine.core.layout import Layout
     from ..references.model import Machine
 
-    layout = Layout(machine_elements(scenario))
-    rows = [[f"J[{body}]", f"inertia of the {body} body (all its shafts carry, reduced)", fmt(float(j)), "kg*m^2"]
-            for body, j in zip(layout.bodies, Bodies(layout).inertia)]
+    elements = machine_elements(scenario)
+    rows = body_rows(elements) + rope_rows(elements)
     try:
         d = Machine.from_scenario(scenario).reduced()
     except ScenarioError:  # not the two-shaft hoist of exercise 6 (a motor that is not linear)
@@ -38,10 +37,62 @@ def reduced_model_table(scenario) -> str:
     return table(["symbol", "quantity", "value", "unit"], rows, align="llrl")
 
 
+def body_rows(elements) -> list[list[str]]:
+    """Each body in its own quantity: a shaft's inertia (all the shafts it carries, reduced to it) in kg*m^2, a
+    load that moves along its rope (a body of its own) by its mass in kg."""
+    from ..machine.core.bodies import Bodies
+    from ..machine.core.layout import Layout
+    from ..machine.elements.elastic_load import ElasticLoad
+
+    layout = Layout(elements)
+    moving = {body for part in elements if isinstance(part, ElasticLoad) for body in part.bodies()}
+    return [[f"m[{body}]", f"mass of the {body} body (it moves along its rope)", fmt(float(j)), "kg"]
+            if body in moving else
+            [f"J[{body}]", f"inertia of the {body} body (all its shafts carry, reduced)", fmt(float(j)), "kg*m^2"]
+            for body, j in zip(layout.bodies, Bodies(layout).inertia)]
+
+
+def rope_rows(elements) -> list[list[str]]:
+    """An elastic rope's numbers, as ``check`` prints them: its stiffness at the start (E A / L for a wire rope,
+    else as given), the load's static stretch on it, m g / k, and the load's natural frequency on it with the
+    drum held, sqrt(k / m).  None without an elastic rope."""
+    from ..machine.elements.elastic_load import ElasticLoad
+    from ..machine.elements.rope import Rope
+    from ..machine.elements.wire_rope import WireRope
+
+    loads = [part for part in elements if isinstance(part, ElasticLoad)]
+    rows = []
+    for rope in (part for part in elements if isinstance(part, (WireRope, Rope))):
+        if isinstance(rope, WireRope):
+            length = float(rope.free_length)
+            stiffness = float(rope.axial_stiffness) / length
+            how = f"E A / L at its free length L = {fmt(length)} m"
+        else:
+            stiffness = float(rope.constant_stiffness)
+            how = "as given (whatever the length paid out)"
+        mass = float(loads[0].mass)
+        omega = (stiffness / mass) ** 0.5
+        rows += [["k", f"rope stiffness, {how}", fmt(stiffness * 1e-3), "kN/m"],
+                 ["s_st", "static stretch with the load hanging, m g / k", fmt(float(rope.weight) / stiffness * 1e3),
+                  "mm"],
+                 ["w_n", "load's natural frequency on the rope, drum held: sqrt(k / m)", fmt(omega), "rad/s"],
+                 ["f_n", "the same in cycles, w_n / (2 pi)", fmt(omega / (2 * math.pi)), "Hz"]]
+    return rows
+
+
 def machine_table(scenario) -> str:
-    """What ``check`` prints of a scenario's machine: the hoist's reduced model, or a drawn drivetrain; then the
-    parts it is built from."""
-    first = reduced_model_table(scenario) if scenario.drivetrain is None else drivetrain_table(scenario.drivetrain)
+    """What ``check`` prints of a scenario's machine: the hoist's reduced model, or a drawn drivetrain (and its
+    rope); then the parts it is built from."""
+    if scenario.drivetrain is None:
+        first = reduced_model_table(scenario)
+    else:
+        from ..machine.assemble import machine_elements
+
+        elements = machine_elements(scenario)
+        rope = rope_rows(elements)  # the shafts are in the drivetrain's table; the load on its rope here
+        rope = [row for row in body_rows(elements) if row[-1] == "kg"] + rope if rope else []
+        first = drivetrain_table(scenario.drivetrain) + (
+            "\n\n" + table(["symbol", "quantity", "value", "unit"], rope, align="llrl") if rope else "")
     return first + "\n\n" + parts_table(scenario)
 
 

@@ -110,13 +110,15 @@ def test_cli_sweep_summary_only_compare_and_plot(tmp_path):
         assert "time" not in f["runs"] and f["runs/lockup_time"].shape == (64,)  # no series, the run variables
         assert f["runs/clutch.engagement_force"][-1] == pytest.approx(12000.0)
         assert f["runs/clutch.engagement_force"].attrs["units"] == "N"
-    table = CliRunner().invoke(main, ["compare", str(out)])
+    table = CliRunner(env={"COLUMNS": "120"}).invoke(main, ["compare", str(out)])
     assert table.exit_code == 0 and table.output.count("clutch.engagement_force=") == 64
     lines = table.output.splitlines()
     assert max(len(line) for line in lines) <= 120  # fits a terminal
-    assert lines[1].split()[:2] == ["[N]", "[s]"] and lines[-1].startswith("(") and "--columns" in lines[-1]
+    rule = next(i for i, line in enumerate(lines) if line.startswith("---"))  # units under the names, above it
+    assert lines[rule - 1].split()[:2] == ["[N]", "[s]"] and lines[-1].startswith("(") and "--columns" in lines[-1]
     chosen = CliRunner().invoke(main, ["compare", str(out), "--columns", "label,slip_energy,lockup_time"])
-    assert chosen.output.splitlines()[0].split() == ["label", "slip_energy", "lockup_time"]
+    assert [line.split() for line in chosen.output.splitlines()[:2]] == [["slip_", "lockup_"],
+                                                                         ["label", "energy", "time"]]
     rows = list(csv.DictReader(io.StringIO(CliRunner().invoke(main, ["compare", str(out), "--csv"]).output)))
     units, rows = rows[0], rows[1:]  # a units row under the header
     assert units["clutch.engagement_force"] == "N" and units["slip_energy"] == "J" and units["label"] == ""

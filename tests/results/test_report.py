@@ -1,0 +1,141 @@
+"""The terminal's tables: within the width they are given (stacked blocks, each repeating the row's label, or the
+columns that fit), every value still shown, aligned, units under the names."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from hoistsim.results.report import (OPTIONAL_COLUMNS, PERIODIC_COLUMNS, SUMMARY_COLUMNS, compare_table, csv_text,
+                                     fitted_table, periodic_table, summary_table)
+
+
+def _summary(label: str, i: int) -> dict:
+    """A run with every column the summary table knows, drawn clutches' too (values that differ run by run)."""
+    keys = [key for key, _, _ in SUMMARY_COLUMNS + PERIODIC_COLUMNS]
+    keys += [key for extra in OPTIONAL_COLUMNS.values() for key, _, _ in extra]
+    summary = {"label": label, "clutch1_lockup_time": 0.7913 + i, "clutch2_slip_energy": 6.138 * (i + 1)}
+    summary.update({key: (n + 1) * 1.2345 + 10 * i for n, key in enumerate(keys)})
+    summary["lockup_time"] = math.nan if i == 0 else 0.25 * i  # a clutch that never locks: "-"
+    return summary
+
+
+RUNS = [_summary(f"clutch.engagement_force={3 + i} kN", i) for i in range(4)]
+
+
+def _blocks(text: str) -> list[list[str]]:
+    return [block.splitlines() for block in text.split("\n\n")]
+
+
+def _values(block: list[str], label_width: int) -> list[list[str]]:
+    """A block's rows below its rule, each as its cells after the label."""
+    rule = next(i for i, line in enumerate(block) if line.startswith("---"))
+    return [line[label_width:].split() for line in block[rule + 1:]]
+
+
+@pytest.mark.parametrize("width", [80, 120])
+@pytest.mark.parametrize("table", [summary_table, periodic_table])
+def test_a_run_table_fits_the_width_in_blocks_and_keeps_every_value(table, width):
+    wide = table(RUNS, width=None)
+    fitted = table(RUNS, width=width)
+    assert max(len(line) for line in fitted.splitlines()) <= width
+    label_width = max(len(s["label"]) for s in RUNS)
+    [whole], blocks = _blocks(wide), _blocks(fitted)
+    assert len(blocks) > 1 or max(len(line) for line in wide.splitlines()) <= width
+    assert len(blocks) > 1 or table is periodic_table  # the whole summary is 200 characters or more
+    for block in blocks:  # each block repeats the label column, every run in its order
+        rule = next(i for i, line in enumerate(block) if line.startswith("---"))
+        assert [line[:label_width].strip() for line in block[rule + 1:]] == [s["label"] for s in RUNS]
+    # every value of the wide table, in the same order, once the blocks are read side by side
+    side_by_side = [sum(cells, []) for cells in zip(*(_values(block, label_width) for block in blocks))]
+    assert side_by_side == _values(whole, label_width)
+
+
+def test_a_block_is_aligned_with_its_units_under_the_names():
+    text = summary_table(RUNS[:1], width=80)
+    block = _blocks(text)[0]
+    rule = next(i for i, line in enumerate(block) if line.startswith("---"))
+    names, units, row = block[:rule - 1], block[rule - 1], block[rule + 1]
+    assert "[s]" in units and "[J]" in units and "lock-up" in names[-1]
+    spans = [(m.start(), m.end()) for m in __import__("re").finditer("-+", block[rule])]
+    for line in [*names, units, row]:  # every cell inside its column's rule, numbers right-aligned to its end
+        for start, end in spans[1:]:
+            cell = line[start:end]
+            assert line[end:end + 1] in ("", " ") and (not cell.strip() or cell.endswith(cell.strip()))
+    assert "clutch1" in names[0] and "heat" in names[1]  # a name wider than its values wraps at its space
+
+
+def test_wide_is_one_block_with_whole_names():
+    text = summary_table(RUNS, width=None)
+    assert "\n\n" not in text and "clutch heat" in text.splitlines()[0]
+
+
+def test_a_long_sweep_shows_its_ends_and_says_how_to_see_all():
+    runs = [_summary(f"run {i}", i) for i in range(30)]
+    text = summary_table(runs, width=80)
+    assert max(len(line) for line in text.splitlines()) <= 80
+    assert "run 0 " in text and "run 29" in text and "run 15" not in text and "..." in text
+    assert text.splitlines()[-1] == "(30 runs; all of them: hoistsim compare OUT.h5 [--csv])"
+
+
+def _file_rows():
+    rows = [{"label": s["label"], "clutch.engagement_force": 3000.0 + 1000 * i,
+             **{k: v for k, v in s.items() if k != "label"}} for i, s in enumerate(RUNS)]
+    units = {name: "s" if name.endswith("time") else "N" if name == "clutch.engagement_force" else "1"
+             for name in rows[0] if name != "label"}
+    return rows, units
+
+
+@pytest.mark.parametrize("width", [80, 120])
+def test_compare_shows_the_columns_that_fit(width):
+    rows, units = _file_rows()
+    text = compare_table(rows, units, width=width)
+    lines = text.splitlines()
+    assert max(len(line) for line in lines) <= width and "\n\n" not in text
+    assert lines[-1].startswith("(") and "--wide" in lines[-1] and "--columns" in lines[-1]
+    rule = next(i for i, line in enumerate(lines) if line.startswith("---"))
+    assert lines[rule - 1].split()[:2] == ["[N]", "[s]"]  # the swept key, then the lock-up time
+    assert [line.split("  ")[0] for line in lines[rule + 1:-1]] == [r["label"] for r in rows]
+    wider = compare_table(rows, units, width=width + 40)
+    assert len(wider.splitlines()[rule + 1]) > len(lines[rule + 1])  # a wider terminal: more columns
+
+
+@pytest.mark.parametrize("width", [80, 120])
+def test_compare_of_chosen_columns_stacks_them(width):
+    rows, units = _file_rows()
+    chosen = ["label", *[n for n in rows[0] if n != "label"]]
+    text = compare_table(rows, units, chosen, width=width)
+    assert max(len(line) for line in text.splitlines()) <= width and "more column" not in text
+    whole = compare_table(rows, units, chosen, width=None)
+    label_width = max(len(r["label"]) for r in rows)
+    side_by_side = [sum(cells, []) for cells in zip(*(_values(block, label_width) for block in _blocks(text)))]
+    assert side_by_side == _values(whole.splitlines(), label_width)
+
+
+def test_compare_wide_has_every_column_unwrapped():
+    rows, units = _file_rows()
+    text = compare_table(rows, units, width=None)
+    names = text.splitlines()[0].split()
+    assert sorted(names) == sorted(rows[0]) and names[:3] == ["label", "clutch.engagement_force", "lockup_time"]
+    assert "more column" not in text
+
+
+def test_a_name_wraps_at_its_underscores_and_dots():
+    text = fitted_table(["label", "clutch.engagement_force [N]", "peak_clutch_torque [N*m]"],
+                        [["a", "3000", "156.2"]], width=80)
+    lines = text.splitlines()
+    assert [line.split() for line in lines[:4]] == [["clutch.", "peak_"], ["engagement_", "clutch_"],
+                                                      ["label", "force", "torque"], ["[N]", "[N*m]"]]
+
+
+def test_csv_has_a_units_row():
+    rows, units = _file_rows()
+    lines = csv_text(rows, units).splitlines()
+    assert lines[0].split(",")[:2] == ["label", "clutch.engagement_force"] and lines[1].split(",")[:2] == ["", "N"]
+    assert len(lines) == 2 + len(rows) and lines[2].startswith("clutch.engagement_force=3 kN,3000.0,")
+
+
+def test_a_label_wider_than_the_width_still_gives_a_table():
+    text = fitted_table(["run", "lock-up [s]", "heat [J]"], [["x" * 50, "0.5", "12"]], width=40)
+    assert [line.split()[-1] for line in text.splitlines() if line.startswith("x")] == ["0.5", "12"]
