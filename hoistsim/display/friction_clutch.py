@@ -22,6 +22,10 @@ def _names(summary: dict) -> list[str]:
                     not in names]
 
 
+def _times(count: int) -> str:
+    return "once" if count == 1 else "twice" if count == 2 else f"{count} times"
+
+
 def _heat(joules: float) -> str:
     return f"{joules:.3g} J of heat" if abs(joules) < 1000 else f"{joules / 1000:.3g} kJ of heat"
 
@@ -41,11 +45,12 @@ def _story(name: str, summary: dict) -> str:
     said = ["locked from the start"] if from_start else []
     if events is None:  # the summary alone: its first lock
         said = said or ["never locks" if lockup != lockup else f"first locks at {lockup:.3f} s"]
-    elif len(switches) > STORY_SWITCHES:
-        counts = {kind: sum(k == kind for _, k in switches) for kind in _SAID}
-        first = next(t for t, kind in switches if kind == "lock") if counts["lock"] else None
-        said += [f"locks {counts['lock']} times" + (f" (first {first:.3f} s)" if first is not None else ""),
-                 f"lets go {counts['unlock']} times"]
+    elif len(switches) > STORY_SWITCHES:  # how often, and when it first locks
+        for word, said_as in _SAID.items():
+            count = sum(kind == word for _, kind in switches)
+            first = next((t for t, kind in switches if kind == word), None)
+            if count:
+                said.append(f"{said_as} {_times(count)}" + (f" (first {first:.3f} s)" if word == "lock" else ""))
     elif switches:
         said += [f"{_SAID[kind]} {t:.3f} s" for t, kind in switches]
     else:

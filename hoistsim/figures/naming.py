@@ -14,7 +14,7 @@ import textwrap
 FONT = 7.0  # pt: an event's name
 BESIDE = 2.0  # pt: from its line to its name
 APART = 1.5  # pt: between two names
-MERGED = 3  # events named by one label at most
+SHARED_SPAN = 3.0  # a shared name's events lie within this many names' widths
 LONGEST = 44  # characters of a shared name; beyond, its first event's and a count
 TITLE_CHARACTERS = 125  # a title's line at most (11 pt, on a figure 11 in wide)
 
@@ -44,7 +44,8 @@ def name_events(fig, ax, labels) -> None:
         if i == len(labels):
             return 0.0, ()
         options = []
-        for last in range(i, min(i + MERGED, len(labels))):
+        reach = [last for last in range(i, len(labels)) if xs[last] - xs[i] <= SHARED_SPAN * width]
+        for last in reach:
             shared = 10.0 * (last - i)
             left = xs[i] - BESIDE - width
             if left >= max(free, 0.0):
@@ -54,18 +55,20 @@ def name_events(fig, ax, labels) -> None:
             if xs[last] + BESIDE >= free and right <= span:
                 cost, rest = best(last + 1, right + APART)
                 options.append((shared + cost, ((i, last, "right"),) + rest))
-        if not options:  # too many too close: the closest few share one name, on their right, written over
-            last = min(i + MERGED, len(labels)) - 1
+        if not options:  # no room: they share one name on their right, over the last name
+            last = reach[-1]
             cost, rest = best(last + 1, xs[last] + BESIDE + width + APART)
             options.append((1000.0 + cost, ((i, last, "right"),) + rest))
         return min(options, key=lambda option: option[0])
 
     for first, last, side in best(0, -1e9)[1]:
         group = labels[first:last + 1]
-        texts = list(dict.fromkeys(text for _, text, _ in group))  # an instant named twice is named once
+        texts = list(dict.fromkeys(text for _, text, _ in group))  # a switch named twice is named once
         text = " / ".join(texts)
         if len(text) > LONGEST:
             text = f"{texts[0]} / {len(texts) - 1} more"
+        if len(group) > len(texts):  # a clutch locking and letting go again and again
+            text += f" ({len(group)} events)"
         colours = {colour for _, _, colour in group}
         anchor = group[0][0] if side == "left" else group[-1][0]
         ax.annotate(text, (anchor, 1.0), xycoords=("data", "axes fraction"),
