@@ -115,6 +115,15 @@ def test_the_title_tells_each_clutchs_story_and_its_heat():
     assert "third never locks" in alone
 
 
+def test_the_hoists_clutch_that_locks_again_says_how_often():
+    events = _run([(1.821, "lock", "clutch", "switch"), (2.5, "unlock", "clutch", "switch"),
+                   (4.9, "lock", "clutch", "switch")])["events"]
+    said = headline({"lockup_time": 1.821, "slip_energy": 13230.0, "slip_duration": 6.4, "events": events})
+    assert said[0] == "clutch locks 2 times (first at 1.821 s), 13.23 kJ of heat"
+    assert headline({"lockup_time": 1.821, "slip_energy": 13230.0, "slip_duration": 6.4})[0] == \
+        "clutch locks at 1.821 s, 13.23 kJ of heat"
+
+
 def test_a_long_title_is_wrapped_between_clutches_and_stays_above_the_panels():
     fig = runs_figure([_run()], plt, ONE)
     title = fig._suptitle.get_text()
