@@ -16,7 +16,16 @@ def _headline(summary: dict) -> str | None:
         return f"clutch never locks ({heat:.2f} kJ of heat up to the end)"
     if lockup == 0 and float(summary.get("slip_duration", 0.0)) == 0:
         return "clutch never slips"
+    events = summary.get("events")  # the run figure's: a clutch that locks again and again says how often
+    locks = 0 if events is None else sum(1 for row in events if _text(row["kind"]) == "lock"
+                                         and _text(row["element"]) == "clutch")
+    if locks > 1:
+        return f"clutch locks {locks} times (first at {lockup:.3f} s), {heat:.2f} kJ of heat"
     return f"clutch locks at {lockup:.3f} s, {heat:.2f} kJ of heat"
+
+
+def _text(value) -> str:
+    return value.decode() if isinstance(value, bytes) else str(value)
 
 
 CONE_CLUTCH = Display(

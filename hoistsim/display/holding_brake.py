@@ -2,11 +2,31 @@
 
 from __future__ import annotations
 
+import numpy as np
+
 from .panel import Display, Panel, Phase, Trace
 
+
+def _brake_panel(label: str) -> Panel:
+    return Panel("brake", "brake torque [N*m]\n(at the drum)", 40, (Trace(label, "brake_torque"),), zero_line=True,
+                 height=0.8)
+
+
+PANELS = (_brake_panel("holding the load up"),)
+
+
+def _panels_for(run: dict) -> tuple:
+    # a brake that holds a load lifted against it (a motor starting against a slipping brake) holds it down:
+    # its legend says which sign is which, not "holding the load up" over a negative torque
+    torque = run.get("brake_torque")
+    if torque is not None and (np.asarray(torque) < 0).any():
+        return (_brake_panel("brake torque\n(+ holds the load up)"),)
+    return PANELS
+
+
 HOLDING_BRAKE = Display(
-    panels=(Panel("brake", "brake torque [N*m]\n(at the drum)", 40, (Trace("holding the load up", "brake_torque"),),
-                  zero_line=True, height=0.8),),
+    panels=PANELS,
     shading=(Phase("brake holding", "brake_engaged", 1, "#8c510a", hatch="///"),),
     names_part=("brakes", "brake"),
+    panels_for=_panels_for,
 )

@@ -119,7 +119,8 @@ class Display:
 
     ``panels`` of the run figure, ``shading`` (phases), ``summary_panels`` and ``outcomes`` of the sweep's
     summary figure; ``headline(summary)``: what a run's title says of the part, from the run's summary
-    (None: nothing; a KeyError: the run has not the part); ``panels_for(run)``: the panels for a run read
+    (None: nothing; a KeyError: the run has not the part), which holds the run's ``events`` where the caller
+    has them (the run figure: a clutch's story of locks and lets-go; ``watch`` prints the summary alone); ``panels_for(run)``: the panels for a run read
     back (``run["parameters"]`` the resolved scenario) where they are named after parts the user named
     (a drawn drivetrain's), ``panels`` when None; ``reads(column)``: whether the run figure reads a column
     beyond those its ``panels`` name.

@@ -18,6 +18,7 @@ import numpy as np
 from ..display import DISPLAYS, headline
 from .base import colour_scale, swept_label
 from .frames import FrameSpec, FreshFrames
+from .naming import name_events, wrap_title
 from .placing import align_ylabels, place_panels
 
 FEW = 4  # more runs than this are drawn as a colour-mapped family
@@ -65,8 +66,7 @@ def runs_figure(runs, plt, swept, frames=None):
         _draw_panel(ax, panel, runs, run_colours, mode, plt)
     if mode == "one":
         _shade(axes, runs[0], shading)
-    if mode != "family":
-        _draw_events(axes, runs, run_colours, mode)
+    labels = _draw_events(axes, runs, run_colours, mode) if mode != "family" else []
 
     for ax, panel in zip(axes, panels):
         ax.set_ylabel(panel.ylabel)
@@ -74,9 +74,11 @@ def runs_figure(runs, plt, swept, frames=None):
         if panel.zero_line:
             ax.axhline(0.0, color="k", lw=0.6)
         _no_round_off_zoom(ax)
-        handles, labels = ax.get_legend_handles_labels()
-        if handles:  # beside the panel, past the right-hand scale where there is one
-            ax.legend(handles, labels, **{**_LEGEND, "bbox_to_anchor": (_legend_anchor(panel), 1.0)})
+        entries = {}  # one entry a label: every clutch's locks are one kind of mark
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            entries.setdefault(label, handle)
+        if entries:  # beside the panel, past the right-hand scale where there is one
+            ax.legend(list(entries.values()), list(entries), **{**_LEGEND, "bbox_to_anchor": (_legend_anchor(panel), 1.0)})
     axes[-1].set_xlabel("time [s]")
     axes[-1].set_xlim(min(r["time"][0] for r in runs), max(r["time"][-1] for r in runs))
     title = fig.suptitle(_title(runs, swept), fontsize=11, x=0.01, ha="left")
@@ -87,6 +89,7 @@ def runs_figure(runs, plt, swept, frames=None):
         bar.set_label(swept_label(swept), fontsize=9)
     else:
         place_panels(fig, axes, heights, [_legend_anchor(panel) for panel in panels], title)
+        name_events(fig, axes[0], labels)
     return fig
 
 
@@ -200,9 +203,12 @@ def _marks(ax, trace, scale, runs, run_colours, mode):
 
 def _shade(axes, run, shading):
     """Each phase of the run (clutch open, brake holding, clutch locked) shaded across every panel."""
+    time = np.asarray(run["time"], dtype=float)
     for phase in shading:
         where = np.asarray(run[phase.column]) == phase.value
-        if not where.any():
+        # a phase of a row alone (a rope slack at the first instant only) shades nothing a reader could see:
+        # no legend entry either
+        if np.diff(time)[where[:-1]].sum() <= 1e-3 * (time[-1] - time[0]):
             continue
         for ax in axes:
             ax.fill_between(run["time"], 0, 1, where=where, transform=ax.get_xaxis_transform(), step="post",
@@ -227,7 +233,7 @@ def _event_text(row) -> str:
 def _draw_events(axes, runs, run_colours, mode):
     """Switches, scheduled instants and limits crossed as lines in every panel; named at the top (one run) or
     by style.  Observations (a peak, a lowest point) and the ends of cycles get none: they are rows."""
-    seen = set()
+    seen, labels = set(), []  # labels: (time, text, colour) of one run's events, named once the panels are placed
     for run, colour in zip(runs, run_colours):
         rows = [(float(row["time"]), _kind(row), _event_text(row)) for row in run["events"]
                 if _text(row, "category") not in QUIET]
@@ -235,26 +241,19 @@ def _draw_events(axes, runs, run_colours, mode):
             axes[0].annotate(f"{len(rows)} switches: listed in the file's events, not drawn",
                              (0.01, 0.02), xycoords="axes fraction", fontsize=8, color="0.3")
             continue
-        named: dict = {}  # time -> the kinds named there: events at one instant share one label
         for time, kind, text in rows:
             kind_colour, style = _EVENT_STYLE.get(kind, ("#888888", ":"))
             for ax in axes:
                 ax.axvline(time, color=kind_colour if mode == "one" else colour, ls=style, lw=0.9, alpha=0.75)
             if mode == "one":
-                if time in named:
-                    named[time][1].append(text)
-                    named[time][0].set_text(", ".join(named[time][1]))
-                    continue
-                label = axes[0].annotate(text, (time, 1.0), xycoords=("data", "axes fraction"),
-                                         xytext=(2, -3), textcoords="offset points", fontsize=7, rotation=90,
-                                         va="top", color=kind_colour)
-                named[time] = (label, [text])
+                labels.append((time, text, kind_colour))
             elif kind not in seen:
                 axes[0].plot([], [], color="0.3", ls=style, lw=0.9, label=f"event: {kind.replace('_', ' ')}")
             seen.add(kind)
     if mode == "few":
         for run, colour in zip(runs, run_colours):
             axes[0].plot([], [], color=colour, lw=3, label=_run_name(run))
+    return labels
 
 
 def _no_round_off_zoom(ax):
@@ -314,8 +313,8 @@ def _title(runs, swept) -> str:
     name = str(attrs.get("name", ""))
     if len(runs) > 1:
         return f"{name}: {len(runs)} runs, coloured by {swept_label(swept)}"
-    said = headline(attrs)
-    return f"{name}: " + "; ".join(said) if said else name
+    said = headline({**attrs, "events": runs[0]["events"]})  # the events: each clutch's story
+    return wrap_title(name, said)
 
 
 def _run_name(run) -> str:

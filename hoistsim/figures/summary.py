@@ -73,15 +73,24 @@ def summary_figure(summaries, swept, plt, name: str = "", parameters: dict | Non
         axes[-2][-1].xaxis.set_tick_params(labelbottom=True)
         axes[-2][-1].set_xlabel(swept_label(swept))
 
+    from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
-    handles = [Patch(facecolor=o.colour, alpha=0.18, label=f"{o.label} ({int(m.sum())} of {len(m)} runs)")
-               for o, m in outcomes]
-    handles += [h for ax in axes.flat for h in ax.get_legend_handles_labels()[0]]
+    # a kind of run: its band, and where the runs are few enough to be marked one by one, its marker on it
+    handles = [(Patch(facecolor=o.colour, alpha=0.18),) + ((Line2D([], [], ls="", marker=o.marker, color=o.colour,
+                                                                   ms=6),) if few else ()) for o, _ in outcomes]
+    labels = [f"{o.label} ({int(m.sum())} of {len(m)} runs)" for o, m in outcomes]
+    for ax in axes.flat:
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            handles.append(handle)
+            labels.append(label)
     fig.suptitle(f"{name}: {len(summaries)} runs against {swept_label(swept)}",
                  fontsize=11, x=0.01, ha="left")
     if handles:
-        fig.legend(handles=handles, loc="outside lower center", ncols=min(len(handles), 2), fontsize=8, frameon=False)
+        from matplotlib.legend_handler import HandlerTuple
+
+        fig.legend(handles, labels, loc="outside lower center", ncols=min(len(handles), 2), fontsize=8,
+                   frameon=False, handler_map={tuple: HandlerTuple(ndivide=1)})
     return fig
 
 

@@ -39,7 +39,7 @@ def test_a_clutch_named_brake_is_drawn_as_a_clutch_not_as_the_hoists_brake():
 def test_every_new_kind_of_part_has_its_panel():
     run = _run({"shafts": {"a": {}, "b": {}, "c": {}}, "torques": [{"shaft": "a"}],
                 "one_way_clutches": {"freewheel": {"between": ["a", "b"]}},
-                "bearing_frictions": {"bearing": {"shaft": "c"}},
+                "bearing_frictions": {"bearing": {"shaft": "c", "torque": 2.0, "peak": 1.5}},
                 "eddy_current_brakes": {"eddy": {"shaft": "c"}}, "heat_capacitors": {"pads": {}},
                 "planetaries": {"set": {"sun": "a", "carrier": "b", "ring": "c"}}})
     panels = {panel.name: [trace.label for trace in panel.traces] for panel in _panels(set(run), run)}

@@ -113,7 +113,8 @@ def test_legends_sit_beside_the_panels_not_on_the_data(results):
 
 def test_every_text_lies_inside_the_figure_and_the_panels_keep_apart(results):
     """A run's figure and a few runs' are placed from their measured texts: nothing past the figure's
-    edges, the title above the panels, no panel or legend on the next one, the y labels in one column."""
+    edges, the title above the panels, no panel or legend on the next one, the y labels in one column, no
+    event's name on another's."""
     one = read_runs(results["engage_at_speed_with_brake"], columns=runs_columns())
     two = read_runs(results["runback"], columns=runs_columns()) + read_runs(results["exercise6_direct_start"],
                                                                              columns=runs_columns())
@@ -133,6 +134,9 @@ def test_every_text_lies_inside_the_figure_and_the_panels_keep_apart(results):
             assert upper.get_window_extent(renderer).y0 > below
             if upper.get_legend() is not None:
                 assert upper.get_legend().get_window_extent(renderer).y0 >= below - 1, upper.get_ylabel()
+        names = [t.get_window_extent(renderer) for t in panels[0].texts if t.get_gid() == "event name"]
+        assert not [(a, b) for i, a in enumerate(names) for b in names[i + 1:] if a.overlaps(b)]  # see also
+        # test_drawn_figures.py: events a few milliseconds apart
         sides = [ax.yaxis.label.get_window_extent(renderer).x1 for ax in panels]  # the side facing the axes
         assert max(sides) - min(sides) < 1
         plt.close(fig)

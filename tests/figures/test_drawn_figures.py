@@ -1,0 +1,219 @@
+"""The run figure of a drawn drivetrain answers like the hoist's: event names that never overlap, each clutch's
+story and heat in the title, its torque against its static capacity, its heat, one legend entry a kind of mark;
+legends that show only what the run has.
+
+Drawn from runs made here (columns and events as a results file gives them back), so no solver is compiled;
+the shipped CoupledClutches and two-speed hoist are run once, in the slow test at the end.
+"""
+
+from __future__ import annotations
+
+import json
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+from click.testing import CliRunner  # noqa: E402
+from helpers import SCENARIOS  # noqa: E402
+
+from hoistsim.display import headline  # noqa: E402
+from hoistsim.display.holding_brake import HOLDING_BRAKE  # noqa: E402
+from hoistsim.display.rope import ROPE  # noqa: E402
+from hoistsim.figures.naming import wrap_title  # noqa: E402
+from hoistsim.figures.runs import _shade, runs_figure  # noqa: E402
+from hoistsim.results.reading import events_table  # noqa: E402
+
+T = np.linspace(0.0, 2.5, 2501)
+ONE = ("run", np.zeros(1), "")
+# a shift as the two-speed hoist's, then a burst of switches within 20 ms, then a lock as another engages
+EVENTS = [(1.2, "engage", "high", "switch"), (1.2632, "unlock", "low", "switch"), (1.3, "disengage", "low", "switch"),
+          (1.304, "lock", "high", "switch"), (1.6, "lock", "low", "switch"), (1.605, "unlock", "low", "switch"),
+          (1.61, "lock", "low", "switch"), (1.615, "unlock", "low", "switch"), (1.62, "lock", "low", "switch"),
+          (2.0, "engage", "third", "switch"), (2.0066, "lock", "high", "switch"), (2.2, "slip_peak", "high",
+                                                                                     "observation")]
+
+
+def _run(events=EVENTS, summary=None):
+    """A drawn run read back: three shafts, three clutches (the low one locked from the start, its torque both
+    ways), every clutch's columns, the events given."""
+    clutches = {"low": {"between": ["a", "b"]}, "high": {"between": ["a", "c"]}, "third": {"between": ["c", "b"]}}
+    run = {"time": T, "a_speed": 10 * (1 - np.exp(-T)), "b_speed": 5 * (1 - np.exp(-T)), "c_speed": 2 * T}
+    for i, name in enumerate(clutches):
+        run[f"{name}_slip"] = np.sin((i + 1) * T)
+        run[f"{name}_torque"] = 300 * np.cos((i + 1) * T) + (0 if name == "low" else 300)  # only low's goes below 0
+        run[f"{name}_capacity"] = np.full_like(T, 700.0)
+        run[f"{name}_energy"] = 200 * (i + 1) * T  # low 0.5 kJ, third 1.5 kJ at the end: drawn in kJ
+    table = events_table({"time": np.array([e[0] for e in events]), "kind": np.array([e[1] for e in events]),
+                          "element": np.array([e[2] for e in events]), "torque_margin": np.full(len(events), np.nan),
+                          "mode_after": np.array(["locked"] * len(events)), "category": np.array([e[3] for e in events])})
+    summary = summary if summary is not None else {
+        "low_lockup_time": 0.0, "low_slip_energy": 4.14, "high_lockup_time": 1.304, "high_slip_energy": 236.6,
+        "third_lockup_time": np.nan, "third_slip_energy": 1500.0}
+    run["events"] = table
+    run["attrs"] = {"name": "drawn", "parameters": json.dumps({"drivetrain": {
+        "shafts": {"a": {}, "b": {}, "c": {}}, "clutches": clutches}}), **summary}
+    return run
+
+
+def _panels(fig):
+    return [ax for ax in fig.axes if ax.get_ylabel()]
+
+
+def _overlaps(boxes) -> list:
+    return [(i, j) for i, a in enumerate(boxes) for j, b in enumerate(boxes) if i < j and a.overlaps(b)]
+
+
+def _event_names_apart(fig):
+    """No two event names on each other, each inside the top panel; returns their texts."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    top = _panels(fig)[0]
+    names = [t for t in top.texts if t.get_gid() == "event name"]
+    boxes = [t.get_window_extent(renderer) for t in names]
+    assert not _overlaps(boxes), [(names[i].get_text(), names[j].get_text()) for i, j in _overlaps(boxes)]
+    frame = top.get_window_extent(renderer)
+    for text, box in zip(names, boxes):
+        assert frame.x0 - 1 <= box.x0 and box.x1 <= frame.x1 + 1 and frame.y0 - 1 <= box.y0, text.get_text()
+    return [t.get_text() for t in names]
+
+
+def test_event_names_never_overlap_and_name_every_switch():
+    fig = runs_figure([_run()], plt, ONE)
+    names = _event_names_apart(fig)
+    said = " / ".join(names)
+    for text in ("high engage", "low unlock", "low disengage", "high lock", "third engage"):
+        assert text in said
+    assert "slip peak" not in said  # an observation is a row, not a line
+    plt.close(fig)
+
+
+def test_event_names_of_a_burst_share_a_name_and_stay_inside_the_panel():
+    """Twenty switches within 40 ms, one at the panel's very start and one at its end."""
+    burst = [(0.0, "lock", "low", "switch"), (2.5, "unlock", "high", "switch")]
+    burst += [(1.0 + 0.002 * i, "lock" if i % 2 else "unlock", "low", "switch") for i in range(20)]
+    fig = runs_figure([_run(burst)], plt, ONE)
+    names = _event_names_apart(fig)
+    assert len(names) < 22 and any(name.endswith("events)") for name in names)
+    plt.close(fig)
+
+
+def test_the_title_tells_each_clutchs_story_and_its_heat():
+    run = _run()
+    said = headline({**run["attrs"], "events": run["events"]})
+    stories = dict(part.split(" ", 1) for text in said for part in text.split("; "))
+    # seven switches: told by their counts
+    assert stories["low"] == "locked from the start, locks 3 times (first 1.600 s), lets go 3 times, opens once, " \
+                             "4.14 J of heat"
+    assert stories["high"] == "engages 1.200 s, locks 1.304 s, locks 2.007 s, 237 J of heat"
+    assert stories["third"] == "engages 2.000 s, 1.5 kJ of heat"
+    # the summary alone (hoistsim watch): the first lock, never "locks at 0"
+    alone = headline(run["attrs"])[0]
+    assert alone.startswith("low locked from the start, 4.14 J of heat; high first locks at 1.304 s")
+    assert "third never locks" in alone
+
+
+def test_the_hoists_clutch_that_locks_again_says_how_often():
+    events = _run([(1.821, "lock", "clutch", "switch"), (2.5, "unlock", "clutch", "switch"),
+                   (4.9, "lock", "clutch", "switch")])["events"]
+    said = headline({"lockup_time": 1.821, "slip_energy": 13230.0, "slip_duration": 6.4, "events": events})
+    assert said[0] == "clutch locks 2 times (first at 1.821 s), 13.23 kJ of heat"
+    assert headline({"lockup_time": 1.821, "slip_energy": 13230.0, "slip_duration": 6.4})[0] == \
+        "clutch locks at 1.821 s, 13.23 kJ of heat"
+
+
+def test_a_long_title_is_wrapped_between_clutches_and_stays_above_the_panels():
+    fig = runs_figure([_run()], plt, ONE)
+    title = fig._suptitle.get_text()
+    assert "\n" in title and all(len(line) <= 125 for line in title.splitlines())
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    assert fig._suptitle.get_window_extent(renderer).y0 >= _panels(fig)[0].get_window_extent(renderer).y1
+    assert fig._suptitle.get_window_extent(renderer).y1 <= fig.bbox.y1 + 1
+    plt.close(fig)
+    assert wrap_title("n", ["a; b"]) == "n: a; b" and wrap_title("n", []) == "n"
+
+
+def test_each_clutch_torque_against_its_capacity_and_every_clutchs_heat():
+    fig = runs_figure([_run()], plt, ONE)
+    panels = {ax.get_ylabel(): ax for ax in _panels(fig)}
+    for name in ("low", "high", "third"):
+        legend = [t.get_text() for t in panels[f"{name}\ntorque [N*m]"].get_legend().get_texts()]
+        # the capacity's other side only where the torque goes there
+        assert legend == ["torque", "static capacity"] + (["- static capacity"] if name == "low" else [])
+    heat = panels["clutch heat [kJ]\n(so far)"]
+    assert [t.get_text() for t in heat.get_legend().get_texts()] == ["low", "high", "third"]
+    assert max(np.max(line.get_ydata()) for line in heat.get_lines()) == pytest.approx(1.5)  # kJ
+    plt.close(fig)
+
+
+def test_one_legend_entry_a_kind_of_mark():
+    events = [(0.5, "lock", "low", "switch"), (0.7, "lock", "high", "switch"), (0.9, "lock", "third", "switch")]
+    fig = runs_figure([_run(events)], plt, ONE)
+    slips = next(ax for ax in _panels(fig) if ax.get_ylabel().startswith("clutch slip"))
+    legend = [t.get_text() for t in slips.get_legend().get_texts()]
+    assert legend.count("clutch locks") == 1 and len([c for c in slips.collections if c.get_label()]) == 3
+    plt.close(fig)
+
+
+def test_legends_show_only_what_the_run_has():
+    """A rope slack only at the first instant shades nothing and has no legend entry; a brake whose torque goes
+    negative is not "holding the load up"."""
+    fig, ax = plt.subplots()
+    _shade([ax], {"time": T, "rope_taut": np.r_[0, np.ones(len(T) - 1)]}, ROPE.shading)
+    assert not ax.get_legend_handles_labels()[1]
+    _shade([ax], {"time": T, "rope_taut": (T > 1).astype(int)}, ROPE.shading)
+    assert ax.get_legend_handles_labels()[1] == ["rope slack"]
+    plt.close(fig)
+    up = HOLDING_BRAKE.panels_of({"brake_torque": np.array([0.0, 900.0])})[0].traces[0].label
+    both = HOLDING_BRAKE.panels_of({"brake_torque": np.array([900.0, -900.0])})[0].traces[0].label
+    assert up == "holding the load up" and "holding the load up" not in both
+
+
+def test_the_summary_legend_shows_the_markers_it_draws():
+    from hoistsim.figures.summary import summary_figure
+
+    rows = [{"label": str(i), "lockup_time": np.nan if i < 2 else 0.5, "slip_duration": 0.5, "slip_energy": 1.0,
+             "peak_clutch_torque": 1.0} for i in range(5)]
+    fig = summary_figure(rows, ("clutch.engagement_force", np.arange(5.0), "N"), plt, "demo")
+    legend = fig.legends[0]
+    index = [t.get_text() for t in legend.get_texts()].index("never locks (2 of 5 runs)")
+    from matplotlib.lines import Line2D
+
+    assert index == 0 and "^" in [line.get_marker() for line in legend.findobj(Line2D)]
+    plt.close(fig)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("scenario, says", [
+    ("coupled_clutches", "clutch1 locks 0.791 s, lets go 0.831 s, locks 0.907 s, lets go 1.000 s, opens 1.251 s"),
+    ("two_speed_hoist", "low_clutch locked from the start, lets go 1.263 s, opens 1.300 s"),
+])
+def test_the_shipped_drawn_figures_answer(tmp_path, scenario, says):
+    """CoupledClutches (a lock as another clutch engages, 6.6 ms apart) and the two-speed shift (three switches
+    within 41 ms): every event named apart, each clutch's story in the title, capacities and heat drawn."""
+    from hoistsim.figures.files import runs_columns
+    from hoistsim.results.reading import read_runs
+
+    path = tmp_path / "run.h5"
+    result = CliRunner().invoke(main_command(), ["run", str(SCENARIOS / f"{scenario}.yaml"), "-o", str(path)])
+    assert result.exit_code == 0, result.output
+    runs = read_runs(path, columns=runs_columns())
+    fig = runs_figure(runs, plt, ONE)
+    names = _event_names_apart(fig)
+    assert sum(len(name.split(" / ")) for name in names) >= 4  # every switch named
+    assert says in fig._suptitle.get_text().replace("\n    ", " ").replace(";\n", "; ")
+    labels = [ax.get_ylabel() for ax in _panels(fig)]
+    assert any(label.startswith("clutch heat") for label in labels)
+    for ax in _panels(fig):
+        if ax.get_ylabel().endswith("torque [N*m]") and "\n" in ax.get_ylabel():
+            assert "static capacity" in [t.get_text() for t in ax.get_legend().get_texts()]
+    plt.close(fig)
+
+
+def main_command():
+    from hoistsim.cli import main
+
+    return main
