@@ -18,7 +18,7 @@ def reduced_model_table(scenario) -> str:
     from ..references.model import Machine
 
     elements = machine_elements(scenario)
-    rows = body_rows(elements) + rope_rows(elements)
+    rows = body_rows(elements) + motor_rows(elements) + rope_rows(elements)
     try:
         d = Machine.from_scenario(scenario).reduced()
     except ScenarioError:  # not the two-shaft hoist of exercise 6 (a motor that is not linear)
@@ -50,6 +50,36 @@ def body_rows(elements) -> list[list[str]]:
             if body in moving else
             [f"J[{body}]", f"inertia of the {body} body (all its shafts carry, reduced)", fmt(float(j)), "kg*m^2"]
             for body, j in zip(layout.bodies, Bodies(layout).inertia)]
+
+
+def motor_rows(elements) -> list[list[str]]:
+    """Each motor's characteristic as ``check`` prints it: its torque at standstill, where it reaches zero and,
+    for an induction motor (Kloss), its breakdown torque and the speed it gives it at; then its torque at five
+    speeds from standstill to its no-load speed (a curve to read, the nameplate's numbers worked out)."""
+    from ..machine.elements.kloss_motor import KlossMotor
+    from ..machine.elements.linear_motor import LinearMotor
+    from ..machine.elements.motor import Motor
+
+    rows = []
+    for motor in (part for part in elements if isinstance(part, Motor)):
+        law, name = motor.law, motor.section
+        if isinstance(law, LinearMotor):
+            top = float(law.no_load_speed)
+        elif isinstance(law, KlossMotor):
+            top = float(law.synchronous_speed)
+        else:  # a table or a constant torque: its curve says it
+            continue
+        rpm = 30.0 / math.pi
+        rows += [[f"C0[{name}]", f"{name}'s torque at standstill", fmt(float(law.characteristic(0.0))), "N*m"],
+                 [f"n0[{name}]", f"{name}'s no-load (synchronous) speed, where its torque is 0", fmt(top * rpm), "rpm"]]
+        if isinstance(law, KlossMotor):
+            speed = top * (1.0 - float(law.breakdown_slip))
+            rows += [[f"T_b[{name}]", f"{name}'s breakdown torque, at {fmt(speed * rpm)} rpm (slip "
+                                      f"{fmt(float(law.breakdown_slip))})", fmt(float(law.breakdown_torque)), "N*m"]]
+        curve = ", ".join(f"{fmt(float(law.characteristic(top * k / 4)))} at {fmt(top * k / 4 * rpm)}"
+                          for k in range(1, 4))
+        rows += [[f"C[{name}]", f"{name}'s torque [N*m] at [rpm]", curve, ""]]
+    return rows
 
 
 def rope_rows(elements) -> list[list[str]]:

@@ -90,3 +90,19 @@ def test_a_bad_nameplate_is_one_line_naming_its_key(motor, key, says):
         _rotor(**motor)
     assert err.value.key == f"drivetrain.motors.motor.{key}" and says in err.value.message, (err.value.key,
                                                                                               err.value.message)
+
+
+def test_check_prints_the_characteristic_the_nameplate_makes():
+    """`hoistsim check` works the nameplate out: the stall torque of the line through the rated point, or Kloss's
+    torque at standstill, 2 T_b s_b / (1 + s_b^2), its breakdown torque and the speed it gives it at."""
+    from hoistsim.studies.machine_tables import machine_table
+
+    linear = load_scenario(EXERCISE6_FILE, overrides={"motor.stall_torque": None, "motor.rated_power": "15 kW",
+                                                      "motor.rated_speed": "280 rpm"})
+    text = machine_table(linear)
+    assert "motor's torque at standstill" in text and "7674" in text  # 15 T_N, T_N = 15 kW / 280 rpm
+    kloss = load_scenario(EXERCISE6_FILE, overrides={"motor.stall_torque": None, "motor.breakdown_torque": "1300 N*m",
+                                                     "motor.breakdown_slip": 0.25})
+    text = machine_table(kloss)
+    standstill = 2 * 1300 * 0.25 / (1 + 0.25**2)
+    assert f"{standstill:.4g}" in text and "breakdown torque, at 225 rpm (slip 0.25)" in text
