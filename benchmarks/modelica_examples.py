@@ -38,12 +38,14 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=3)
     args = parser.parse_args()
-    print(f"{'example':<16} {'first run [s]':>14} {'warm run [ms]':>14} {'simulated [s]':>14}")
-    for path in sorted((ROOT / "scenarios" / "modelica").glob("*.yaml")):
+    paths = sorted((ROOT / "scenarios" / "modelica").glob("*.yaml"))
+    width = max(len("example"), *(len(path.stem) for path in paths))
+    print(f"{'example':<{width}} {'first run [s]':>14} {'warm run [ms]':>14} {'simulated [s]':>14}")
+    for path in paths:
         runs = [measure(path) for _ in range(args.repeats)]
         first = statistics.median(r[0] for r in runs)
         warm = statistics.median(r[1] for r in runs)
-        print(f"{path.stem:<16} {first:>14.2f} {warm * 1e3:>14.1f} {runs[0][2]:>14.3g}")
+        print(f"{path.stem:<{width}} {first:>14.2f} {warm * 1e3:>14.1f} {runs[0][2]:>14.3g}")
 
 
 if __name__ == "__main__":
