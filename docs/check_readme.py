@@ -130,7 +130,7 @@ def block_commands(text: str) -> list[Command]:
         continues = False
         for offset, line in enumerate(body):
             stripped = line.strip()
-            if not stripped or (stripped.startswith("#") and not continues):
+            if not stripped or (line.startswith("#") and not continues):  # a comment of its own
                 continue
             if found and (continues or line[:1].isspace()) and found[-1].line >= start:
                 found[-1].text += "\n" + line
