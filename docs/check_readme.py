@@ -210,6 +210,9 @@ def plan(text: str, *, tests: str = "none", long: bool = False, venv: bool = Fal
             if sub:
                 previous[sub] = step.words[2:]
             _decide(step, tests=tests, long=long, venv=venv)
+            earlier = [s for s in steps if s.shell == step.shell and s.handling == step.handling == "run"]
+            if earlier and "pytest" in step.words:  # the suite written twice is run once
+                step.handling, step.reason = "skip", f"run above, README line {earlier[0].command.line}"
             steps.append(step)
     return steps
 
@@ -226,6 +229,8 @@ def _decide(step: Step, *, tests: str, long: bool, venv: bool) -> None:
                            else "the whole test suite, about 10 minutes here: --tests all runs it")
     elif venv and (words[:3] == ["python3", "-m", "venv"] or program == "pip"):
         step.handling, step.reason = "skip", "the environment given with --venv"
+    elif program.startswith("python") and words[1:2] == ["docs/check_readme.py"]:
+        step.handling, step.reason = "skip", "this check itself"
     elif program.startswith("python") and len(words) > 1 and words[1].startswith(("benchmarks/", "docs/")):
         step.handling, step.reason = "skip", "a benchmark or the figures, minutes: run it alone on a quiet machine"
     elif step.subcommand == "watch":
@@ -286,6 +291,12 @@ def _wait_for_change(paths: list[Path], before: dict, until: float, process) -> 
     return False
 
 
+def _ctrl_c_as_in_a_terminal():
+    # a process started in the background (`... &`) inherits SIGINT ignored, and Python then never raises
+    # KeyboardInterrupt: the watch would not stop at Ctrl-C as it does in a terminal
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def watch_step(step: Step, clone: Path, env: dict) -> Outcome:
     """Start the watch, wait for its results, save the scenario once, wait for them again, press Ctrl-C."""
     words = step.words
@@ -294,7 +305,8 @@ def watch_step(step: Step, clone: Path, env: dict) -> Outcome:
     original = scenario.read_text()
     started = time.perf_counter()
     process = subprocess.Popen(step.shell, shell=True, cwd=clone, env=env, stdout=subprocess.PIPE,
-                               stderr=subprocess.STDOUT, text=True, executable="/bin/bash", start_new_session=True)
+                               stderr=subprocess.STDOUT, text=True, executable="/bin/bash", start_new_session=True,
+                               preexec_fn=_ctrl_c_as_in_a_terminal)
     note = ""
     try:
         before = {path: _stamp(path) for path in written}
