@@ -54,6 +54,8 @@ BIG_SWEEP = 10_000
 # a command that runs until stopped: seconds allowed for the first results, then for the run after the save
 WATCH_FIRST_S, WATCH_SAVE_S = 300.0, 60.0
 SAVE_MARK = "\n# saved by docs/check_readme.py\n"
+# words the shell reads as redirections and pipes, never quoted
+SHELL_OPERATORS = {">", ">>", "<", "2>", "2>&1", "&>", "|", "||", ";"}
 
 _INLINE_START = re.compile(r"^(?:\.venv/bin/)?(?:hoistsim|python3?|pip)\s")
 _PLACEHOLDER = re.compile(r"^[A-Z][A-Z0-9_]*(?:\.[a-z0-9]+)?$")
@@ -92,7 +94,7 @@ class Step:
 
     @property
     def shell(self) -> str:
-        return shlex.join(self.words)
+        return " ".join(word if word in SHELL_OPERATORS else shlex.quote(word) for word in self.words)
 
     @property
     def program(self) -> str:

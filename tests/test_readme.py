@@ -123,3 +123,22 @@ def test_the_list_mode_runs_nothing(capsys):
     listed = capsys.readouterr().out.splitlines()
     assert len(listed) == len(STEPS)
     assert shlex.split(listed[0])[2:] == ["python3", "-m", "venv", ".venv"]
+
+
+def test_a_clone_runs_the_commands_and_a_failure_fails(tmp_path, capsys):
+    """The runner on a repository of its own: each command run from the clone, a failing one exits 1."""
+    import subprocess
+
+    repo = tmp_path / "repo"
+    repo.mkdir()
+    (repo / "README.md").write_text("# x\n\n```sh\npython3 -m venv .venv\necho made > made.txt && cat made.txt  # two\n"
+                                    "test -f README.md\nfalse\n```\n")
+    for command in (["init", "-q", "-b", "main"], ["add", "README.md"],
+                    ["-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "readme"]):
+        subprocess.run(["git", "-C", str(repo), *command], check=True)
+    venv = tmp_path / "venv"
+    (venv / "bin").mkdir(parents=True)
+    assert check_readme.main([str(repo), "--venv", str(venv)]) == 1
+    table = capsys.readouterr().out.split(" #  line")[1].split("\n\n")[0].splitlines()[2:]
+    assert [row.split()[2] for row in table if row.split()[:1] and row.split()[0].isdigit()] == ["skip", "0", "0", "0", "1"]
+    assert "the environment given with --venv" in "\n".join(table)
