@@ -1,0 +1,144 @@
+"""The README's commands as docs/check_readme.py reads them: all found, every file and option real.
+
+Nothing is run here (docs/check_readme.py runs them from a clean clone, minutes): the commands are
+read, and each one's subcommand and options are looked up in the command line itself.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import re
+import shlex
+import sys
+
+import pytest
+from helpers import ROOT
+
+README = (ROOT / "README.md").read_text(encoding="utf-8")
+
+
+def _load_checker():
+    spec = importlib.util.spec_from_file_location("check_readme", ROOT / "docs" / "check_readme.py")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module  # its dataclasses look their module up there
+    spec.loader.exec_module(module)
+    return module
+
+
+check_readme = _load_checker()
+STEPS = check_readme.plan(README)
+
+
+def _options(subcommand: str | None) -> set[str]:
+    """The options `hoistsim SUBCOMMAND --help` lists (the group's own for None)."""
+    from hoistsim.cli import main
+
+    command = main if subcommand is None else main.commands[subcommand]
+    return {name for parameter in command.params for name in (*parameter.opts, *parameter.secondary_opts)
+            if name.startswith("-")} | {"--help", "-h"}
+
+
+def test_every_line_of_every_sh_block_is_in_a_command():
+    """A line of a ```sh block is blank, a comment of its own, or part of one command found."""
+    blocks = check_readme.sh_blocks(README)
+    assert len(blocks) >= 5
+    found = check_readme.block_commands(README)
+    covered = {command.line + offset for command in found for offset in range(command.text.count("\n") + 1)}
+    for start, body in blocks:
+        for number, line in enumerate(body, start):
+            if line.strip() and not line.startswith("#"):
+                assert number in covered, f"README line {number} is in no command: {line!r}"
+    assert all(command.words for command in found)
+    assert all(not command.text[:1].isspace() for command in found)
+
+
+def test_the_opening_commands_are_read_whole():
+    first = check_readme.block_commands(README)[:2]
+    assert [command.line for command in first] == [7, 10]
+    assert [[step[0] for step in command.steps()] for command in first] == [
+        ["python3", ".venv/bin/pip", ".venv/bin/hoistsim"], ["python3", ".venv/bin/pip", ".venv/bin/python"]]
+
+
+def test_inline_commands_are_found_and_mentions_left():
+    inline = [command.text for command in check_readme.inline_commands(README)]
+    assert "hoistsim check scenarios/lift_off_the_ground.yaml" in inline
+    assert "hoistsim statics scenarios/exercise6_constant_speed.yaml" in inline
+    assert not [text for text in inline if re.fullmatch(r"(\.venv/bin/)?hoistsim \w+", text)]
+
+
+@pytest.mark.parametrize("step", [s for s in STEPS if s.subcommand], ids=lambda s: f"line{s.command.line}")
+def test_every_subcommand_and_option_exists(step):
+    from hoistsim.cli import main
+
+    assert step.subcommand in main.commands, f"line {step.command.line}: no `hoistsim {step.subcommand}`"
+    known = _options(step.subcommand)
+    for word in step.words[2:] + step.optional:
+        option = word.split("=", 1)[0]
+        if option.startswith("-") and not re.fullmatch(r"-\d.*", option):
+            assert option in known, f"line {step.command.line}: `hoistsim {step.subcommand}` has no {option}"
+
+
+def test_required_options_are_given():
+    """What `--help` marks [required] (-o for run and plot, --irregularity for flywheel) is on every line."""
+    from hoistsim.cli import main
+
+    for step in STEPS:
+        if step.subcommand:
+            for parameter in main.commands[step.subcommand].params:
+                if parameter.required and parameter.opts[0].startswith("-"):
+                    assert set(parameter.opts) & set(step.words), \
+                        f"line {step.command.line}: `{step.shell}` lacks {parameter.opts[0]}"
+
+
+def test_every_file_a_command_names_exists():
+    for step in STEPS:
+        for word in step.words + step.optional:
+            if re.match(r"(scenarios|benchmarks|docs|tests)/", word):
+                assert (ROOT / word).exists(), f"line {step.command.line}: {word} is not in the repository"
+
+
+def test_every_placeholder_is_filled_in():
+    for step in STEPS:
+        if step.handling != "skip":
+            left = [word for word in step.words if check_readme._PLACEHOLDER.match(word) and word != "...."]
+            assert not left, f"line {step.command.line}: {left} not in check_readme.PLACEHOLDERS"
+            assert "..." not in step.words, f"line {step.command.line}: `...` with no command above to stand for"
+
+
+def test_long_commands_are_handled_deliberately():
+    by_text = {step.shell: step for step in STEPS}
+    suite = by_text[".venv/bin/python -m pytest"]
+    assert suite.handling == "skip" and "--tests" in suite.reason
+    watch = next(step for step in STEPS if step.subcommand == "watch")
+    assert watch.handling == "watch"
+    million = [step for step in STEPS if "1000000" in step.shell]
+    assert million and all(step.handling == "skip" and "--long" in step.reason for step in million)
+    assert all(step.handling == "skip" for step in STEPS if step.words[1:2] and step.words[1].startswith("benchmarks/"))
+    assert check_readme.plan(README, tests="all", long=True)  # the flags that run them do not break the plan
+    assert {step.handling for step in check_readme.plan(README, venv=True) if step.program == "pip"} == {"skip"}
+
+
+def test_the_list_mode_runs_nothing(capsys):
+    assert check_readme.main(["--list", str(ROOT)]) == 0
+    listed = capsys.readouterr().out.splitlines()
+    assert len(listed) == len(STEPS)
+    assert shlex.split(listed[0])[2:] == ["python3", "-m", "venv", ".venv"]
+
+
+def test_a_clone_runs_the_commands_and_a_failure_fails(tmp_path, capsys):
+    """The runner on a repository of its own: each command run from the clone, a failing one exits 1."""
+    import subprocess
+
+    repo = tmp_path / "repo"
+    repo.mkdir()
+    (repo / "README.md").write_text("# x\n\n```sh\npython3 -m venv .venv\necho made > made.txt && cat made.txt  # two\n"
+                                    "test -f README.md\nfalse\n```\n")
+    for command in (["init", "-q", "-b", "main"], ["add", "README.md"],
+                    ["-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "readme"]):
+        subprocess.run(["git", "-C", str(repo), *command], check=True)
+    venv = tmp_path / "venv"
+    (venv / "bin").mkdir(parents=True)
+    assert check_readme.main([str(repo), "--venv", str(venv)]) == 1
+    table = capsys.readouterr().out.split(" #  line")[1].split("\n\n")[0].splitlines()[2:]
+    assert [row.split()[2] for row in table if row.split()[:1] and row.split()[0].isdigit()] == ["skip", "0", "0", "0", "1"]
+    assert "the environment given with --venv" in "\n".join(table)
