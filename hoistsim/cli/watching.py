@@ -77,8 +77,8 @@ class Watch:
             self.echo(f"hoistsim: error: {exc}{kept}")
             return False
         # the answer first: the file and the figure take some tenths of a second more
-        self.echo(f"{time.strftime('%H:%M:%S')} {scenario.name}: {'; '.join(_headline(result.summary))} "
-                  f"({time.perf_counter() - started:.2f} s)")
+        said = "; ".join(_headline(result.summary, result.events))
+        self.echo(f"{time.strftime('%H:%M:%S')} {scenario.name}: {said} ({time.perf_counter() - started:.2f} s)")
         drawn = None
         if self.figure is not None and result.periodic is None:  # drawn from the run, written beside the file
             drawn = self._draw([result])
@@ -132,10 +132,12 @@ class Watch:
             self._scratch.cleanup()
 
 
-def _headline(summary: dict) -> list[str]:
+def _headline(summary: dict, events: dict | None = None) -> list[str]:
+    """The run's headline, as its figure's title says it: with its events (columns), each clutch's story."""
     from ..display import headline
 
-    said = headline(summary)
+    rows = None if events is None else [dict(zip(events, row)) for row in zip(*events.values())]
+    said = headline(summary if rows is None else {**summary, "events": rows})
     return said or [f"energy residual {summary.get('energy_relative_residual', float('nan')):.1e}"]
 
 
