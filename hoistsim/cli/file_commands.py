@@ -45,8 +45,27 @@ def _read(reader, path):
         fail(f"{path}: no such results file")
     try:
         return reader(path)
-    except (OSError, KeyError) as exc:
-        fail(f"{path}: not a hoistsim results file ({exc})")
+    except (OSError, KeyError):
+        fail(f"{path}: not a hoistsim results file: {_what_it_seems(path)}; hoistsim writes one with `hoistsim run "
+             "SCENARIO -o FILE.h5` (its top holds runs and scenario)")
+
+
+def _what_it_seems(path) -> str:
+    """What a file that is no hoistsim results file seems to be, in a few words: an HDF5 file and what its top
+    holds, or not HDF5 at all."""
+    import h5py
+
+    if not h5py.is_hdf5(path):
+        return "it is not an HDF5 file at all"
+    try:
+        with h5py.File(path, "r") as f:
+            top = sorted(f)
+    except OSError:
+        return "an HDF5 file that does not open"
+    if not top:
+        return "an empty HDF5 file"
+    shown = ", ".join(top[:5]) + (f" and {len(top) - 5} more" if len(top) > 5 else "")
+    return f"an HDF5 file whose top holds {shown}"
 
 
 @main.command()

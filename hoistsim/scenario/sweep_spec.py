@@ -206,7 +206,12 @@ def parse_sweep(assignment: str) -> tuple[str, Any]:
                                 source="--sweep")
         return key, {"from": start, "to": stop, "count": int(count)}
     else:
-        values = [parse_override(f"{key}={item}")[1] for item in text.split(",")]
+        items = text.split(",")
+        for i, item in enumerate(items):
+            if not item.strip():  # said here, as --sweep's: read alone it would be --set's missing value
+                raise ScenarioError(key, f"value {i + 1} of {len(items)} is empty in {text!r}: give "
+                                    f"{key}=V1,V2,... with a value between every two commas", source="--sweep")
+        values = [parse_override(f"{key}={item}")[1] for item in items]
     if not isinstance(values, list):
         values = [values]
     return key, values

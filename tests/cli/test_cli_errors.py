@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import pytest
 from click.testing import CliRunner
-from helpers import BASE, line_of
+from helpers import BASE, EXERCISE6_FILE, line_of
 
 from hoistsim.cli import main
 from hoistsim.running import simulation
@@ -531,3 +531,32 @@ def test_a_bare_number_on_a_speed_is_read_as_si_and_said(tmp_path, monkeypatch):
     scenario.write_text(BASE, encoding="utf-8")
     result, lines = _run_cli(["check", str(scenario)])
     assert result.exit_code == 0 and lines == []
+
+
+def test_a_file_that_is_no_results_file_is_said_so_in_the_users_words(tmp_path):
+    """plot and compare on an HDF5 file another program wrote, or on no HDF5 file at all: what it seems to be and
+    how hoistsim writes one, one line, exit 2, nothing written; not the HDF5 library's own words."""
+    import h5py
+
+    foreign, text = tmp_path / "foreign.h5", tmp_path / "notes.h5"
+    with h5py.File(foreign, "w") as f:
+        f["data"] = [1.0, 2.0]
+    text.write_text("notes\n", encoding="utf-8")
+    for path, seems in ((foreign, "an HDF5 file whose top holds data"), (text, "it is not an HDF5 file at all")):
+        for args in (["compare", str(path)], ["plot", str(path), "-o", str(tmp_path / "f.png")]):
+            result = CliRunner().invoke(main, args)
+            said = result.output.strip()
+            assert result.exit_code == 2 and len(said.splitlines()) == 1, said
+            assert f"not a hoistsim results file: {seems}" in said and "hoistsim run SCENARIO -o" in said, said
+            assert "synchronously" not in said and not (tmp_path / "f.png").exists()
+
+
+def test_an_empty_item_of_a_swept_list_is_named_as_the_sweeps(tmp_path):
+    """`--sweep "K=3 kN,,5 kN"` names --sweep and the empty item (it was said as --set's missing value)."""
+    output = tmp_path / "x.h5"
+    result = CliRunner().invoke(main, ["run", str(EXERCISE6_FILE), "-o", str(output), "--sweep",
+                                       "clutch.engagement_force=3 kN,,5 kN"])
+    said = result.output.strip()
+    assert result.exit_code == 2 and len(said.splitlines()) == 1, said
+    assert said.startswith("hoistsim: error: --sweep: clutch.engagement_force: value 2 of 3 is empty"), said
+    assert not output.exists()
