@@ -93,7 +93,7 @@ class OneWayClutchSpec(FrictionClutchSpec):
     ground is a ratchet) and no heating."""
 
     @model_validator(mode="after")
-    def _between_two_shafts(self):
+    def _no_heating(self):
         if self.heating is not None:
             raise ScenarioError(".heating", "is not a key of a one-way clutch (its heat is <name>_energy)")
         return self

@@ -153,7 +153,7 @@ class GearStageSpec(MeshSpec):
             raise ScenarioError(".ratio", "give either ratio (the input's speed over the output's) or teeth "
                                 "[input, output], one of them")
         if self.teeth is not None:
-            object.__setattr__(self, "ratio", self.teeth[1] / self.teeth[0])  # read as ratio from here on
+            self._derive("ratio", self.teeth[1] / self.teeth[0])
         return self
 
 

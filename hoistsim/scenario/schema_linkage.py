@@ -40,7 +40,7 @@ class PlanetarySpec(Section):
             raise ScenarioError(".ratio", "give either ratio (the ring's teeth over the sun's) or teeth [sun, ring], "
                                 "one of them")
         if self.teeth is not None:
-            object.__setattr__(self, "ratio", self.teeth[1] / self.teeth[0])  # read as ratio from here on
+            self._derive("ratio", self.teeth[1] / self.teeth[0])
         if not self.ratio > 1.0:
             where = ".ratio" if self.teeth is None else ".teeth"
             raise ScenarioError(where, f"the ring's teeth over the sun's must be above 1 (the ring is outside the "

@@ -3,8 +3,18 @@
 from __future__ import annotations
 
 import jax.numpy as jnp
+import numpy as np
 
 from ._knots import knots_passed
+
+
+def slip_columns(table, values: str) -> dict:
+    """An element's fields for a table of the slip speed (rows [speed, value]): ``slip_speeds`` and ``values``,
+    and ``slip_varies``; none for a constant (``table`` None)."""
+    if table is None:
+        return {}
+    speeds, read = (np.asarray(column, float) for column in zip(*table))
+    return {"slip_speeds": speeds, values: read, "slip_varies": True}
 
 
 def along_slip(x, section: str, speeds, values):

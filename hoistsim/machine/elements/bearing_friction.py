@@ -3,12 +3,11 @@
 from __future__ import annotations
 
 import jax.numpy as jnp
-import numpy as np
 
 from ..._pytree import static
 from ..core.element import STUCK
 from ._slip_heat import AbstractSlipHeat
-from ._slip_table import along_slip, slip_knots
+from ._slip_table import along_slip, slip_columns, slip_knots
 
 
 class BearingFriction(AbstractSlipHeat):
@@ -31,10 +30,7 @@ class BearingFriction(AbstractSlipHeat):
     @classmethod
     def from_spec(cls, spec, scenario) -> "BearingFriction":
         a, b = spec.sides
-        table = spec.slip_table
-        varying = {} if table is None else {"slip_speeds": np.asarray([row[0] for row in table], float),
-                                            "slip_torques": np.asarray([row[1] for row in table], float),
-                                            "slip_varies": True}
+        varying = slip_columns(spec.slip_table, "slip_torques")
         return cls(static_torque=spec.peak * spec.torque_at_rest, kinetic_torque=spec.torque_at_rest, driving=a,
                    driven=None if b == "ground" else b, section=spec.name, **varying)
 

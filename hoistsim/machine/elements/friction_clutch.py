@@ -13,7 +13,7 @@ from ._signal import signal_at, signal_fields, signal_tables
 from ._names import NamedOutputs, names_of
 from ._knots import knots_passed
 from ._slip_heat import AbstractSlipHeat
-from ._slip_table import along_slip, slip_knots
+from ._slip_table import along_slip, slip_columns, slip_knots
 
 # what each of its outputs is, by its role (named <name>_<role> unless its drawing names it otherwise)
 _COLUMNS = {
@@ -79,18 +79,15 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
     def from_spec(cls, spec, scenario) -> "FrictionClutch":
         a, b = spec.between
         driving_inertia, driven_inertia = spec.halves()
-        fade = spec.fade()
-        fading = {} if fade is None else {"friction_temperatures": fade["temperatures"], "fades": True,
-                                          "static_frictions": fade["static"], "kinetic_frictions": fade["kinetic"]}
-        table = spec.slip_table
-        if table is not None:
-            fading = {"slip_speeds": np.asarray([row[0] for row in table], float), "slip_varies": True,
-                      "slip_frictions": np.asarray([row[1] for row in table], float)}
+        fade = spec.fade()  # friction against the faces' temperature, or (never both) against the slip speed
+        law = {} if fade is None else {"friction_temperatures": fade["temperatures"], "fades": True,
+                                       "static_frictions": fade["static"], "kinetic_frictions": fade["kinetic"]}
+        law.update(slip_columns(spec.slip_table, "slip_frictions"))
         return cls(static_friction=spec.static_friction, kinetic_friction=spec.kinetic_at_rest,
                    torque_per_newton=spec.torque_per_newton, **signal_fields(spec.force, "force"),
                    driving_inertia=driving_inertia, driven_inertia=driven_inertia, driving=a,
                    driven=None if b == "ground" else b, section=spec.name, in_harmonics=spec.force.has_harmonics,
-                   names=names_of(spec), **fading)
+                   names=names_of(spec), **law)
 
     @property
     def heat_state(self) -> str:

@@ -10,12 +10,11 @@ import numpy as np
 
 from ..._pytree import static
 from ..core.dynamics import slip_sign
-from ..core.element import OPEN, STUCK
-from ._slip_heat import AbstractSlipHeat
+from ._stage_mesh import AbstractStageMesh
 from ._slip_table import along_slip, slip_knots
 
 
-class LossyGear(AbstractSlipHeat):
+class LossyGear(AbstractStageMesh):
     """Modelica's LossyGear with its lossTable rows [|w_a|, eta_mf1, eta_mf2, tau_bf1, tau_bf2]: the stage's
     losses as a friction torque of its input shaft against the gearbox, pressed by the tooth load.
 
@@ -57,11 +56,9 @@ class LossyGear(AbstractSlipHeat):
     beyond: tuple = static(())
     varies: bool = static(False)  # more than one row: the table's knots are kinks
 
-    yields: ClassVar[bool] = True
-    observes_slip_peak: ClassVar[bool] = False
+    loss_power_text: ClassVar[str] = "power the mesh and the bearings turn into heat"
+    losing_part: ClassVar[str] = "the stage"
     margin_each_way: ClassVar[bool] = True
-    observation_kinds: ClassVar[tuple] = ("power_reversal",)
-    crossings: ClassVar[tuple] = ("power_reversal",)
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "LossyGear":
@@ -99,36 +96,6 @@ class LossyGear(AbstractSlipHeat):
 
     # ------------------------------------------------------------------ the coupling
 
-    @property
-    def heat_state(self) -> str:
-        return f"{self.prefix}_loss_energy"
-
-    @property
-    def summaries(self) -> dict:
-        return {self.heat_state: "J"}
-
-    @property
-    def columns(self) -> dict:
-        p, out = self.prefix, self.beyond[0]
-        return {
-            f"{p}_torque": ("N*m", f"tooth load: the torque the {self.driving} shaft passes to the {out} shaft, "
-                                   f"at the {out} shaft"),
-            f"{p}_loss_power": ("W", "power the mesh and the bearings turn into heat"),
-            f"{p}_heat": ("J", f"energy the stage has lost so far (the summary's {self.heat_state} at the end)"),
-            f"{p}_mode": ("1", f"0 the gear held at rest, 1 the {self.driving} shaft drives, 2 the {out} shaft "
-                               "drives"),
-        }
-
-    @property
-    def pressed_by(self) -> tuple:
-        return self.beyond
-
-    def joins(self) -> tuple:
-        return (self.driving, None)
-
-    def tooth_load(self, x):
-        return x.torque_into(self.pressed_by)
-
     def sliding_torque(self, x):
         return self._law(x)[2]
 
@@ -145,31 +112,12 @@ class LossyGear(AbstractSlipHeat):
         carried = self.tooth_load(x) + sign * law[3]
         return law[2] + jnp.abs(carried) * self._per_load(law, sign * carried)
 
-    def capacity(self, x):
-        return jnp.maximum(self.capacity_toward(x, 1.0), self.capacity_toward(x, -1.0))
-
     def kink_names(self) -> tuple:
         return ("loss_knots",) if self.varies else ()
 
     def kinks(self, x) -> dict:
         return {"loss_knots": slip_knots(x, self.section, self.speeds)} if self.varies else {}
 
-    def _carried(self, x, mode):
-        """Q: the torque the teeth carry, at the output, pushing the way the gear rolls where positive times it."""
+    def carried(self, x, mode):
+        """Q: the tooth load and the output side's bearing friction the way it rolls, at the output."""
         return self.tooth_load(x) + slip_sign(mode) * self._law(x)[3]
-
-    def observations(self, x) -> dict:
-        mode = x.mode(self.section)
-        rolling = (mode != STUCK) & (mode != OPEN)
-        return {"power_reversal": jnp.where(rolling, self._carried(x, mode), 1.0)}
-
-    def summary(self, x) -> dict:
-        return {self.heat_state: x.state(self.heat_state)}
-
-    def outputs(self, x) -> dict:
-        mode, p = x.mode(self.section), self.prefix
-        rolling = (mode != STUCK) & (mode != OPEN)
-        drives = self._carried(x, mode) * slip_sign(mode) >= 0.0  # the teeth push the way it rolls: the input drives
-        return {f"{p}_torque": self.tooth_load(x), f"{p}_loss_power": self.slip_power(x),
-                f"{p}_heat": x.state(self.heat_state),
-                f"{p}_mode": jnp.where(rolling, jnp.where(drives, 1, 2), 0).astype(jnp.int8)}

@@ -7,12 +7,10 @@ from typing import ClassVar
 import jax.numpy as jnp
 
 from ..._pytree import static
-from ..core.dynamics import slip_sign
-from ..core.element import OPEN, STUCK
-from ._slip_heat import AbstractSlipHeat
+from ._stage_mesh import AbstractStageMesh
 
 
-class MeshFriction(AbstractSlipHeat):
+class MeshFriction(AbstractStageMesh):
     """The mesh's losses as a friction torque of the pinion shaft against the gearbox, pressed by the tooth load.
 
     Modelica's LossyGear, in this machine's terms: with the tooth load T (the
@@ -46,12 +44,8 @@ class MeshFriction(AbstractSlipHeat):
     # the output shaft and every shaft geared beyond it: the tooth load is what the input passes into them
     beyond: tuple = static(())
 
-    yields: ClassVar[bool] = True
-    observes_slip_peak: ClassVar[bool] = False
-    # where the tooth load changes sign while the gear rolls, the side that drives changes and with it the
-    # law of the losses: a row of its own, and no step across it
-    observation_kinds: ClassVar[tuple] = ("power_reversal",)
-    crossings: ClassVar[tuple] = ("power_reversal",)
+    loss_power_text: ClassVar[str] = "power the tooth flanks' friction turns into heat"
+    losing_part: ClassVar[str] = "the mesh"
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "MeshFriction":
@@ -59,36 +53,6 @@ class MeshFriction(AbstractSlipHeat):
         efficiency, backdrive = spec.efficiencies
         return cls(efficiency=efficiency, backdrive_efficiency=backdrive, ratio=spec.speed_ratio(), section=spec.name,
                    prefix=spec.mesh_prefix(), driving=spec.between[0], beyond=spec.beyond(scenario))
-
-    @property
-    def heat_state(self) -> str:
-        return f"{self.prefix}_loss_energy"
-
-    @property
-    def summaries(self) -> dict:
-        return {self.heat_state: "J"}
-
-    @property
-    def columns(self) -> dict:
-        p, out = self.prefix, self.beyond[0]
-        return {
-            f"{p}_torque": ("N*m", f"tooth load: the torque the {self.driving} shaft passes to the {out} shaft, "
-                                   f"at the {out} shaft"),
-            f"{p}_loss_power": ("W", "power the tooth flanks' friction turns into heat"),
-            f"{p}_heat": ("J", f"energy the mesh has lost so far (the summary's {self.heat_state} at the end)"),
-            f"{p}_mode": ("1", f"0 the gear held at rest, 1 the {self.driving} shaft drives, 2 the {out} shaft "
-                               "drives"),
-        }
-
-    @property
-    def pressed_by(self) -> tuple:
-        return self.beyond
-
-    def joins(self) -> tuple:
-        return (self.driving, None)
-
-    def tooth_load(self, x):
-        return x.torque_into(self.pressed_by)
 
     def _per_load(self, side):
         # N*m lost at the pinion per N*m of tooth load at the drum: side +1 the pinion drives
@@ -104,22 +68,3 @@ class MeshFriction(AbstractSlipHeat):
         # held at rest, the gear starts the way the pinion is pushed once it loses what rolling that way would
         load = self.tooth_load(x)
         return jnp.abs(load) * self._per_load(sign * load)
-
-    def capacity(self, x):
-        return jnp.maximum(self.capacity_toward(x, 1.0), self.capacity_toward(x, -1.0))
-
-    def observations(self, x) -> dict:
-        rolling = (x.mode(self.section) != STUCK) & (x.mode(self.section) != OPEN)
-        return {"power_reversal": jnp.where(rolling, self.tooth_load(x), 1.0)}
-
-    def summary(self, x) -> dict:
-        return {self.heat_state: x.state(self.heat_state)}
-
-    def outputs(self, x) -> dict:
-        mode, p = x.mode(self.section), self.prefix
-        rolling = (mode != STUCK) & (mode != OPEN)
-        load = self.tooth_load(x)
-        drives = load * slip_sign(mode) >= 0.0  # the load pushes the way the gear rolls: the pinion drives
-        return {f"{p}_torque": load, f"{p}_loss_power": self.slip_power(x),
-                f"{p}_heat": x.state(self.heat_state),
-                f"{p}_mode": jnp.where(rolling, jnp.where(drives, 1, 2), 0).astype(jnp.int8)}
