@@ -19,7 +19,6 @@ from pydantic import BaseModel
 from ..errors import ScenarioError
 from . import tables
 from . import units as u
-from .reference import PATH as REFERENCE
 from .schema import Scenario, Section
 from .yamlsource import line_of
 from .yamlsource import to_plain as _to_plain
@@ -78,6 +77,7 @@ def _all_keys(model: type[BaseModel] = Scenario, prefix: str = "") -> list[str]:
 
 
 
+REFERENCE = "docs/scenario.md"  # the scenario reference, every key (from the repository's root; reference.py)
 EVERY_KEY = f"; every key: {REFERENCE}"  # an unknown key's message ends with where every key is
 
 

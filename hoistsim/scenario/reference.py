@@ -26,11 +26,12 @@ from pydantic_core import PydanticUndefined
 
 from . import tables
 from . import units as u
+from .keys import REFERENCE
 from .schema import Scenario
 from .schema_base import Section
 from .signals import TimeSignal
 
-PATH = "docs/scenario.md"  # from the repository's root
+PATH = REFERENCE  # from the repository's root (where an unknown key's error points)
 COMMAND = "python -m hoistsim.scenario.reference"
 _HEADER = "| key | value | default | range | meaning |\n|---|---|---|---|---|"
 _DRAWN = ("drivetrain",)  # top-level sections of a drawn machine
