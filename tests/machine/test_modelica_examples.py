@@ -125,3 +125,28 @@ def test_every_shaft_of_an_example_writes_its_angle_and_speed(path):
     columns = build_plan(scenario, summary_only=True)[0].layout.columns()
     for shaft in scenario.drivetrain.shafts:
         assert f"{shaft}_angle" in columns and f"{shaft}_speed" in columns, (path.stem, shaft)
+
+
+@pytest.mark.slow  # five examples' programs to compile (some 40 s)
+@pytest.mark.parametrize("example, key, value", [
+    ("SimpleGearShift", "drivetrain.planetaries.idealPlanetary.teeth", [40, 80]),
+    ("SimpleGearShift", "drivetrain.torques.1.quadratic.nominal_torque", "-30 N*m"),
+    ("EddyCurrentBrake", "drivetrain.eddy_current_brakes.eddyCurrentTorque.nominal_torque", "80 N*m"),
+    ("EddyCurrentBrake", "drivetrain.heat_capacitors.heatCapacitor.heat_capacity", "2 J/K"),
+    ("ElasticBearing", "drivetrain.gears.idealGear.ratio", 4),
+    ("LossyGearDemo3", "drivetrain.gears.gear.loss_table", [["0 rad/s", 0.3, 0.2, "0.5 N*m", "2 N*m"]]),
+    ("RollingWheel", "drivetrain.load.drag.force", "12 N"),
+    ("Friction", "drivetrain.springs.spring.stiffness", "200 N*m/rad"),
+])
+def test_a_new_value_of_a_new_key_compiles_nothing(example, key, value):
+    """A planetary set's teeth, a quadratic torque's, an eddy-current brake's and a heat capacitor's numbers, a
+    housed stage's ratio, a loss table's values, a drag's force, a spring's stiffness: traced numbers, the
+    example's program serving the new value (one more run, no new trace)."""
+    from hoistsim.machine.core import loop
+
+    path = SCENARIOS / "modelica" / f"{example}.yaml"
+    simulate(load_scenario(path))
+    before = loop.trace_count
+    changed = simulate(load_scenario(path, overrides={key: value}))
+    assert loop.trace_count == before, key
+    assert changed.summary["energy_relative_residual"] < 1e-9

@@ -145,6 +145,8 @@ def test_a_spring_chain_whose_clutch_locks():
     ({"between": ["a", "ground"], "stiffness": "1 N*m/rad", "diameter": "4 cm"}, "drivetrain.springs.s.diameter",
      "not both"),
     ({"between": ["a", "ground"], "stiffness": "1 N*m"}, "drivetrain.springs.s.stiffness", "torsional stiffness"),
+    ({"between": ["a", "ground"], "stiffness": "1 N*m/rad", "backlash": "-1 deg"}, "drivetrain.springs.s.backlash",
+     "negative"),
 ])
 def test_a_bad_spring_is_one_line_naming_its_key(spring, key, says):
     with pytest.raises(ScenarioError) as err:
