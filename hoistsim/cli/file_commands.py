@@ -23,7 +23,8 @@ def compare(results, as_csv, columns, wide):
     """Compare the runs of RESULTS (an HDF5 file): one row per run, the summary as columns.
 
     By default as many columns as fit the terminal (COLUMNS, or 100 characters when not a terminal),
-    the questions first (lock-up, heat, torque, where the load went); units under the names.
+    the questions first (lock-up, heat, where the load went, torque); units under the names; each column
+    in one number format. A sweep's runs are named by their swept values (by their labels with --wide).
     """
     from ..results.reading import read_summary, read_summary_units
     from ..results.report import compare_table, csv_text

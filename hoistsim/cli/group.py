@@ -34,10 +34,11 @@ RESULT_SUFFIXES = (".h5", ".hdf5", ".nc")
 
 
 def read_scenario(path, overrides=(), sweeps=()):
-    """Load and validate a scenario; what it accepted but may not mean is said on stderr, one line each."""
+    """Load and validate a scenario; what it accepted but may not mean (a bare number on a length, a 40 m drum)
+    is said on stderr, one line each, or is an error where the command was given --strict."""
     from ..scenario.loading import load_scenario
 
-    scenario = load_scenario(path, overrides=list(overrides), sweeps=list(sweeps))
+    scenario = load_scenario(path, overrides=list(overrides), sweeps=list(sweeps), strict=strict_here())
     for warning in scenario.warnings:
         click.echo(f"hoistsim: warning: {warning}", err=True)
     return scenario
@@ -82,6 +83,18 @@ def one_line_errors(func):
 
 
 debug_option = click.option("--debug", is_flag=True, help="Show Python tracebacks on errors.")
+
+# A command that reads a scenario takes --strict: what would be a warning on its values is an error.
+strict_option = click.option(
+    "--strict", is_flag=True, expose_value=False, callback=lambda ctx, _, value: ctx.meta.update(strict=value),
+    help="Make the warnings on the scenario's values errors (exit 2): a bare number on a key with a unit (read "
+         "in SI: 40 on a diameter is 40 m), a value far outside what its part measures.")
+
+
+def strict_here() -> bool:
+    """Whether the running command was given --strict."""
+    ctx = click.get_current_context(silent=True)
+    return bool(ctx is not None and ctx.meta.get("strict"))
 
 
 # Set by a command that has finished and left nothing to tidy (see exit_when_done).

@@ -8,7 +8,7 @@ from pathlib import Path
 import click
 
 from .group import (RESULT_SUFFIXES, RUN_FAILED, debug_option, exit_when_done, fail, main, one_line_errors,
-                    read_scenario)
+                    read_scenario, strict_here, strict_option)
 from .terminal import compiling, progress_printer, table_width
 
 
@@ -36,6 +36,7 @@ from .terminal import compiling, progress_printer, table_width
 @click.option("--csv", "as_csv", is_flag=True,
               help="Print every run's summary as CSV on stdout instead of the table (as hoistsim compare --csv; "
                    "the closing line goes to stderr).")
+@strict_option
 @debug_option
 @one_line_errors
 def run(scenario, output, overrides, sweeps, summary_only, resume, workers, scheduler, wide, as_csv):
@@ -138,6 +139,7 @@ def run(scenario, output, overrides, sweeps, summary_only, resume, workers, sche
 @click.option("--plot", "figure", type=click.Path(dir_okay=False), metavar="FIG.png",
               help="Figure to redraw (atomically) after each run: .png, .svg or .pdf.")
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a scenario key.")
+@strict_option
 @debug_option
 @one_line_errors
 def watch(scenario, output, figure, overrides):
@@ -162,7 +164,7 @@ def watch(scenario, output, figure, overrides):
     _jax.enable_compilation_cache()
     _jax.compile_notice = compiling
     watched = Watch(Path(scenario), output=output and Path(output), figure=figure and Path(figure),
-                    overrides=overrides, echo=lambda line: click.echo(line, err=line.startswith("hoistsim:")))
+                    overrides=overrides, strict=strict_here(), echo=lambda line: click.echo(line, err=line.startswith("hoistsim:")))
     click.echo(f"watching {scenario} (Ctrl-C stops)", err=True)
     try:
         watch_loop(watched)
@@ -175,6 +177,7 @@ def watch(scenario, output, figure, overrides):
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a scenario key.")
 @click.option("--drivetrain", "as_drivetrain", is_flag=True,
               help="Print the drivetrain a hoist scenario stands for, as a scenario file (shafts, clutch, gears, ...).")
+@strict_option
 @debug_option
 @one_line_errors
 def check(scenario, overrides, as_drivetrain):

@@ -8,7 +8,7 @@ from pathlib import Path
 import click
 
 from ..errors import ScenarioError
-from .group import debug_option, fail, main, one_line_errors, read_scenario
+from .group import debug_option, fail, main, one_line_errors, read_scenario, strict_option
 from .terminal import compiling
 
 
@@ -16,6 +16,7 @@ from .terminal import compiling
 @click.argument("scenario", type=click.Path(dir_okay=False))
 @click.option("--json", "as_json", is_flag=True, help="Print the answers as a JSON object (SI units).")
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a scenario key.")
+@strict_option
 @debug_option
 @one_line_errors
 def statics(scenario, as_json, overrides):
@@ -54,6 +55,7 @@ def statics(scenario, as_json, overrides):
               help="Rim inner diameter (0: a solid disc).")
 @click.option("--plot", "figure", type=click.Path(dir_okay=False), metavar="FIG.png",
               help="Also draw delta against flywheel inertia, simulated and by Tredgold.")
+@strict_option
 @debug_option
 @one_line_errors
 def flywheel(scenario, irregularity, as_json, overrides, density, width, outer_diameter, inner_diameter, figure):

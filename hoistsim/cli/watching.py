@@ -30,9 +30,10 @@ class Watch:
     """One scenario file, its results file and figure: :meth:`run` runs it again and says what came out."""
 
     def __init__(self, scenario: Path, *, output: Path | None = None, figure: Path | None = None,
-                 overrides: Iterable[str] = (), echo: Callable[[str], None] = print):
+                 overrides: Iterable[str] = (), strict: bool = False, echo: Callable[[str], None] = print):
         self.scenario = Path(scenario)
         self.overrides = list(overrides)
+        self.strict = strict  # a value the scenario's warnings name is an error (--strict)
         self.figure = Path(figure) if figure is not None else None
         self._scratch = None  # a folder for a results file where the user asked for none (made when needed)
         self.output = Path(output) if output is not None else None
@@ -119,7 +120,7 @@ class Watch:
     def _load(self):
         from ..scenario.loading import load_scenario
 
-        scenario = load_scenario(self.scenario, overrides=self.overrides)
+        scenario = load_scenario(self.scenario, overrides=self.overrides, strict=self.strict)
         if scenario.sweep:
             raise ScenarioError("sweep", "watch runs one scenario: remove the sweep: section "
                                 "(hoistsim run sweeps it)", source=str(self.scenario))

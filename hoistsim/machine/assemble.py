@@ -12,7 +12,7 @@ from ..errors import ScenarioError
 from ..scenario.loading import Scenario
 from .core.element import AbstractCoupling
 from .core.layout import Layout, LayoutError
-from .core.plan import KINK_BUDGET, Plan
+from .core.plan import Plan, expected_cycles
 from .core.schedule import scheduled_times
 from .elements import elements_for
 
@@ -111,32 +111,23 @@ def plan_from(elements: tuple, sim, grid: np.ndarray) -> Plan:
     )
 
 
-def loop_sizes(plan: Plan, max_switches: int, log_size: int | None = None) -> tuple[int, int]:
-    """Static sizes of the loop: passes allowed and event rows kept.
-
-    Each pass ends at a boundary, a switch or an observation (as many allowed
-    as switches), a switch may log one row per coupling.  A machine with cycles
-    (a period of its own) has these budgets per cycle, and rows for each cycle:
-    as many cycles are expected as the fastest speed scale turns in the
-    duration, twice over.  ``log_size`` asks for more rows (a run that logged
-    more than it could keep is run again with room for them all).
-    """
-    boundaries = int(plan.boundaries.shape[0])
+def log_rows(plan: Plan, log_size: int | None = None) -> int:
+    """The event log's rows, a static size of the loop: room for LOGGED_SWITCHES switches (each may log one row
+    per coupling) and two rows a boundary; a machine with cycles (a period of its own) has rows for each
+    expected cycle.  ``log_size`` asks for more (a run that logged more than it could keep is run again with
+    room for them all).  The passes a run may take are the loop's own, traced (:func:`.core.plan.segment_budget`):
+    neither depends on max_switches, so a new value of it compiles nothing."""
     couplings = max(1, sum(isinstance(e, AbstractCoupling) for e in plan.elements))
-    kinks = KINK_BUDGET * max_switches if any(e.kink_names() for e in plan.elements) else 0
-    passes = boundaries + 2 * max_switches + kinks + 2
-    rows = (couplings + 1) * max_switches + 2 * boundaries + 4
-    periods = [float(e.cycle_angle()) for e in plan.elements if e.cycles]
-    if periods:
-        turned = float(plan.duration) * max(float(plan.speed_scale), abs(float(plan.initial_state[0])), 1.0)
-        cycles = _power_of_two(2.0 * turned / min(periods) + 8)
-        passes += cycles * (2 * max_switches + kinks)
-        rows += cycles * ROWS_PER_CYCLE
+    rows = (couplings + 1) * LOGGED_SWITCHES + 2 * int(plan.boundaries.shape[0]) + 4
+    rows += int(expected_cycles(plan)) * ROWS_PER_CYCLE
     if log_size is not None:
         rows = max(rows, _power_of_two(log_size))
-    return passes, rows
+    return rows
 
 
+# The switches the event log has room for at first (the default max_switches); a run that switches more is
+# run again with room for every row.
+LOGGED_SWITCHES = 200
 # Rows a cycle is expected to log at first (its end, a few extremes, a few switches); more, and the run
 # is repeated with room for what it logged.
 ROWS_PER_CYCLE = 32

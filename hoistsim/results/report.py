@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import re
+from numbers import Real as numbers_Real
 
 
 def table(headers: list[str], rows: list[list[str]], align: str | None = None) -> str:
@@ -111,6 +112,38 @@ def fmt(value: float, digits: int = 4) -> str:
     return f"{value:.{digits}g}"
 
 
+def column_cells(values: list, digits: int = 4) -> list[str]:
+    """A column's values in one number format, so that they line up and read alike down the column: whole
+    numbers as such (9000, 12000, never 9000 then 1.2e+04); else a fixed count of decimals giving the largest
+    ``digits`` significant ones (0.350, 1.030); scientific for all where the largest is very large or very small,
+    or where the column spans too many decades for decimals to show its smallest (a residual of 1e-10 beside
+    1e-4).  Text stays as it is, a yes/no as such, a missing or NaN value "-"."""
+    numbers = [float(v) for v in values if isinstance(v, numbers_Real) and not isinstance(v, bool)
+               and math.isfinite(float(v))]
+    sizes = [abs(x) for x in numbers if x != 0]
+    if not sizes:
+        form = "{:.0f}"
+    elif all(x == round(x) for x in numbers) and max(sizes) < 1e7:
+        form = "{:.0f}"
+    elif max(sizes) >= 1e5 or max(sizes) < 1e-3 or (min(sizes) < 1e-3 and max(sizes) / min(sizes) >= 1e4):
+        form = f"{{:.{digits - 1}e}}"
+    else:
+        form = f"{{:.{min(max(digits - 1 - math.floor(math.log10(max(sizes))), 0), 6)}f}}"
+
+    def cell(value) -> str:
+        if isinstance(value, str):
+            return value
+        if isinstance(value, bool):
+            return "yes" if value else "no"
+        if value is None or isinstance(value, numbers_Real) and math.isnan(float(value)):
+            return "-"
+        if not isinstance(value, numbers_Real) or math.isinf(float(value)):
+            return str(value)
+        return form.format(float(value))
+
+    return [cell(v) for v in values]
+
+
 SUMMARY_COLUMNS = [  # (summary key, header, scale)
     ("lockup_time", "lock-up [s]", 1.0),
     ("slip_duration", "slipping [s]", 1.0),
@@ -144,14 +177,15 @@ def summary_table(summaries: list[dict], head: int = 12, tail: int = 6, width: i
         if column[0] in first:
             columns += [column] + [extra for extra in OPTIONAL_COLUMNS.get(column[0], ()) if extra[0] in first]
 
-    def cell(value, scale):
-        if scale is None:
-            return f"{value:.1e}"
-        return fmt(scale(value) if callable(scale) else value * scale if scale != 1 else value)
+    def scaled(value, scale):
+        return scale(value) if callable(scale) else value * scale if scale not in (1, None) else value
 
     shown = summaries if len(summaries) <= head + tail else summaries[:head] + [None] + summaries[-tail:]
-    rows = [[s["label"]] + [cell(s[key], scale) for key, _, scale in columns] if s is not None
-            else ["..."] + [""] * len(columns) for s in shown]
+    kept = [s for s in shown if s is not None]
+    cells = [column_cells([scaled(s[key], scale) for s in kept], digits=2 if scale is None else 4)
+             for key, _, scale in columns]
+    by_run = iter(zip(*cells)) if cells else iter([[]] * len(kept))
+    rows = [[s["label"], *next(by_run)] if s is not None else ["..."] + [""] * len(columns) for s in shown]
     text = fitted_table(["run"] + [header for _, header, _ in columns], rows, width)
     if len(summaries) > head + tail:
         text += f"\n({len(summaries)} runs; all of them: hoistsim compare OUT.h5 [--csv])"
@@ -210,38 +244,44 @@ def flywheel_table(name: str, sizing, elapsed: float) -> str:
             + table(["symbol", "quantity", "value", "unit"], rows, align="llrl"))
 
 
-# What `compare` shows first: the questions a designer compares runs by.
-COMPARE_FIRST = ["lockup_time", "slip_energy", "peak_clutch_torque", "lowest_load_position", "final_load_position",
-                 "mean_speed", "irregularity", "irregularity_tredgold", "lock_events", "energy_relative_residual"]
+# What `compare` shows first: the questions a designer compares runs by (when the clutch locks, its heat, where
+# the load went), then the rest.
+COMPARE_FIRST = ["lockup_time", "slip_energy", "lowest_load_position", "final_load_position", "peak_clutch_torque",
+                 "peak_rope_force", "mean_speed", "irregularity", "irregularity_tredgold", "lock_events",
+                 "energy_relative_residual"]
 
 
 def compare_table(rows: list[dict], units: dict[str, str], columns: list[str] | None = None,
                   width: int | None = 120) -> str:
     """The runs of a file as rows, chosen columns (names, then units, as headers), within ``width``.
 
-    Without ``columns``: the label, the swept keys, then COMPARE_FIRST and the rest of the summary,
-    as many as fit; a last line says how many were left out and how to see them.  With ``columns``: those,
-    in stacked blocks within ``width``.  ``width`` None: every column, one block however wide.
+    Without ``columns``: the run (its label, or within a ``width`` the swept keys' values where the labels only
+    say them), then
+    COMPARE_FIRST and the rest of the summary, as many as fit; a last line says how many were left out and how
+    to see them.  With ``columns``: those, in stacked blocks within ``width``.  ``width`` None: every column,
+    one block however wide.
     """
     names = list(rows[0])
     swept = [n for n in names if "." in n and n != "label"]  # swept keys (dotted) come before the summary
-    chosen = columns or ["label", *swept, *[n for n in COMPARE_FIRST if n in names],
-                         *[n for n in names if n not in COMPARE_FIRST and n not in swept and n != "label"]]
+    # a sweep's labels repeat its keys' values ("clutch.engagement_force=3 kN"): the values alone, narrower
+    said = width is not None and bool(swept) and all(f"{key}=" in str(r["label"]) for r in rows for key in swept)
+    run = swept if said else ["label", *swept]
+    chosen = columns or [*run, *[n for n in COMPARE_FIRST if n in names],
+                         *[n for n in names if n not in COMPARE_FIRST and n not in run and n != "label"]]
     unknown = [n for n in chosen if n not in names]
     if unknown:
         raise ValueError(f"no column {unknown[0]!r} in this file (columns: {', '.join(names)})")
 
-    def cell(value):
-        return value if isinstance(value, str) else fmt(value)
-
     headers = [f"{n} [{units[n]}]" if units.get(n) else n for n in chosen]
-    cells = [[cell(r[n]) for n in chosen] for r in rows]
+    cells = [list(run) for run in zip(*(column_cells([r[n] for r in rows]) for n in chosen))]
     count = len(chosen)
     if columns is None and width is not None:  # as many as fit beside the label, as fitted_table lays them out
         widths = _columns(headers, cells)[2]
         count = max(1, sum(1 for i in range(len(chosen)) if sum(widths[:i + 1]) + 2 * i <= width))
     shown = chosen[:count]
-    text = fitted_table(headers[:count], [row[:count] for row in cells], width, align="l" + "r" * (count - 1))
+    keep = min(len(run) if columns is None else 1, count)  # what names the run, repeated in each block
+    text = fitted_table(headers[:count], [row[:count] for row in cells], width,
+                        align="".join("l" if name == "label" else "r" for name in shown), keep=keep)
     left = len(chosen) - len(shown)
     if left:
         text += (f"\n({left} more column{'s' if left != 1 else ''}: --wide or --csv for all, "

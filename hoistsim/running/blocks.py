@@ -23,7 +23,7 @@ from jax.sharding import Mesh, NamedSharding, PartitionSpec
 
 from .. import _jax
 from ..errors import ScenarioError
-from ..machine.assemble import build_plan, loop_sizes
+from ..machine.assemble import build_plan, log_rows
 from ..machine.core.loop import SOLVERS, restart_loop
 from ..machine.core.plan import OK, Plan
 from ..machine.core.schedule import scheduled_times
@@ -158,18 +158,15 @@ def _launch(runs, scenarios, group, plans, fast, summary_only: bool, chunk: int,
     group_plans = [fast.plan(0)] if fast is not None else _padded_tables([plans[k][0] for k in group])
     first = scenarios[group[0]]
     periodic = any(e.cycles for e in group_plans[0].elements)
-    if fast is not None and not periodic:  # one structure and simulation: every plan's sizes are the first's
-        max_switches = first.simulation.max_switches
-        sizes = loop_sizes(group_plans[0], max_switches)
+    if fast is not None and not periodic:  # one structure and simulation: every plan's rows are the first's
+        rows = log_rows(group_plans[0])
     elif fast is not None:
-        max_switches = first.simulation.max_switches
-        sizes = tuple(max(n) for n in zip(*(loop_sizes(fast.plan(r), max_switches) for r in group)))
+        rows = max(log_rows(fast.plan(r)) for r in group)
     else:
-        max_switches = max(scenarios[k].simulation.max_switches for k in group)
-        sizes = tuple(max(n) for n in zip(*(loop_sizes(plan, max_switches) for plan in group_plans)))
+        rows = max(log_rows(plan) for plan in group_plans)
     lean = summary_only and not periodic
     if lean:  # the summary needs no event rows, only their counts
-        sizes = (sizes[0], 1)
+        rows = 1
     chunks = []
     for offset in range(0, len(group), chunk):
         part = group[offset:offset + chunk]
@@ -181,33 +178,31 @@ def _launch(runs, scenarios, group, plans, fast, summary_only: bool, chunk: int,
             stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *batch + [batch[-1]] * (chunk - len(batch)))
         chunks.append((part, stacked))
     solver = first.simulation.solver
-    run = _jax.executable(functools.partial(compiled_batch, solver, *sizes, not lean, devices), chunks[0][1],
-                          name=f"sweep-{solver}-{sizes}-{lean}", devices=devices)
+    run = _jax.executable(functools.partial(compiled_batch, solver, rows, not lean, devices), chunks[0][1],
+                          name=f"sweep-{solver}-{rows}-{lean}", devices=devices)
     # launched, not waited for: the host goes on while they run
     calls = [(time.perf_counter(), run(stacked)) if lean else None for _, stacked in chunks]
-    return dict(chunks=chunks, calls=calls, run=run, sizes=sizes, lean=lean, periodic=periodic, solver=solver,
-                devices=devices,
-                layout=group_plans[0].layout, first_plan=group_plans[0], max_switches=max_switches)
+    return dict(chunks=chunks, calls=calls, run=run, rows=rows, lean=lean, periodic=periodic, solver=solver,
+                devices=devices, layout=group_plans[0].layout, first_plan=group_plans[0])
 
 
 def _results(group: dict):
     """(runs of the chunk, what the compiled loop returned, seconds per run) for each of a group's chunks."""
-    run, sizes, built = group["run"], group["sizes"], group["sizes"]
+    run, rows, built = group["run"], group["rows"], group["rows"]
     for (part, stacked), call in zip(group["chunks"], group["calls"]):
         while True:
-            if built != sizes:
-                run = _jax.executable(functools.partial(compiled_batch, group["solver"], *sizes, True, group["devices"]),
-                                      stacked,
-                                      name=f"sweep-{group['solver']}-{sizes}-False", devices=group["devices"])
-                built = sizes
+            if built != rows:
+                run = _jax.executable(functools.partial(compiled_batch, group["solver"], rows, True, group["devices"]),
+                                      stacked, name=f"sweep-{group['solver']}-{rows}-False", devices=group["devices"])
+                built = rows
             started, pending = call if call is not None else (time.perf_counter(), run(stacked))
             raw = jax.device_get(pending)
             elapsed = (time.perf_counter() - started) / len(part)
             logged = int(np.max(raw.counters[: len(part), 0]))
-            if group["lean"] or logged <= sizes[1]:
+            if group["lean"] or logged <= rows:
                 break
             call = None
-            sizes = loop_sizes(group["first_plan"], group["max_switches"], log_size=logged + 1)  # room for every row
+            rows = log_rows(group["first_plan"], log_size=logged + 1)  # room for every row
         yield part, raw, elapsed
 
 
@@ -354,7 +349,7 @@ def devices_for(chunk: int) -> int:
 
 
 @functools.lru_cache(maxsize=None)
-def compiled_batch(solver_name: str, max_segments: int, log_size: int, columns: bool = True, devices: int = 1):
+def compiled_batch(solver_name: str, log_size: int, columns: bool = True, devices: int = 1):
     """The restart loop, vectorised over a leading batch axis of the plan (without columns: summaries only).
 
     With several ``devices``, each runs its share of the batch's runs through its
@@ -362,8 +357,7 @@ def compiled_batch(solver_name: str, max_segments: int, log_size: int, columns: 
     done, never waiting for the others'.
     """
     solver = SOLVERS[solver_name]()
-    batch = jax.vmap(functools.partial(restart_loop, solver=solver, max_segments=max_segments, log_size=log_size,
-                                       columns=columns))
+    batch = jax.vmap(functools.partial(restart_loop, solver=solver, log_size=log_size, columns=columns))
     if devices == 1:
         return jax.jit(batch)
     mesh = Mesh(np.array(jax.devices()[:devices]), ("runs",))

@@ -13,48 +13,18 @@ import json
 from pathlib import Path
 from typing import Any
 
-from pydantic import BaseModel, ValidationError
+from pydantic import ValidationError
 from ruamel.yaml import YAML
 
 from ..errors import ScenarioError as ScenarioError
-from . import tables
-from . import units as u
-from .keys import Where, assign, check_key, check_tree, error_from, model_of, parse_override
+from .keys import Where, assign, check_key, check_tree, error_from, parse_override
 from .provenance import Provenance, SweptKey
 from .schema import SOLVERS as SOLVERS  # noqa: F401  (part of this module's interface)
 from .schema import Scenario as Scenario
 from .tables import ForceTable as ForceTable  # noqa: F401  (part of this module's interface)
-from .yamlsource import line_of as _line_of
+from .value_notes import swept_notes, value_notes
 from .yamlsource import read_yaml as _read_yaml
 from .yamlsource import to_plain as _to_plain
-
-
-def bare_angles(data: dict, model: type[BaseModel], path: tuple, tree: Any, source: str) -> list[str]:
-    """Warnings for angles, angular speeds and temperatures given as bare numbers (read as rad, rad/s, K).
-
-    A bare 300 on no_load_speed is 300 rad/s, 2865 rpm: accepted (SI is the
-    rule), but said, with the key and where it is.
-    """
-    notes = []
-    for key, value in data.items():
-        field = model.model_fields.get(key)
-        sub = model_of(model, key)
-        if field is None:
-            continue
-        if sub is not None and isinstance(value, dict):
-            notes += bare_angles(value, sub, (*path, key), tree, source)
-            continue
-        dimension = u.dimension_of(field)
-        note = u.bare_number_note(value, dimension) if dimension is not None else None
-        column = tables.first_column_of(field)
-        if column is not None and isinstance(value, list):  # a table's first column: the first bare entry
-            firsts = [row[0] for row in value if isinstance(row, list) and row]
-            note = next((f"row {i + 1}: {n}" for i, n in enumerate(u.bare_number_note(x, column) for x in firsts)
-                         if n), None)
-        if note:
-            line = _line_of(tree, (*path, key))
-            notes.append(str(ScenarioError(".".join((*path, key)), note, source=source, line=line)))
-    return notes
 
 
 # --------------------------------------------------------------------------------------
@@ -62,8 +32,9 @@ def bare_angles(data: dict, model: type[BaseModel], path: tuple, tree: Any, sour
 
 
 def load_scenario(source: str | Path, overrides: list[str] | dict[str, Any] | None = None,
-                  sweeps: list[str] | None = None) -> Scenario:
-    """Read and validate a scenario file, with optional ``dotted.key=value`` overrides."""
+                  sweeps: list[str] | None = None, strict: bool = False) -> Scenario:
+    """Read and validate a scenario file, with optional ``dotted.key=value`` overrides; ``strict``: a value
+    that may not say what was meant (a bare number on a length, a 40 m drum) is an error, not a warning."""
     path = Path(source)
     try:
         text = path.read_text(encoding="utf-8")
@@ -75,13 +46,14 @@ def load_scenario(source: str | Path, overrides: list[str] | dict[str, Any] | No
         raise ScenarioError("", "not a text (UTF-8) file", source=str(source)) from None
     except OSError as exc:
         raise ScenarioError("", f"cannot read the scenario: {exc.strerror or exc}", source=str(source)) from None
-    return scenario_from_text(text, source=str(source), overrides=overrides, sweeps=sweeps)
+    return scenario_from_text(text, source=str(source), overrides=overrides, sweeps=sweeps, strict=strict)
 
 
 def scenario_from_text(text: str, source: str = "<scenario>",
                        overrides: list[str] | dict[str, Any] | None = None,
-                       sweeps: list[str] | None = None) -> Scenario:
-    """Validate scenario text; ``overrides`` set keys, ``sweeps`` (KEY=SPEC) replace the file's sweep."""
+                       sweeps: list[str] | None = None, strict: bool = False) -> Scenario:
+    """Validate scenario text; ``overrides`` set keys, ``sweeps`` (KEY=SPEC) replace the file's sweep;
+    ``strict`` as for :func:`load_scenario`."""
     tree = _read_yaml(text, source)
     try:
         raw = _to_plain(tree.data)
@@ -107,18 +79,23 @@ def scenario_from_text(text: str, source: str = "<scenario>",
     check_tree(raw, Scenario, (), tree, source)
     overridden = frozenset(k for k, _ in pairs)
     scenario = _validate(raw, tree, source, overridden=overridden)
-    swept = {}
-    for key, values in (scenario.sweep or {}).items():
+    swept, notes = {}, []
+    for key, spec in (scenario.sweep or {}).items():
         if key in overridden:
             raise ScenarioError(key, "is swept in the file (sweep:); --set cannot also set it", source="--set")
         # a sweep given on the command line has no line in the file
         where, lines = ("--sweep", None) if sweeps else (source, tree)
-        values, labels = expand_range(key, values, Where(f"sweep.{key}", where, lines, ("sweep", key)))
+        values, labels = expand_range(key, spec, Where(f"sweep.{key}", where, lines, ("sweep", key)))
         numbers, validated = check_sweep(scenario, raw, key, values, lines, where)
         swept[key] = SweptKey(values=values, labels=labels, numbers=numbers, validated=validated)
+        notes += swept_notes(key, spec, numbers, lines, where)
+    notes = value_notes(raw, tree, source, overridden) + notes
+    if strict and notes:
+        first = notes[0]
+        raise ScenarioError(first.key, f"{first.message} (an error under --strict)", source=first.source,
+                            line=first.line)
     scenario = scenario.with_provenance(Provenance(text=text, source=source, raw=raw, overridden=overridden,
-                                                   warnings=tuple(bare_angles(raw, Scenario, (), tree, source)),
-                                                   swept=swept))
+                                                   warnings=tuple(map(str, notes)), swept=swept))
     if len(scenario.sweep or ()) > 1:
         check_combinations(scenario)
     return scenario

@@ -19,13 +19,13 @@ import sys
 import types
 import typing
 from pathlib import Path
-from typing import Any, Literal
+from typing import Literal
 
 from pydantic import BaseModel
-from pydantic_core import PydanticUndefined
 
 from . import tables
 from . import units as u
+from .plausible import Plausible
 from .keys import REFERENCE
 from .schema import Scenario
 from .schema_base import Section
@@ -51,12 +51,7 @@ def _members(annotation) -> list:
     return [annotation]
 
 
-def _metadata(field, kind: type) -> Any:
-    """The first metadata of ``kind`` on a field, or on the first member of its union that has one."""
-    found = [m for m in field.metadata if isinstance(m, kind)]
-    for member in typing.get_args(field.annotation):
-        found += [m for m in getattr(member, "__metadata__", ()) if isinstance(m, kind)]
-    return found[0] if found else None
+_metadata = u.metadata_of
 
 
 def _section_of(field) -> tuple[str, type[Section]] | None:
@@ -163,7 +158,11 @@ def range_of(field) -> str:
     if limits is None:
         return ""
     bounds = [(">", limits.gt), ("≥", limits.ge), ("<", limits.lt), ("≤", limits.le)]
-    return ", ".join(f"{sign} {_shown(bound, dimension)}" for sign, bound in bounds if bound is not None)
+    text = ", ".join(f"{sign} {_shown(bound, dimension)}" for sign, bound in bounds if bound is not None)
+    plausible = _metadata(field, Plausible)
+    if plausible is not None:  # outside it: a warning (an error under --strict)
+        text += f"{'; ' if text else ''}plausible {plausible.low} to {plausible.high}"
+    return text
 
 
 def _first_line(text: str | None) -> str:
@@ -231,9 +230,13 @@ _VALUES = """\
 ## Values
 
 A value is an SI number or text with a unit, read by pint: `500 N*m`, `300 rpm`, `20 cm`, `200 daN`, `25 deg`,
-`40 kg*m^2`, `2.4 kJ/K`, `25 degC`. A bare number is SI (angles in radians, speeds in rad/s, temperatures in
-kelvin); a bare number on an angle, an angular speed or a temperature is accepted with a warning saying how it
-was read. The value column names what a key measures and an example; any unit of that kind is accepted.
+`40 kg*m^2`, `2.4 kJ/K`, `25 degC`. A bare number is SI (lengths in metres, angles in radians, speeds in rad/s,
+temperatures in kelvin): it is accepted on a key with a unit with a warning naming the key, its line and how the
+number was read (`drum: diameter: 40` is a 40 m drum). A value far outside what its part measures (the range
+column's "plausible": a 40 m drum, a wire rope of 0.04 mm^2) is accepted with a warning too. `--strict` (on
+`run`, `watch`, `check`, `statics`, `flywheel`) makes each of those warnings an error, exit status 2. Zero is
+zero in any unit: it is never warned of. The value column names what a key measures and an example; any unit
+of that kind is accepted.
 
 | measures | SI unit (a bare number) | e.g. |
 |---|---|---|
@@ -241,6 +244,22 @@ was read. The value column names what a key measures and an example; any unit of
 
 **Tables** are rows in brackets, `[[0 rpm, 500 N*m], [300 rpm, 0 N*m]]`, their first column rising;
 piecewise linear between rows, held beyond the ends. A table of time may repeat a time once: a step.
+
+### What compiles
+
+A scene's solver is compiled for its structure, once (the first run of a structure compiles for a few seconds,
+and says so; later runs, in any process, load it from `~/.cache/hoistsim`). A new value of any key compiles
+nothing: forces, masses, frictions, tolerances, `simulation.max_switches`, a table's values. What changes the
+structure, and so compiles once more:
+- a section or a part added, removed or renamed (a drawn part's name names its outputs);
+- the number of rows of a table (a constant is a table of one row), or of a signal's harmonics;
+- `simulation.solver`;
+- the number of output rows past a power of two (`duration` / `output_interval`: 2049 to 4096 rows share one
+  program, as do 4097 to 8192);
+- a run that logs more events than its log has room for (some 200 switches a coupling) is run again, once,
+  with room for them all.
+
+A sweep pays for each structure once, whatever its values.
 
 ### Time signals
 

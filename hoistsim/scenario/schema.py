@@ -13,6 +13,7 @@ from typing import Any, Literal
 from pydantic import Field, PrivateAttr, model_validator
 
 from ..errors import ScenarioError
+from . import plausible
 from . import units as u
 from .schema_base import Section
 from .schema_clutch import ConeSpec, FrictionSpec
@@ -50,7 +51,8 @@ class GearSpec(MeshSpec):
 
     pinion_teeth: u.whole("teeth") = Field(description="z1, the pinion's on the clutch's output shaft")
     wheel_teeth: u.whole("teeth") = Field(description="z2, the wheel's on the drum shaft (ratio z2 / z1)")
-    module: u.quantity(u.LENGTH, gt=0.0) = Field(description="m: the pitch diameters are m z1 and m z2")
+    module: u.quantity(u.LENGTH, plausible=plausible.GEAR_MODULE, gt=0.0) = Field(
+        description="m: the pitch diameters are m z1 and m z2")
     pressure_angle: u.quantity(u.ANGLE, gt=0.0, lt=math.pi / 2) = Field(math.radians(20.0), description=(
         "of the teeth: the tooth force's radial part (the bearings' loads)"))
     pinion_inertia: u.quantity(u.INERTIA, ge=0.0) = Field(0.0, description="the pinion's, on its shaft")
@@ -70,7 +72,8 @@ class GearSpec(MeshSpec):
 class DrumSpec(Section):
     """The rope drum on the wheel's shaft: the rope winds at half its diameter."""
 
-    diameter: u.quantity(u.LENGTH, gt=0.0) = Field(description="where the rope winds (the load's lever: half of it)")
+    diameter: u.quantity(u.LENGTH, plausible=plausible.HOIST_DRUM_DIAMETER, gt=0.0) = Field(
+        description="where the rope winds (the load's lever: half of it)")
     inertia: u.quantity(u.INERTIA, gt=0.0) = Field(description="the drum's own, on its shaft")
     resisting_ripple: RippleSpec | None = Field(None, description="a torque resisting the lift, periodic in the "
                                                 "drum angle")
@@ -117,7 +120,7 @@ class SimulationSpec(Section):
     atol: u.quantity(u.DIMENSIONLESS, gt=0.0) = Field(1e-10, description="the steps' absolute tolerance")
     solver: Literal[SOLVERS] = Field("tsit5", description="diffrax's solver")  # type: ignore[valid-type]
     max_switches: u.whole("mode switches") = Field(200, description="more mode switches than this: the run is "
-                                                   "reported as chattering")
+                                                   "reported as chattering (a new value compiles nothing)")
 
     @model_validator(mode="after")
     def _grid(self):

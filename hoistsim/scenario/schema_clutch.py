@@ -10,6 +10,7 @@ from pydantic import Field, model_validator
 
 from ..components import ConeClutch
 from ..errors import ScenarioError
+from . import plausible
 from . import units as u
 from .schema_base import Section
 
@@ -33,8 +34,10 @@ class FrictionSpec(Section):
 class ConeSpec(Section):
     """A cone's faces: their wedge multiplies the axial force pressing them (the effective radius n r_m / sin beta)."""
 
-    inner_radius: u.quantity(u.LENGTH, gt=0.0) = Field(description="r_i of the faces (less than outer_radius)")
-    outer_radius: u.quantity(u.LENGTH, gt=0.0) = Field(description="r_e of the faces")
+    inner_radius: u.quantity(u.LENGTH, plausible=plausible.CLUTCH_FACE_RADIUS, gt=0.0) = Field(
+        description="r_i of the faces (less than outer_radius)")
+    outer_radius: u.quantity(u.LENGTH, plausible=plausible.CLUTCH_FACE_RADIUS, gt=0.0) = Field(
+        description="r_e of the faces")
     half_angle: u.quantity(u.ANGLE, " (the cone half-angle beta = 90 deg - delta)", gt=0.0, lt=math.pi / 2) = Field(
         description="beta, the cone's half-angle (exercise 6's delta = 65 deg is 90 deg - beta)")
     mean_radius: Literal["uniform_wear", "uniform_pressure"] = Field("uniform_wear", description="r_m: "

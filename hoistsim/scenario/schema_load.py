@@ -10,6 +10,7 @@ from typing import Literal
 from pydantic import Field, model_validator
 
 from ..errors import ScenarioError
+from . import plausible
 from . import units as u
 from .schema_base import Section
 from .schema_parts import BearingsSpec
@@ -22,15 +23,15 @@ from .units import Text
 class LoadSpec(Section):
     """A load hanging on a rope: the hoist's (``load:``, from its drum), and a drawn drivetrain's."""
 
-    mass: u.quantity(u.MASS, ge=0.0) = Field(description="M, lifted against gravity")
+    mass: u.quantity(u.MASS, plausible=plausible.HOIST_LOAD, ge=0.0) = Field(description="M, lifted against gravity")
 
 
 class LoadBearingsSpec(BearingsSpec):
     """The bearings of the shaft the load hangs from, which a gear's wheel drives: the tooth forces (from the
     torque the shaft receives, at the wheel's pitch circle), the rope's pull, and the two bearings' reactions."""
 
-    wheel_pitch_diameter: u.quantity(u.LENGTH, gt=0.0) = Field(description="the wheel's, where its teeth are "
-                                                               "pressed")
+    wheel_pitch_diameter: u.quantity(u.LENGTH, plausible=plausible.GEAR_WHEEL_PITCH_DIAMETER, gt=0.0) = Field(
+        description="the wheel's, where its teeth are pressed")
     pressure_angle: u.quantity(u.ANGLE, gt=0.0, lt=math.pi / 2) = Field(math.radians(20.0), description="of the "
                                                                         "wheel's teeth")
 
@@ -42,7 +43,8 @@ class LoadOnShaftSpec(OnShaft, LoadSpec):
     quadratic in its speed."""
 
     shaft: Text = Field(description="the drum's shaft")
-    rope_radius: u.quantity(u.LENGTH, gt=0.0) = Field(description="where the rope winds: half the drum's diameter")
+    rope_radius: u.quantity(u.LENGTH, plausible=plausible.DRUM_RADIUS, gt=0.0) = Field(
+        description="where the rope winds: half the drum's diameter")
     rope: RopeSpec | None = Field(None, description="an elastic rope (absent: rigid)")
     ground: GroundSpec | None = Field(None, description="the load starts resting on the ground")
     bearings: LoadBearingsSpec | None = Field(None, description="the shaft's bearing loads in time (a gear "

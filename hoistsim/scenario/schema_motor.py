@@ -8,6 +8,7 @@ from pydantic import Field, model_validator
 
 from ..errors import ScenarioError
 from . import tables
+from . import plausible
 from . import units as u
 from .schema_base import Section
 
@@ -67,13 +68,12 @@ class MotorSpec(Section):
                     ("inertia", "rotor_mass + radius_of_gyration"))
     stall_torque: u.quantity(u.TORQUE, gt=0.0) | None = Field(None, description="C0, the torque at standstill "
                                                               "(linear: C = C0 (1 - omega / omega0))")
-    no_load_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) | None = Field(None, description="omega0, where the torque "
-                                                                      "reaches 0 (an induction motor's synchronous "
-                                                                      "speed)")
+    no_load_speed: u.quantity(u.ANGULAR_SPEED, plausible=plausible.MOTOR_SPEED, gt=0.0) | None = Field(
+        None, description="omega0, where the torque reaches 0 (an induction motor's synchronous speed)")
     rated_power: u.quantity(u.POWER, gt=0.0) | None = Field(None, description="P_N, the nameplate's, at rated_speed: "
                                                             "the line through the rated point, C0 = T_N / s_N")
-    rated_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) | None = Field(None, description="n_N, the nameplate's, below "
-                                                                    "no_load_speed")
+    rated_speed: u.quantity(u.ANGULAR_SPEED, plausible=plausible.MOTOR_SPEED, gt=0.0) | None = Field(
+        None, description="n_N, the nameplate's, below no_load_speed")
     breakdown_torque: u.quantity(u.TORQUE, gt=0.0) | None = Field(None, description="T_b, an induction motor's "
                                                                   "greatest torque (Kloss: T = 2 T_b / (s / s_b + "
                                                                   "s_b / s))")
@@ -85,7 +85,8 @@ class MotorSpec(Section):
                                                 "shaft coasts)")
     inertia: u.quantity(u.INERTIA, gt=0.0) | None = Field(None, description="the rotor's")
     rotor_mass: u.quantity(u.MASS, gt=0.0) | None = Field(None, description="the rotor's mass (I = m k^2)")
-    radius_of_gyration: u.quantity(u.LENGTH, gt=0.0) | None = Field(None, description="the rotor's, k")
+    radius_of_gyration: u.quantity(u.LENGTH, plausible=plausible.ROTOR_RADIUS_OF_GYRATION, gt=0.0) | None = Field(
+        None, description="the rotor's, k")
     ripple: RippleSpec | None = Field(None, description="a torque added to the characteristic, periodic in the "
                                       "motor's angle")
 

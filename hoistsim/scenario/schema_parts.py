@@ -12,6 +12,7 @@ from pydantic import Field, model_validator
 
 from ..errors import ScenarioError
 from . import tables
+from . import plausible
 from . import units as u
 from .schema_base import Section
 
@@ -24,10 +25,12 @@ class FlywheelSpec(Section):
     inertia: u.quantity(u.INERTIA, ge=0.0) | None = Field(None, description="its moment of inertia")
     # or a rim: I = pi * density * width * (R_outer^4 - R_inner^4) / 2
     density: u.quantity(u.DENSITY, gt=0.0) | None = Field(None, description="the rim's material's")
-    outer_diameter: u.quantity(u.LENGTH, gt=0.0) | None = Field(None, description="the rim's")
-    inner_diameter: u.quantity(u.LENGTH, ge=0.0) | None = Field(None, description="the rim's bore (less than "
-                                                                "outer_diameter)")
-    width: u.quantity(u.LENGTH, gt=0.0) | None = Field(None, description="the rim's, along the shaft")
+    outer_diameter: u.quantity(u.LENGTH, plausible=plausible.FLYWHEEL_RIM_DIAMETER, gt=0.0) | None = Field(
+        None, description="the rim's")
+    inner_diameter: u.quantity(u.LENGTH, plausible=plausible.FLYWHEEL_RIM_DIAMETER, ge=0.0) | None = Field(
+        None, description="the rim's bore (less than outer_diameter)")
+    width: u.quantity(u.LENGTH, plausible=plausible.FLYWHEEL_RIM_WIDTH, gt=0.0) | None = Field(
+        None, description="the rim's, along the shaft")
 
     @model_validator(mode="after")
     def _inertia_or_rim(self):
@@ -53,8 +56,9 @@ class ReciprocatingSpec(Section):
     """A slider-crank (on the motor shaft, the hoist's): its reciprocating mass has an inertia that varies with angle."""
 
     mass: u.quantity(u.MASS, gt=0.0) = Field(description="the reciprocating mass: I = mass (dx/dangle)^2")
-    crank_radius: u.quantity(u.LENGTH, gt=0.0) = Field(description="r")
-    rod_length: u.quantity(u.LENGTH, gt=0.0) = Field(description="l, longer than the crank")
+    crank_radius: u.quantity(u.LENGTH, plausible=plausible.CRANK_RADIUS, gt=0.0) = Field(description="r")
+    rod_length: u.quantity(u.LENGTH, plausible=plausible.CONNECTING_ROD_LENGTH, gt=0.0) = Field(
+        description="l, longer than the crank")
 
     @model_validator(mode="after")
     def _rod_longer_than_crank(self):
@@ -142,9 +146,12 @@ class ClutchHeatingSpec(Section):
 class BearingsSpec(Section):
     """The drum shaft's two bearings, A and B: the tooth forces, the rope's pull and their reactions in time."""
 
-    gear_offset: u.quantity(u.LENGTH, gt=0.0) = Field(description="a: bearing A to the gear, away from B")
-    rope_offset: u.quantity(u.LENGTH, gt=0.0) = Field(description="bearing A to the rope, towards B")
-    span: u.quantity(u.LENGTH, gt=0.0) = Field(description="bearing A to bearing B")
+    gear_offset: u.quantity(u.LENGTH, plausible=plausible.DRUM_SHAFT_LENGTHS, gt=0.0) = Field(
+        description="a: bearing A to the gear, away from B")
+    rope_offset: u.quantity(u.LENGTH, plausible=plausible.DRUM_SHAFT_LENGTHS, gt=0.0) = Field(
+        description="bearing A to the rope, towards B")
+    span: u.quantity(u.LENGTH, plausible=plausible.DRUM_SHAFT_LENGTHS, gt=0.0) = Field(
+        description="bearing A to bearing B")
 
 
 def kinetic_within_static(heating: ClutchHeatingSpec, static_friction: float, kinetic_friction: float,

@@ -7,6 +7,7 @@ from typing import Literal
 
 from pydantic import Field, model_validator
 
+from . import plausible
 from . import units as u
 from .schema_base import Section
 
@@ -18,8 +19,10 @@ class RopeSpec(Section):
     stiffness: u.quantity(u.STIFFNESS, gt=0.0) | None = Field(None, description="k, the rope's")
     modulus: u.quantity(u.PRESSURE, gt=0.0) | None = Field(None, description="E of the rope (steel wire rope: "
                                                            "80-110 GPa): k = E A / L")
-    metallic_area: u.quantity(u.AREA, gt=0.0) | None = Field(None, description="A: the wires' cross-section")
-    free_length: u.quantity(u.LENGTH, gt=0.0) | None = Field(None, description="L: drum to load at t = 0")
+    metallic_area: u.quantity(u.AREA, plausible=plausible.WIRE_ROPE_METALLIC_AREA, gt=0.0) | None = Field(
+        None, description="A: the wires' cross-section")
+    free_length: u.quantity(u.LENGTH, plausible=plausible.ROPE_FREE_LENGTH, gt=0.0) | None = Field(
+        None, description="L: drum to load at t = 0")
     damping_ratio: u.quantity(u.DIMENSIONLESS, ge=0.0) = Field(0.0, description="zeta: c = 2 zeta sqrt(k M), k "
                                                                "at t = 0")
     initial_slack: u.quantity(u.LENGTH, ge=0.0) = Field(0.0, description="rope paid out beyond taut at t = 0")

@@ -8,6 +8,7 @@ import math
 from pydantic import Field, model_validator
 
 from ..errors import ScenarioError
+from . import plausible
 from . import units as u
 from .schema_base import Section
 from .units import Text
@@ -25,9 +26,12 @@ class SpringSpec(Section):
     # or a round shaft's: c = G pi (D^4 - D_i^4) / (32 L)
     shear_modulus: u.quantity(u.PRESSURE, gt=0.0) | None = Field(None, description="G of a round shaft (steel: "
                                                                  "79-81 GPa): c = G pi (D^4 - D_i^4) / (32 L)")
-    diameter: u.quantity(u.LENGTH, gt=0.0) | None = Field(None, description="D, the round shaft's")
-    inner_diameter: u.quantity(u.LENGTH, ge=0.0) = Field(0.0, description="D_i, a hollow shaft's bore")
-    length: u.quantity(u.LENGTH, gt=0.0) | None = Field(None, description="L, between the parts it joins")
+    diameter: u.quantity(u.LENGTH, plausible=plausible.SHAFT_DIAMETER, gt=0.0) | None = Field(
+        None, description="D, the round shaft's")
+    inner_diameter: u.quantity(u.LENGTH, plausible=plausible.SHAFT_DIAMETER, ge=0.0) = Field(
+        0.0, description="D_i, a hollow shaft's bore")
+    length: u.quantity(u.LENGTH, plausible=plausible.SHAFT_LENGTH, gt=0.0) | None = Field(
+        None, description="L, between the parts it joins")
     damping: u.quantity(u.TORSIONAL_DAMPING, ge=0.0) = Field(0.0, description="d")
     unstretched_angle: u.quantity(u.ANGLE) = Field(0.0, description="phi_rel0: the twist at which it passes no "
                                                    "torque")

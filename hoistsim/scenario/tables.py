@@ -10,7 +10,7 @@ of the schema built on them.  A bad row is a :class:`TableError` that names it.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Annotated, Any, get_args
+from typing import Annotated, Any
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict
 
@@ -25,6 +25,7 @@ from .units import (
     Dimension,
     UnitError,
     check_range,
+    metadata_of,
     show,
     to_si,
 )
@@ -157,10 +158,8 @@ class Columns:
 
 def first_column_of(field) -> Dimension | None:
     """The dimension of a table field's first column (a FirstColumn in its metadata), or None."""
-    found = [m for m in field.metadata if isinstance(m, FirstColumn)]
-    for member in get_args(field.annotation):
-        found += [m for m in getattr(member, "__metadata__", ()) if isinstance(m, FirstColumn)]
-    return found[0].dimension if found else None
+    found = metadata_of(field, FirstColumn)
+    return found.dimension if found is not None else None
 
 
 class ForceTable(BaseModel):

@@ -301,40 +301,45 @@ class Limits:
     le: float | None = None
 
 
-def quantity(dimension: Dimension, hint: str = "", **limits: float):
-    """A float field given as a number (SI) or text with units, checked against ``limits`` (gt, ge, lt, le)."""
+def quantity(dimension: Dimension, hint: str = "", plausible: Any = None, **limits: float):
+    """A float field given as a number (SI) or text with units, checked against ``limits`` (gt, ge, lt, le);
+    ``plausible``: the range outside which a value is warned of."""
 
     def convert(value: Any) -> float:
         return check_range(to_si(value, dimension), value, dimension, hint=hint, **limits)
 
-    # the dimension and the limits ride along as metadata, for what reads the schema (bare angles, the reference)
-    return Annotated[float, BeforeValidator(convert), dimension, Limits(**limits)]
+    # the dimension, the limits and the plausible range ride along as metadata, for what reads the schema (the
+    # notes on bare numbers and implausible values, the reference)
+    extra = (plausible,) if plausible is not None else ()
+    return Annotated[float, BeforeValidator(convert), dimension, Limits(**limits), *extra]
+
+
+def metadata_of(field, kind: type) -> Any:
+    """The first metadata of ``kind`` on a field of the schema (a pydantic FieldInfo), or on the first member
+    of its union that has one (an optional quantity, ``quantity(...) | None``, keeps it there), or None."""
+    found = [m for m in field.metadata if isinstance(m, kind)]
+    for member in get_args(field.annotation):
+        found += [m for m in getattr(member, "__metadata__", ()) if isinstance(m, kind)]
+    return found[0] if found else None
 
 
 def dimension_of(field) -> Dimension | None:
-    """The dimension of a quantity field of the schema (a pydantic FieldInfo), or None.
-
-    An optional quantity (``quantity(...) | None``) keeps it inside the union's first member.
-    """
-    found = next((m for m in field.metadata if isinstance(m, Dimension)), None)
-    for member in get_args(field.annotation):
-        found = found or next((m for m in getattr(member, "__metadata__", ()) if isinstance(m, Dimension)), None)
-    return found
+    """The dimension of a quantity field of the schema, or None."""
+    return metadata_of(field, Dimension)
 
 
-def bare_number_note(value: float, dimension: Dimension) -> str | None:
-    """What a bare number means for an angle, an angular speed or a temperature, where the unit is easily
-    forgotten (25 read as 25 K)."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or value == 0:
+def bare_number_read_as(value: object, dimension: Dimension) -> str | None:
+    """How a bare number on a key with a unit is read ("40 m", "31.4 rad/s (299.8 rpm)"), or None where no
+    unit was forgotten: a pure number, a value with its unit, zero (zero in any unit)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or value == 0 or not dimension.si_unit:
         return None
+    read = f"{value:g} {dimension.si_unit}"
     if dimension is TEMPERATURE:
-        return (f"the bare number {value:g} is read as {value:g} K ({show(value, dimension)}); "
-                f"write the unit, like {dimension.example}, to say which you mean")
-    if dimension.radians != 1:
-        return None
-    shown = value * (30 / math.pi if dimension.shown_in == "rpm" else 180 / math.pi)
-    return (f"the bare number {value:g} is read as {value:g} {dimension.si_unit} ({shown:.4g} {dimension.shown_in}); "
-            f"write the unit, like {dimension.example}, to say which you mean")
+        return f"{read} ({show(value, dimension)})"
+    if dimension.radians == 1:
+        shown = value * (30 / math.pi if dimension.shown_in == "rpm" else 180 / math.pi)
+        return f"{read} ({shown:.4g} {dimension.shown_in})"
+    return read
 
 
 @dataclass(frozen=True)

@@ -96,7 +96,14 @@ def test_compare_shows_the_columns_that_fit(width):
     assert lines[-1].startswith("(") and "--wide" in lines[-1] and "--columns" in lines[-1]
     rule = next(i for i, line in enumerate(lines) if line.startswith("---"))
     assert lines[rule - 1].split()[:2] == ["[N]", "[s]"]  # the swept key, then the lock-up time
-    assert [line.split("  ")[0] for line in lines[rule + 1:-1]] == [r["label"] for r in rows]
+    # the labels only say the swept values: the values name the runs, in one format (never 3000 then 1e+04)
+    assert [line.split()[0] for line in lines[rule + 1:-1]] == ["3000", "4000", "5000", "6000"]
+    assert "clutch.engagement_force=" not in text
+    # the questions first: when the clutch locks, its heat, where the load went
+    heads = " ".join(lines[:rule])
+    for name in ("lockup_", "slip_", "lowest_", "final_"):
+        assert name in heads, (name, text)
+    assert heads.index("lowest_") < heads.index("peak_")
     wider = compare_table(rows, units, width=width + 40)
     assert len(wider.splitlines()[rule + 1]) > len(lines[rule + 1])  # a wider terminal: more columns
 
@@ -139,3 +146,29 @@ def test_csv_has_a_units_row():
 def test_a_label_wider_than_the_width_still_gives_a_table():
     text = fitted_table(["run", "lock-up [s]", "heat [J]"], [["x" * 50, "0.5", "12"]], width=40)
     assert [line.split()[-1] for line in text.splitlines() if line.startswith("x")] == ["0.5", "12"]
+
+
+def test_a_column_reads_in_one_number_format():
+    from hoistsim.results.report import column_cells
+
+    assert column_cells([3000.0, 6000.0, 9000.0, 12000.0]) == ["3000", "6000", "9000", "12000"]
+    assert column_cells([0.35, 1.0301, math.nan, None]) == ["0.350", "1.030", "-", "-"]
+    assert column_cells([406.9, 12.26]) == ["406.9", "12.3"]
+    assert column_cells([3.5e-10, 1e-12]) == ["3.500e-10", "1.000e-12"]  # very small: scientific
+    assert column_cells([2.5e5, 1.5]) == ["2.500e+05", "1.500e+00"]  # very large: scientific, all of them
+    assert column_cells([2.5e5, 1.0]) == ["250000", "1"]  # whole numbers as such
+    assert column_cells([5e-4, 40.0]) == ["5.000e-04", "4.000e+01"]  # decimals would print the small one as 0
+    assert column_cells(["3 kN", True, 2]) == ["3 kN", "yes", "2"]
+
+
+def test_a_sweep_file_compares_with_one_format_per_column_at_120():
+    """A force swept past 10 kN prints as 9000 then 12000; where the load went is in view at 120 columns."""
+    rows, units = _file_rows()
+    for row, force in zip(rows, (3000.0, 6000.0, 9000.0, 12000.0)):
+        row["clutch.engagement_force"] = force
+    text = compare_table(rows, units, width=120)
+    lines = text.splitlines()
+    rule = next(i for i, line in enumerate(lines) if line.startswith("---"))
+    assert [line.split()[0] for line in lines[rule + 1:-1]] == ["3000", "6000", "9000", "12000"]
+    for column in zip(*(line.split() for line in lines[rule + 1:-1])):  # each column: one count of decimals
+        assert len({len(cell.partition(".")[2]) for cell in column if cell != "-"}) == 1, column

@@ -139,9 +139,12 @@ def test_optional_sections_default_to_absent():
     assert (s.initial.motor_speed, s.initial.drum_speed) == (0.0, 0.0)
 
 
-@pytest.mark.parametrize("path", sorted(SCENARIOS.glob("*.yaml")), ids=lambda p: p.name)
+@pytest.mark.parametrize("path", sorted(SCENARIOS.rglob("*.yaml")), ids=lambda p: str(p.relative_to(SCENARIOS)))
 def test_every_shipped_scenario_loads(path):
-    s = load_scenario(path)
+    """... and says what it means: no bare number on a key with a unit, no value outside what its part measures
+    (each would be a warning, and an error under --strict)."""
+    s = load_scenario(path, strict=True)
+    assert s.warnings == []
     assert s.resolved()["name"] == s.name
     assert all(label == "" or "=" in label for label, _ in sweep_values(s))
 

@@ -32,7 +32,7 @@ from .guard_id import (BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, MARGIN_VALLEY, MAR
                        GuardId)
 from .layout import Layout
 from .ledger import ledger_values
-from .plan import CHATTERING, KINK_BUDGET, OK, SOLVER_FAILED, TOO_MANY_SEGMENTS, Plan
+from .plan import CHATTERING, KINK_BUDGET, OK, SOLVER_FAILED, TOO_MANY_SEGMENTS, Plan, segment_budget
 from .readout import RawRun
 from .schedule import Segment, segment_from
 from .stepping import integrate_pass
@@ -247,7 +247,7 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     )
 
 
-def restart_loop(plan: Plan, solver, max_segments: int, log_size: int, columns: bool = True) -> RawRun:
+def restart_loop(plan: Plan, solver, log_size: int, columns: bool = True) -> RawRun:
     """One run of ``plan``, traced: jitted by :func:`compiled_run`, vectorised over a sweep's runs by
     :func:`hoistsim.running.blocks.compiled_batch`; ``columns`` False leaves out the output columns (a
     summary-only sweep needs none)."""
@@ -283,6 +283,8 @@ def restart_loop(plan: Plan, solver, max_segments: int, log_size: int, columns: 
         pending_candidates=jnp.zeros((couplings,), bool),
         extremes=_initial_extremes(plan),
     )
+
+    max_segments = segment_budget(plan)
 
     def going(c: _Carry):
         # a switch located at the very end is still decided (a pass of no length follows it)
@@ -331,8 +333,7 @@ def _initial_extremes(plan: Plan) -> dict:
 
 
 @functools.lru_cache(maxsize=None)
-def compiled_run(solver_name: str, max_segments: int, log_size: int, columns: bool = True):
-    """The jitted loop for a solver and buffer sizes; shapes of the plan select the rest."""
+def compiled_run(solver_name: str, log_size: int, columns: bool = True):
+    """The jitted loop for a solver and its event log's rows; shapes of the plan select the rest."""
     solver = SOLVERS[solver_name]()
-    return jax.jit(functools.partial(restart_loop, solver=solver, max_segments=max_segments, log_size=log_size,
-                                     columns=columns))
+    return jax.jit(functools.partial(restart_loop, solver=solver, log_size=log_size, columns=columns))
