@@ -68,6 +68,8 @@ def _work_precision(output: Path, work: Path) -> list[Path]:
 
 # name -> (what it runs, how to make it); the README shows each under docs/ (work_precision: benchmarks/results/)
 FIGURES = {
+    "first_scenario": ("hoistsim run + plot scenarios/first_scenario.yaml",
+                       _run_and_plot("first_scenario.yaml", {"": "first_scenario.png"})),
     "engage_at_speed_with_brake": ("hoistsim run + plot scenarios/engage_at_speed_with_brake.yaml",
                                    _run_and_plot("engage_at_speed_with_brake.yaml",
                                                  {"": "engage_at_speed_with_brake.png"})),

@@ -1,7 +1,9 @@
-"""The README's commands as docs/check_readme.py reads them: all found, every file and option real.
+"""The README's commands as docs/check_readme.py reads them: all found, every file and option real; its
+first screen a quick-start, and its first scenario the shipped template, whose numbers are the runs'.
 
-Nothing is run here (docs/check_readme.py runs them from a clean clone, minutes): the commands are
-read, and each one's subcommand and options are looked up in the command line itself.
+No command is run here (docs/check_readme.py runs them from a clean clone, minutes): the commands are
+read, and each one's subcommand and options are looked up in the command line itself. The template and
+its fix are run once each, in process (two compiles of a few seconds).
 """
 
 from __future__ import annotations
@@ -142,3 +144,100 @@ def test_a_clone_runs_the_commands_and_a_failure_fails(tmp_path, capsys):
     table = capsys.readouterr().out.split(" #  line")[1].split("\n\n")[0].splitlines()[2:]
     assert [row.split()[2] for row in table if row.split()[:1] and row.split()[0].isdigit()] == ["skip", "0", "0", "0", "1"]
     assert "the environment given with --venv" in "\n".join(table)
+
+
+# --- the first screen and the first scenario --------------------------------------------------------
+
+FIRST_SCENARIO = ROOT / "scenarios" / "first_scenario.yaml"
+FIRST_SCREEN = "\n".join(README.splitlines()[:60])
+
+
+def _section(title: str) -> str:
+    """The README's ``## title`` section, up to the next ``## `` heading."""
+    start = README.index(f"\n## {title}\n")
+    end = README.find("\n## ", start + 1)
+    return README[start:end if end > 0 else None]
+
+
+def _fenced(text: str, language: str) -> list[str]:
+    return re.findall(rf"^```{language}\n(.*?)^```$", text, flags=re.S | re.M)
+
+
+def _with_the_brake(text: str) -> str:
+    """The template with the `#` of its two brake lines deleted, as the walk-through says."""
+    fixed = text.replace("\n#brake:", "\nbrake:").replace("\n#  release_time:", "\n  release_time:")
+    assert fixed.count("\nbrake:") == 1 and fixed.count("\n  release_time:") == 1
+    return fixed
+
+
+def test_the_first_screen_is_the_quick_start():
+    """The two commands, what a first and a later run cost (the first compiles), and the way to the walk-through."""
+    first = check_readme.block_commands(README)[:2]
+    assert all(command.text in FIRST_SCREEN for command in first)
+    assert "the first run of a scene: it compiles the scene's solver first" in FIRST_SCREEN
+    assert "a later run of the same structure" in FIRST_SCREEN and "0.9 s" in FIRST_SCREEN
+    assert "compiles again" in FIRST_SCREEN
+    assert "[Your first scenario](#your-first-scenario)" in FIRST_SCREEN
+    assert FIRST_SCREEN.count("\n## ") <= 1  # the quick-start, then at most the walk-through's heading
+    assert "benchmarks/README.md" in FIRST_SCREEN  # where the measurements' history went
+
+
+def test_the_readme_shows_the_first_scenario_whole():
+    assert _fenced(_section("Your first scenario"), "yaml")[0] == FIRST_SCENARIO.read_text(encoding="utf-8")
+
+
+def test_every_line_of_the_first_scenario_says_what_it_is():
+    for number, line in enumerate(FIRST_SCENARIO.read_text(encoding="utf-8").splitlines(), 1):
+        assert "#" in line, f"scenarios/first_scenario.yaml line {number} has no comment: {line!r}"
+
+
+def test_the_walk_through_runs_the_template_and_its_fix():
+    commands = [step.shell for step in check_readme.plan(_section("Your first scenario"))]
+    assert "hoistsim run scenarios/first_scenario.yaml -o first.h5" in commands
+    assert "hoistsim plot first.h5 -o first.png" in commands
+    assert any("scenarios/first_scenario.yaml" in c and "brake.release_time=" in c for c in commands)
+
+
+@pytest.fixture(scope="module")
+def template_run():
+    from hoistsim import load_scenario, simulate
+
+    return simulate(load_scenario(FIRST_SCENARIO)).summary
+
+
+@pytest.fixture(scope="module")
+def fixed_run(tmp_path_factory):
+    """The template with its brake lines' `#` deleted: a new structure (a brake), compiled once here."""
+    from hoistsim import load_scenario, simulate
+
+    path = tmp_path_factory.mktemp("first") / "first_scenario.yaml"
+    path.write_text(_with_the_brake(FIRST_SCENARIO.read_text(encoding="utf-8")), encoding="utf-8")
+    return simulate(load_scenario(path)).summary
+
+
+def _quoted(number: str) -> None:
+    assert number in _section("Your first scenario"), f"the walk-through does not say {number}"
+
+
+def test_the_first_scenario_lets_the_unbraked_load_fall_first(template_run):
+    assert template_run["lowest_load_position"] < -0.1  # the clutch ramped from rest: the load runs back
+    assert template_run["final_load_position"] > 0  # then the clutch catches it and lifts it
+    _quoted(f"**−{-template_run['lowest_load_position']:.3f} m**")
+    _quoted(f"**{template_run['lockup_time']:.3f} s**")
+    _quoted(f"**{template_run['slip_energy'] / 1e3:.2f} kJ**")
+    _quoted(f"+{template_run['final_load_position']:.2f} m at 3 s")
+
+
+def test_its_brake_lines_keep_the_load_from_falling(template_run, fixed_run):
+    from hoistsim import load_scenario, simulate
+
+    assert fixed_run["lowest_load_position"] >= 0.0
+    assert fixed_run["lockup_time"] < template_run["lockup_time"]
+    assert fixed_run["slip_energy"] < template_run["slip_energy"]
+    _quoted("**0 m**")
+    _quoted(f"**{fixed_run['lockup_time']:.3f} s**")
+    _quoted(f"**{fixed_run['slip_energy'] / 1e3:.2f} kJ**")
+    _quoted(f"+{fixed_run['final_load_position']:.2f} m instead of")
+    # the README's command-line fix is the same scene (and runs on the program just compiled)
+    given = simulate(load_scenario(FIRST_SCENARIO, overrides=["brake.release_time=0.5 s"])).summary
+    assert given["lockup_time"] == fixed_run["lockup_time"]
