@@ -33,7 +33,8 @@ import numpy as np
 import hoistsim._jax  # noqa: F401
 import jax
 from hoistsim import load_scenario
-from hoistsim.machine.assemble import build_plan, log_rows
+from hoistsim.machine import assemble
+from hoistsim.machine.assemble import build_plan
 from hoistsim.running.blocks import compiled_batch
 from hoistsim.scenario.sweep_runs import sweep_values
 
@@ -42,10 +43,16 @@ runs = [s for _, s in sweep_values(load_scenario(os.path.join({root!r}, {scenari
 calls, out = {{}}, {{}}
 for name, summary_only in (("summary-only", True), ("full output", False)):
     plans = [build_plan(s, summary_only=summary_only)[0] for s in runs]
-    rows = 1 if summary_only else log_rows(plans[0])
+    if hasattr(assemble, "step_room"):  # the loop's static sizes, as the tree measured has them
+        sizes = (1, 1) if summary_only else (assemble.log_rows(plans[0]), assemble.step_room(plans[0]))
+    elif hasattr(assemble, "log_rows"):
+        sizes = (1,) if summary_only else (assemble.log_rows(plans[0]),)
+    else:
+        sizes = assemble.loop_sizes(plans[0], runs[0].simulation.max_switches)
+        sizes = (sizes[0], 1) if summary_only else sizes
     stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *plans)
     started = time.perf_counter()
-    program = compiled_batch(runs[0].simulation.solver, rows, not summary_only, 1).lower(stacked).compile()
+    program = compiled_batch(runs[0].simulation.solver, *sizes, not summary_only, 1).lower(stacked).compile()
     out[name] = dict(compile=time.perf_counter() - started, rows=int(plans[0].grid.shape[0]))
     jax.block_until_ready(program(stacked))
     calls[name] = (program, stacked, [])

@@ -125,6 +125,16 @@ def log_rows(plan: Plan, log_size: int | None = None) -> int:
     return rows
 
 
+def step_room(plan: Plan, kept: int | None = None) -> int:
+    """The accepted steps a run keeps room for, for its output rows (a static size of the loop): a quarter
+    of its padded grid's rows, at least MIN_STEP_ROOM (a run takes some 60-1 500 steps for 2 000-5 000
+    rows); ``kept`` asks for room for that many (a run that took more than it could keep is run again)."""
+    room = max(MIN_STEP_ROOM, int(plan.grid.shape[0]) // 4)
+    return room if kept is None else max(room, _power_of_two(kept))
+
+
+MIN_STEP_ROOM = 256
+
 # The switches the event log has room for at first (the default max_switches); a run that switches more is
 # run again with room for every row.
 LOGGED_SWITCHES = 200

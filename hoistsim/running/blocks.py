@@ -23,11 +23,11 @@ from jax.sharding import Mesh, NamedSharding, PartitionSpec
 
 from .. import _jax
 from ..errors import ScenarioError
-from ..machine.assemble import build_plan, log_rows
+from ..machine.assemble import build_plan, log_rows, step_room
 from ..machine.core.loop import SOLVERS, restart_loop
 from ..machine.core.plan import OK, Plan
 from ..machine.core.schedule import scheduled_times
-from ..machine.core.readout import STATUS, BatchReadout, Readout
+from ..machine.core.readout import EVENT_COUNT, KEPT_STEPS, STATUS, BatchReadout, Readout
 from ..results.periodic.analysis import periodic_regime
 from ..results.run_result import Summaries, summary_columns
 from ..scenario.loading import Scenario
@@ -165,8 +165,8 @@ def _launch(runs, scenarios, group, plans, fast, summary_only: bool, chunk: int,
     else:
         rows = max(log_rows(plan) for plan in group_plans)
     lean = summary_only and not periodic
-    if lean:  # the summary needs no event rows, only their counts
-        rows = 1
+    # the summary needs no event rows, only their counts, and no steps; else room for the steps of the rows
+    sizes = (1, 1) if lean else (rows, step_room(group_plans[0]))
     chunks = []
     for offset in range(0, len(group), chunk):
         part = group[offset:offset + chunk]
@@ -178,31 +178,34 @@ def _launch(runs, scenarios, group, plans, fast, summary_only: bool, chunk: int,
             stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *batch + [batch[-1]] * (chunk - len(batch)))
         chunks.append((part, stacked))
     solver = first.simulation.solver
-    run = _jax.executable(functools.partial(compiled_batch, solver, rows, not lean, devices), chunks[0][1],
-                          name=f"sweep-{solver}-{rows}-{lean}", devices=devices)
+    run = _jax.executable(functools.partial(compiled_batch, solver, *sizes, not lean, devices), chunks[0][1],
+                          name=f"sweep-{solver}-{sizes}-{lean}", devices=devices)
     # launched, not waited for: the host goes on while they run
     calls = [(time.perf_counter(), run(stacked)) if lean else None for _, stacked in chunks]
-    return dict(chunks=chunks, calls=calls, run=run, rows=rows, lean=lean, periodic=periodic, solver=solver,
+    return dict(chunks=chunks, calls=calls, run=run, sizes=sizes, lean=lean, periodic=periodic, solver=solver,
                 devices=devices, layout=group_plans[0].layout, first_plan=group_plans[0])
 
 
 def _results(group: dict):
     """(runs of the chunk, what the compiled loop returned, seconds per run) for each of a group's chunks."""
-    run, rows, built = group["run"], group["rows"], group["rows"]
+    run, sizes, built = group["run"], group["sizes"], group["sizes"]
     for (part, stacked), call in zip(group["chunks"], group["calls"]):
         while True:
-            if built != rows:
-                run = _jax.executable(functools.partial(compiled_batch, group["solver"], rows, True, group["devices"]),
-                                      stacked, name=f"sweep-{group['solver']}-{rows}-False", devices=group["devices"])
-                built = rows
+            if built != sizes:
+                run = _jax.executable(functools.partial(compiled_batch, group["solver"], *sizes, True,
+                                                        group["devices"]),
+                                      stacked, name=f"sweep-{group['solver']}-{sizes}-False", devices=group["devices"])
+                built = sizes
             started, pending = call if call is not None else (time.perf_counter(), run(stacked))
             raw = jax.device_get(pending)
             elapsed = (time.perf_counter() - started) / len(part)
-            logged = int(np.max(raw.counters[: len(part), 0]))
-            if group["lean"] or logged <= rows:
+            logged = int(np.max(raw.counters[: len(part), EVENT_COUNT]))
+            kept = int(np.max(raw.counters[: len(part), KEPT_STEPS]))
+            if group["lean"] or (logged <= sizes[0] and kept <= sizes[1]):
                 break
             call = None
-            rows = log_rows(group["first_plan"], log_size=logged + 1)  # room for every row
+            # room for every event row and every step
+            sizes = (log_rows(group["first_plan"], log_size=logged + 1), step_room(group["first_plan"], kept))
         yield part, raw, elapsed
 
 
@@ -349,7 +352,7 @@ def devices_for(chunk: int) -> int:
 
 
 @functools.lru_cache(maxsize=None)
-def compiled_batch(solver_name: str, log_size: int, columns: bool = True, devices: int = 1):
+def compiled_batch(solver_name: str, log_size: int, step_room: int, columns: bool = True, devices: int = 1):
     """The restart loop, vectorised over a leading batch axis of the plan (without columns: summaries only).
 
     With several ``devices``, each runs its share of the batch's runs through its
@@ -357,7 +360,8 @@ def compiled_batch(solver_name: str, log_size: int, columns: bool = True, device
     done, never waiting for the others'.
     """
     solver = SOLVERS[solver_name]()
-    batch = jax.vmap(functools.partial(restart_loop, solver=solver, log_size=log_size, columns=columns))
+    batch = jax.vmap(functools.partial(restart_loop, solver=solver, log_size=log_size, step_room=step_room,
+                                       columns=columns))
     if devices == 1:
         return jax.jit(batch)
     mesh = Mesh(np.array(jax.devices()[:devices]), ("runs",))

@@ -10,7 +10,7 @@ import numpy as np
 
 from .. import _jax
 from ..errors import ScenarioError
-from ..machine.assemble import build_plan, log_rows
+from ..machine.assemble import build_plan, log_rows, step_room
 from ..machine.core.element import MODE_NAMES
 from ..machine.core.layout import SWITCH_KINDS
 from ..machine.core.plan import CHATTERING, OK, SOLVER_FAILED, STATUS_TEXT
@@ -28,26 +28,28 @@ def simulate(scenario: Scenario, label: str = "") -> RunResult:
     """Run one scenario (its sweep, if any, is ignored here: see :func:`hoistsim.sweep`)."""
     plan, grid = build_plan(scenario)
     sim = scenario.simulation
-    rows = log_rows(plan)
+    rows, room = log_rows(plan), step_room(plan)
     while True:
-        run = _jax.executable(functools.partial(_loop, sim.solver, rows), plan, name=f"run-{sim.solver}-{rows}")
+        run = _jax.executable(functools.partial(_loop, sim.solver, rows, room), plan,
+                              name=f"run-{sim.solver}-{rows}-{room}")
         started = _time.perf_counter()
         raw = Readout(plan.layout, jax.device_get(run(plan)))
         elapsed = _time.perf_counter() - started
-        if not raw.log_overflowed:
+        if not raw.log_overflowed and not raw.steps_overflowed:
             break
-        rows = log_rows(plan, log_size=raw.event_count + 1)  # room for every row
+        # room for every event row and every step
+        rows, room = log_rows(plan, log_size=raw.event_count + 1), step_room(plan, raw.kept_steps)
     scenario_errors(scenario, raw)
     if raw.status != OK:
         raise SimulationError(failure_message(scenario, raw))
     return run_result(scenario, label, grid, raw, elapsed)
 
 
-def _loop(solver: str, rows: int):
+def _loop(solver: str, rows: int, room: int):
     """The compiled loop, imported (with the solver library) only where no stored program serves."""
     from ..machine.core.loop import compiled_run
 
-    return compiled_run(solver, rows)
+    return compiled_run(solver, rows, room)
 
 
 def scenario_errors(scenario: Scenario, raw: Readout) -> None:

@@ -8,14 +8,14 @@ import pytest
 from helpers import scene, reduced
 
 from hoistsim import simulate
-from hoistsim.machine.assemble import build_plan, log_rows
+from hoistsim.machine.assemble import build_plan, log_rows, step_room
 from hoistsim.machine.core import loop
 from hoistsim.machine.elements import HoldingBrake, elements_for
 
 
 def _jaxpr_size(s) -> int:
     plan, _ = build_plan(s)
-    run = loop.compiled_run(s.simulation.solver, log_rows(plan))
+    run = loop.compiled_run(s.simulation.solver, log_rows(plan), step_room(plan))
     return len(str(jax.make_jaxpr(run)(plan)).splitlines())
 
 

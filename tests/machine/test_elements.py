@@ -21,7 +21,7 @@ import pytest
 from helpers import EXERCISE6, ROOT
 
 from hoistsim import scenario_from_dict, simulate
-from hoistsim.machine.assemble import build_plan, log_rows
+from hoistsim.machine.assemble import build_plan, log_rows, step_room
 from hoistsim.machine.core.element import AbstractCoupling, AbstractElement, abstract_methods
 from hoistsim.machine.core.loop import OK, compiled_run
 from hoistsim.machine.elements import REGISTRY, Drawn, element_sections, elements_for
@@ -165,7 +165,7 @@ def test_two_couplings_holding_the_same_motion_share_it_by_order():
     # same as with the drum brake alone.
     plan, _ = build_plan(_scene(brake={"release_time": "0.5 s"}))
     both = dataclasses.replace(plan, elements=plan.elements + (_SecondBrake(),))
-    alone, twice = (jax.device_get(compiled_run("tsit5", log_rows(plan))(p)) for p in (plan, both))
+    alone, twice = (jax.device_get(compiled_run("tsit5", log_rows(plan), step_room(plan))(p)) for p in (plan, both))
     assert int(twice.counters[2]) == OK
     assert np.array_equal(twice.grid_state, alone.grid_state)
 

@@ -221,7 +221,7 @@ def test_an_observation_never_fires_again_at_its_own_restart():
     ((_, one),) = sweep_values(s)
     plan, _ = build_plan(one, summary_only=True)
     batch = jax.tree.map(lambda leaf: np.stack([leaf]), plan)
-    raw = jax.device_get(compiled_batch(s.simulation.solver, 1, False)(batch))
+    raw = jax.device_get(compiled_batch(s.simulation.solver, 1, 1, False)(batch))
     assert int(raw.counters[0, PASSES]) <= 4
     assert sweep(s, summary_only=True).summaries[0]["slip_duration"] == pytest.approx(2.0)
 

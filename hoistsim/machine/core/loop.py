@@ -22,7 +22,7 @@ import jax
 import jax.numpy as jnp
 
 from ..._pytree import pytree_dataclass
-from . import decisions, switching
+from . import decisions, private_api, switching
 from .bodies import Response, response, response_table
 from .columns import row_outputs, summary_values
 from .dynamics import Instant, slip_sign
@@ -35,7 +35,7 @@ from .ledger import ledger_values
 from .plan import CHATTERING, KINK_BUDGET, OK, SOLVER_FAILED, TOO_MANY_SEGMENTS, Plan, segment_budget
 from .readout import RawRun
 from .schedule import Segment, segment_from
-from .stepping import integrate_pass
+from .stepping import Steps, integrate_pass, no_steps, rows_from_steps
 
 # The solvers a run may use, by the names a scenario gives them (simulation.solver: the schema's list, which
 # tests/test_layers.py holds equal to this one).
@@ -85,8 +85,8 @@ class _Carry(eqx.Module):
     segments: jax.Array
     steps: jax.Array
     rejected: jax.Array
-    grid_state: jax.Array
-    grid_modes: jax.Array
+    kept: Steps | None  # the accepted steps, for the output rows written after the loop (None: no rows)
+    kept_count: jax.Array  # how many of them are kept (steps of a pass solved again are dropped)
     log_count: jax.Array
     kind_counts: jax.Array  # events of each kind so far (Layout.event_kinds)
     log: jax.Array  # (rows, LOG_FIELDS + states + couplings): one buffer, one write per event (see eventlog.record)
@@ -163,8 +163,8 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
     armed = {name: starting[i] for i, (role, name, _) in enumerate(guards) if role != "switch"}
     return pass_args, armed, integrate_pass(
         solver, pass_args, switching.guard_values, c.t, c.y, end,
-        rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap, grid=plan.grid, grid_state=c.grid_state,
-        write_rows=columns, max_steps=MAX_STEPS_PER_SEGMENT)
+        rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap, max_steps=MAX_STEPS_PER_SEGMENT,
+        kept=c.kept, count=c.kept_count, modes=c.modes)
 
 
 def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
@@ -217,9 +217,8 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     missed = shrink | found_first
     kept = ~missed
     masks = {name: m & kept for name, m in masks.items()}
-    rows = (plan.grid >= c.t) & (plan.grid < t_end) & kept
-    grid_state = jnp.where(kept, sol.grid_state, c.grid_state)
-    grid_modes = jnp.where(rows[:, None], c.modes, c.grid_modes)
+    # the pass's steps are kept for the rows, unless it is solved again (they are written over)
+    kept_count = jnp.where(kept, sol.count, c.kept_count)
     y_end = jnp.where(missed, start_y, y_end)
     t_reached = jnp.where(missed, start_t, t_end)
     c, _ = _note(plan, segment, c, t_reached, y_end, c.modes, reply)
@@ -231,9 +230,10 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     # away leaves what ended the one before it as it was (its guard starts the pass solved again lowered)
     fired = {name: jnp.where(kept, masks[name] | coinciding.get(name, False), c.fired[name]) for name in c.fired}
     c = eqx.tree_at(
-        lambda k: (k.extremes, k.grid_state, k.grid_modes, k.steps, k.rejected, k.segments, k.fired),
+        lambda k: (k.extremes, k.kept, k.kept_count, k.steps, k.rejected, k.segments, k.fired),
         c,
-        (extremes, grid_state, grid_modes, c.steps + sol.steps, c.rejected + sol.rejected, c.segments + 1, fired),
+        (extremes, sol.kept, kept_count, c.steps + sol.steps, c.rejected + sol.rejected, c.segments + 1, fired),
+        is_leaf=lambda x: x is None,
     )
     c = decisions.apply_event(plan, segment, eqx.tree_at(lambda k: k.y, c, y_end), t_end, y_end, masks, hit & kept,
                      coinciding, pass_args.orients)
@@ -247,10 +247,11 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     )
 
 
-def restart_loop(plan: Plan, solver, log_size: int, columns: bool = True) -> RawRun:
+def restart_loop(plan: Plan, solver, log_size: int, step_room: int = 0, columns: bool = True) -> RawRun:
     """One run of ``plan``, traced: jitted by :func:`compiled_run`, vectorised over a sweep's runs by
-    :func:`hoistsim.running.blocks.compiled_batch`; ``columns`` False leaves out the output columns (a
-    summary-only sweep needs none)."""
+    :func:`hoistsim.running.blocks.compiled_batch`; ``columns`` False leaves out the output rows and columns (a
+    summary-only sweep needs none).  The rows are written after the loop from the accepted steps it kept (room
+    for ``step_room``; a run that takes more is taken again with room for them all: counters say)."""
     global trace_count
     trace_count += 1
     layout = plan.layout
@@ -267,8 +268,8 @@ def restart_loop(plan: Plan, solver, log_size: int, columns: bool = True) -> Raw
         segments=jnp.array(0),
         steps=jnp.array(0),
         rejected=jnp.array(0),
-        grid_state=jnp.full((rows, size), nan),
-        grid_modes=jnp.full((rows, couplings), -1),
+        kept=no_steps(solver, plan.initial_state, step_room, couplings) if columns else None,
+        kept_count=jnp.array(0),
         log_count=jnp.array(0),
         kind_counts=jnp.zeros((len(layout.event_kinds),), int),
         log=jnp.full((log_size, LOG_FIELDS + (size if columns else 0) + couplings), nan),
@@ -290,12 +291,19 @@ def restart_loop(plan: Plan, solver, log_size: int, columns: bool = True) -> Raw
         # a switch located at the very end is still decided (a pass of no length follows it)
         return ((c.t < plan.duration) | c.pending) & (c.status == OK) & (c.segments < max_segments)
 
-    c = jax.lax.while_loop(going, functools.partial(_step, plan, solver, columns), c)
+    # The kept steps are a buffer of the run's loop too: a pass writes them in place (see stepping).
+    c = private_api.while_loop(going, functools.partial(_step, plan, solver, columns), c, kind="lax",
+                               buffers=lambda k: (k.kept, k.log))
     status = jnp.where((c.status == OK) & (c.t < plan.duration), TOO_MANY_SEGMENTS, c.status)
-    # The end of the run: rows at the duration (and the grid's padding) take the final state.
-    last = plan.grid >= c.t
-    grid_state = jnp.where(last[:, None] & (status == OK), c.y, c.grid_state)
-    grid_modes = jnp.where(last[:, None] & (status == OK), c.modes, c.grid_modes)
+    # The rows: before where the run ended, on the steps that cover them; from there on (the duration, the
+    # grid's padding), the final state (nothing where the run failed).
+    ended = (plan.grid >= c.t)[:, None]
+    if columns:
+        stepped_state, stepped_modes = rows_from_steps(solver, c.kept, c.kept_count, plan.grid)
+    else:  # one row, at the end: no steps kept
+        stepped_state, stepped_modes = jnp.full((rows, size), nan), jnp.full((rows, couplings), -1)
+    grid_state = jnp.where(ended, jnp.where(status == OK, c.y, nan), stepped_state)
+    grid_modes = jnp.where(ended, jnp.where(status == OK, c.modes, -1), stepped_modes)
     scalars = [c.t, *summary_values(plan, c.extremes, c.y, c.modes), *ledger_values(layout, plan.initial_state),
                *ledger_values(layout, c.y), c.extremes[KINETIC_PEAK]]
     log_time, log_margin, codes, log_state, log_modes = unpack(c.log, c.log_count, couplings, columns)
@@ -313,7 +321,8 @@ def restart_loop(plan: Plan, solver, log_size: int, columns: bool = True) -> Raw
         event_modes=log_modes,
         final_state=c.y,
         scalars=jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in scalars]),
-        counters=jnp.stack([c.log_count, c.switches, status, c.steps, c.rejected, c.segments]),
+        counters=jnp.stack([c.log_count, c.switches, status, c.steps, c.rejected, c.segments, c.kept_count,
+                            step_room]),
         kind_counts=c.kind_counts,
     )
 
@@ -333,7 +342,9 @@ def _initial_extremes(plan: Plan) -> dict:
 
 
 @functools.lru_cache(maxsize=None)
-def compiled_run(solver_name: str, log_size: int, columns: bool = True):
-    """The jitted loop for a solver and its event log's rows; shapes of the plan select the rest."""
+def compiled_run(solver_name: str, log_size: int, step_room: int, columns: bool = True):
+    """The jitted loop for a solver, its event log's rows and the steps it keeps; shapes of the plan select the
+    rest."""
     solver = SOLVERS[solver_name]()
-    return jax.jit(functools.partial(restart_loop, solver=solver, log_size=log_size, columns=columns))
+    return jax.jit(functools.partial(restart_loop, solver=solver, log_size=log_size, step_room=step_room,
+                                     columns=columns))

@@ -9,7 +9,7 @@ from ..._pytree import pytree_dataclass
 from .layout import Layout
 from .ledger import HELD, PEAK_TERM
 
-EVENT_COUNT, SWITCHES, STATUS, STEPS, REJECTED, PASSES = range(6)
+EVENT_COUNT, SWITCHES, STATUS, STEPS, REJECTED, PASSES, KEPT_STEPS, STEP_ROOM = range(8)
 
 
 @pytree_dataclass
@@ -29,7 +29,7 @@ class RawRun:
     event_modes: jax.Array
     final_state: jax.Array
     scalars: jax.Array  # end time, then Layout.summaries, then each ledger term at the start and the end
-    counters: jax.Array  # event count, switches, status, steps, rejected steps, passes
+    counters: jax.Array  # event count, switches, status, steps, rejected steps, passes, steps kept, room
     kind_counts: jax.Array  # events of each kind (Layout.event_kinds), however small the log
 
 
@@ -108,6 +108,16 @@ class Readout:
     def log_overflowed(self) -> bool:
         """Whether the run logged more rows than its log could keep (run it again with more)."""
         return self.event_count > np.asarray(self.raw.event_times).shape[-2]
+
+    @property
+    def steps_overflowed(self) -> bool:
+        """Whether the run took more steps than it had room to keep for its rows (run it again with more)."""
+        return self._count(KEPT_STEPS) > self._count(STEP_ROOM)
+
+    @property
+    def kept_steps(self) -> int:
+        """The accepted steps the run kept for its rows (more than its room where it overflowed)."""
+        return self._count(KEPT_STEPS)
 
     def count(self, kind: str) -> int:
         """How many events of a kind the run had (known even when the log kept no rows)."""

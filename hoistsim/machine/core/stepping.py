@@ -16,6 +16,12 @@ are in rad/s or N*m, not seconds), returning its upper end, the first time the
 crossing has happened, so that a restart from there never meets it again.
 Where several reach zero at that instant, the first in list order fired (the
 switches, listed first).
+
+The output rows are not written in the loop: each accepted step is kept (its
+span and its dense output, a few numbers per state) and the rows are evaluated
+after the run, every row at once, on the steps that cover them
+(:func:`rows_from_steps`).  A row costs its interpolant's arithmetic alone,
+never a trip of a loop inside the step loop.
 """
 
 from __future__ import annotations
@@ -36,8 +42,43 @@ CROSSING_RTOL = 1e-15
 CROSSING_ATOL = 1e-15
 # A step ending this many ulps short of the pass's end is taken to the end (as diffrax does).
 END_ULPS = 100
-# Output rows written from a step's interpolant in one trip of the row loop (see _write_rows).
-ROWS_AT_ONCE = 16
+
+
+class Steps(eqx.Module):
+    """The accepted steps a run keeps for its output rows: each step's span, where its rows end (its end, or a
+    crossing inside it), its dense output and the couplings' modes it was taken in.  A buffer of ``room``
+    steps, the first ``count`` of them kept (the count may run past the room: the run is then taken again
+    with room for them all)."""
+
+    t0: jax.Array  # (room,) s
+    t1: jax.Array  # (room,) s: the end of the step its interpolant spans
+    until: jax.Array  # (room,) s: its rows are those before this (t1, or the crossing located in it)
+    dense: dict  # the solver's dense output (its dense info: y0, y1, k...), each (room, ...)
+    modes: jax.Array  # (room, couplings)
+
+
+def no_steps(solver, y0, room: int, couplings: int) -> Steps:
+    """A buffer for ``room`` steps of ``solver`` from states shaped as ``y0``."""
+    # (an implicit solver steps with some tolerances: their values do not change the shapes)
+    stepper = _Stepper(_with_step_tolerances(solver, diffrax.PIDController(rtol=1e-8, atol=1e-8)), None,
+                       lambda t, y, args: y)
+    dense = jax.eval_shape(lambda t0, t1, y: stepper.step(t0, t1, y, stepper.init(t0, t1, y))[2],
+                           jnp.zeros((), y0.dtype), jnp.ones((), y0.dtype), y0)
+    times = jnp.full((room,), jnp.inf)
+    return Steps(t0=times, t1=times, until=times,
+                 dense={name: jnp.zeros((room, *s.shape), s.dtype) for name, s in dense.items()},
+                 modes=jnp.zeros((room, couplings), int))
+
+
+def _kept(steps: Steps, count, t0, t1, until, dense, modes, take):
+    """The buffer with the step written at ``count`` (the first free place, or the last where it is full),
+    and the count, one more if ``take``.  Written whether taken or not: a step not taken is written where the
+    next one will be, and never read.  (Writes alone, each ``.at[].set``: the buffer is written in place.)"""
+    i = jnp.minimum(count, steps.t0.shape[0] - 1)
+    written = Steps(t0=steps.t0.at[i].set(t0), t1=steps.t1.at[i].set(t1), until=steps.until.at[i].set(until),
+                    dense={name: steps.dense[name].at[i].set(value) for name, value in dense.items()},
+                    modes=steps.modes.at[i].set(modes))
+    return written, count + take
 
 
 class Pass(eqx.Module):
@@ -50,7 +91,8 @@ class Pass(eqx.Module):
     failed: jax.Array  # step limit reached, or the solver could not go on
     steps: jax.Array  # attempted, accepted and rejected
     rejected: jax.Array
-    grid_state: jax.Array  # output rows with times in [start, t) written
+    kept: Steps | None  # the accepted steps kept for the output rows (None: none are)
+    count: jax.Array  # how many are kept, this pass's steps included
 
 
 @functools.lru_cache(maxsize=None)
@@ -129,18 +171,19 @@ class _Carry(eqx.Module):
     hit: jax.Array
     failed: jax.Array
     crossed: jax.Array  # (guards,): which changed sign in the last step
-    row: jax.Array  # the first output row not written yet
-    grid_state: jax.Array
+    kept: Steps | None
+    count: jax.Array
 
 
-def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, dtmax, grid, grid_state,
-                   write_rows: bool, max_steps: int, field: Callable = vector_field) -> Pass:
+def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, dtmax, max_steps: int,
+                   kept: Steps | None = None, count=0, modes=None, field: Callable = vector_field) -> Pass:
     """Step dy/dt = ``field(t, y, args)`` from (t0, y0) towards ``end`` until a guard (``guards(t, y, args)``:
     an array) falls to zero.
 
     A guard crosses where it goes from positive at a step's start to zero or
-    below at its end.  ``grid_state`` rows whose time lies in [t0, where the
-    pass ends) are written from the steps' interpolants when ``write_rows``.
+    below at its end.  Each accepted step, and the crossing's step up to the
+    crossing, is added to ``kept`` (from place ``count``, with ``modes``) for the
+    output rows, when a buffer is given.
     """
     controller = diffrax.PIDController(rtol=rtol, atol=atol, dtmax=dtmax)
     solver = _with_step_tolerances(solver, controller)
@@ -155,7 +198,7 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
     carry = _Carry(
         t=jnp.asarray(t0, y0.dtype), y=y0, t_next=t_next, state=state, control=control, values=values,
         steps=jnp.array(0), rejected=jnp.array(0), done=t0 >= end, hit=jnp.array(False),
-        failed=jnp.array(False), crossed=nothing, row=jnp.sum(grid < t0), grid_state=grid_state)
+        failed=jnp.array(False), crossed=nothing, kept=kept, count=jnp.asarray(count))
 
     def going(c: _Carry):
         return ~c.done & ~c.failed
@@ -169,10 +212,9 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
         values = guards(c.t_next, y1, args)
         crossed = keep & (c.values > 0.0) & (values <= 0.0)
         hit = jnp.any(crossed)
-        grid_state, row = c.grid_state, c.row
-        if write_rows:  # the rows this step covers (an event's step: after its crossing is found)
-            grid_state, row = _write_rows(grid, grid_state, row, jnp.where(keep & ~hit, c.t_next, c.t),
-                                          stepper.interpolant(c.t, c.t_next, dense))
+        kept, count = c.kept, c.count
+        if kept is not None:  # an accepted step, for the rows it covers (an event's: once its crossing is found)
+            kept, count = _kept(kept, count, c.t, c.t_next, c.t_next, dense, modes, keep & ~hit)
         accept = lambda new, old: jax.tree.map(lambda a, b: jnp.where(keep & ~hit, a, b), new, old)
         steps = c.steps + 1
         return _Carry(
@@ -180,11 +222,11 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
                 keep, c.t_next, next_t1)), state=accept(state, c.state), control=control,
             values=accept(values, c.values), steps=steps, rejected=c.rejected + ~keep,
             done=hit | (keep & (c.t_next >= end)), hit=hit, failed=(steps >= max_steps) & ~hit & ~(keep & (c.t_next >= end)),
-            crossed=crossed, row=row, grid_state=grid_state)
+            crossed=crossed, kept=kept, count=count)
 
-    # The output rows are a buffer: each written in place, never copied whole.  (Under ``vmap`` a loop's
-    # carry is otherwise selected lane by lane at every step: the whole grid, once a step.)
-    c = private_api.while_loop(going, body, carry, kind="lax", buffers=lambda k: k.grid_state)
+    # The kept steps are a buffer: each written in place, never copied whole.  (Under ``vmap`` a loop's
+    # carry is otherwise selected lane by lane at every step: the whole buffer, once a step.)
+    c = private_api.while_loop(going, body, carry, kind="lax", buffers=lambda k: k.kept)
     # A crossing's step was not accepted: the carry still holds its start, end and first rate, and the step
     # is taken again here for its interpolant (once a pass, not kept through every step of the loop).
     _, _, dense_shape, _, _ = jax.eval_shape(stepper.step, c.t, c.t_next, c.y, c.state)
@@ -200,11 +242,11 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
     dense, t_hit, y_hit, mask = jax.lax.cond(private_api.unvmap_any(c.hit), locate, no_crossing)
     t_end = jnp.where(c.hit, t_hit, c.t)
     y_end = jnp.where(c.hit, y_hit, c.y)
-    grid_state = c.grid_state
-    if write_rows:  # a crossing's rows up to it (elsewhere every row before the pass's end is written)
-        grid_state, _ = _write_rows(grid, grid_state, c.row, t_end, stepper.interpolant(c.t, c.t_next, dense))
+    kept, count = c.kept, c.count
+    if kept is not None:  # the crossing's step, its rows up to the crossing
+        kept, count = _kept(kept, count, c.t, c.t_next, t_end, dense, modes, c.hit)
     return Pass(t=t_end, y=y_end, hit=c.hit, mask=mask & c.hit, failed=c.failed, steps=c.steps, rejected=c.rejected,
-                grid_state=grid_state)
+                kept=kept, count=count)
 
 
 def _with_step_tolerances(solver, controller):
@@ -246,33 +288,18 @@ def _crossing(guards, args, interpolant, lower, upper, crossed):
     return t, y, jnp.arange(fired.shape[0]) == first
 
 
-def _write_rows(grid, grid_state, row, t_stop, interpolant):
-    """Rows from ``row`` on whose time is before ``t_stop``, from the interpolant; the next row to write.
+def rows_from_steps(solver, kept: Steps, count, grid):
+    """The state and the modes at each time of ``grid`` from the kept steps: each row on the interpolant of the
+    step that covers it (the first whose rows end after it), every row at once.  A row no kept step covers
+    (past where the steps end) is NaN, its modes -1."""
+    room = kept.t0.shape[0]
+    ends = jnp.where(jnp.arange(room) < count, kept.until, jnp.inf)
+    found = jnp.searchsorted(ends, grid, side="right")
+    covered = (found < jnp.minimum(count, room))[:, None]
 
-    ROWS_AT_ONCE rows at a time: the rows a step covers (some thirty of a 1 ms grid) are a few
-    trips of this loop, not one each.  Under ``vmap`` each trip costs far more than its rows'
-    arithmetic (a sweep's chunk of 256 runs of a 2 001-row grid: 1.34-1.54 ms a run written a
-    row at a time, 1.05-1.17 ms sixteen at a time; benchmarks/output_cost.py).  The rows agree with
-    those written one at a time to round-off (1.4e-15 relative: the interpolant's sums are taken in
-    another order); events and summaries are untouched.  A block that reaches past the rows due
-    keeps what they held.
-    """
-    rows = grid.shape[0]
-    block = min(ROWS_AT_ONCE, rows)
-    if block == 0:
-        return grid_state, row
+    def row(i, t):
+        dense = {name: leaf[i] for name, leaf in kept.dense.items()}
+        return solver.interpolation_cls(t0=kept.t0[i], t1=kept.t1[i], **dense).evaluate(t), kept.modes[i]
 
-    def going(c):
-        row, _ = c
-        return (row < rows) & (grid[jnp.minimum(row, rows - 1)] < t_stop)
-
-    def write(c):
-        row, state = c
-        index = jnp.minimum(row, rows - block) + jnp.arange(block)  # the block ends at the last row at most
-        times = grid[index]
-        due = (index >= row) & (times < t_stop)
-        values = jax.vmap(interpolant.evaluate)(times)
-        return row + jnp.sum(due), state.at[index].set(jnp.where(due[:, None], values, state[index]))
-
-    row, grid_state = private_api.while_loop(going, write, (row, grid_state), kind="lax", buffers=lambda k: k[1])
-    return grid_state, row
+    states, modes = jax.vmap(row)(jnp.minimum(found, room - 1), grid)
+    return jnp.where(covered, states, jnp.nan), jnp.where(covered, modes, -1)
