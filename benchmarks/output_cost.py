@@ -44,7 +44,7 @@ calls, out = {{}}, {{}}
 for name, summary_only in (("summary-only", True), ("full output", False)):
     plans = [build_plan(s, summary_only=summary_only)[0] for s in runs]
     if hasattr(assemble, "step_room"):  # the loop's static sizes, as the tree measured has them
-        sizes = (1, 1) if summary_only else (assemble.log_rows(plans[0]), assemble.step_room(plans[0]))
+        sizes = (1, 1) if summary_only else (assemble.log_rows(plans[0]), assemble.step_room(plans[0], sweep=True))
     elif hasattr(assemble, "log_rows"):
         sizes = (1,) if summary_only else (assemble.log_rows(plans[0]),)
     else:

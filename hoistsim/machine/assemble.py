@@ -125,11 +125,15 @@ def log_rows(plan: Plan, log_size: int | None = None) -> int:
     return rows
 
 
-def step_room(plan: Plan, kept: int | None = None) -> int:
-    """The accepted steps a run keeps room for, for its output rows (a static size of the loop): a quarter
-    of its padded grid's rows, at least MIN_STEP_ROOM (a run takes some 60-1 500 steps for 2 000-5 000
-    rows); ``kept`` asks for room for that many (a run that took more than it could keep is run again)."""
-    room = max(MIN_STEP_ROOM, int(plan.grid.shape[0]) // 4)
+def step_room(plan: Plan, kept: int | None = None, sweep: bool = False) -> int:
+    """The accepted steps a run keeps room for, for its output rows (a static size of the loop).  One run
+    keeps room for a step a padded row (a hoist's start takes some 60-1 500 steps for 2 000-5 000 rows: a
+    new value seldom outgrows it, and a run that does is run again, once).  A sweep's chunk keeps room for
+    a quarter of its padded rows, at least MIN_STEP_ROOM (room for a step a row in each of 256 runs is
+    several times the memory of the rows themselves).  ``kept`` asks for room for that many (a run that
+    took more steps than it could keep is run again with room for them all)."""
+    rows = int(plan.grid.shape[0])
+    room = max(MIN_STEP_ROOM, rows // 4) if sweep else rows
     return room if kept is None else max(room, _power_of_two(kept))
 
 

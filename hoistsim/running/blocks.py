@@ -166,7 +166,7 @@ def _launch(runs, scenarios, group, plans, fast, summary_only: bool, chunk: int,
         rows = max(log_rows(plan) for plan in group_plans)
     lean = summary_only and not periodic
     # the summary needs no event rows, only their counts, and no steps; else room for the steps of the rows
-    sizes = (1, 1) if lean else (rows, step_room(group_plans[0]))
+    sizes = (1, 1) if lean else (rows, step_room(group_plans[0], sweep=True))
     chunks = []
     for offset in range(0, len(group), chunk):
         part = group[offset:offset + chunk]
@@ -205,7 +205,8 @@ def _results(group: dict):
                 break
             call = None
             # room for every event row and every step
-            sizes = (log_rows(group["first_plan"], log_size=logged + 1), step_room(group["first_plan"], kept))
+            first = group["first_plan"]
+            sizes = (log_rows(first, log_size=logged + 1), step_room(first, kept, sweep=True))
         yield part, raw, elapsed
 
 

@@ -256,8 +256,9 @@ structure, and so compiles once more:
 - `simulation.solver`;
 - the number of output rows past a power of two (`duration` / `output_interval`: 2049 to 4096 rows share one
   program, as do 4097 to 8192);
-- a run that logs more events than its log has room for (some 200 switches a coupling) is run again, once,
-  with room for them all.
+- a run that logs more events than its log has room for (some 200 switches a coupling), or takes more steps
+  than it keeps room for to write its rows (a step an output row; in a sweep, one for every four), is run
+  again, once, with room for them all.
 
 A sweep pays for each structure once, whatever its values.
 

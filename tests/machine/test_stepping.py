@@ -82,10 +82,11 @@ def test_a_pass_that_runs_out_of_steps_says_it_failed():
 
 
 @pytest.mark.slow
-def test_a_run_of_more_steps_than_its_room_is_run_again_with_room_for_them_all():
+def test_every_row_is_written_from_the_kept_steps_however_many_a_run_takes():
     """The rows are written after the loop from the steps it kept: Modelica's First takes some 1 000 steps for
-    its 2 001 rows, more than the room a first run keeps (a quarter of its padded rows).  It is run again with
-    room for every step, and every row up to the end is written (none left NaN); the same, run in a sweep."""
+    its 2 001 rows.  One run keeps room for a step a padded row: every row up to the end is written, none
+    left NaN.  A sweep's chunk keeps room for fewer and is run again with room for them all: its rows are
+    written too."""
     from helpers import SCENARIOS
 
     from hoistsim import simulate, sweep
@@ -94,7 +95,7 @@ def test_a_run_of_more_steps_than_its_room_is_run_again_with_room_for_them_all()
 
     scenario = load_scenario(SCENARIOS / "modelica" / "First.yaml")
     run = simulate(scenario)
-    assert run.stats["steps"] - run.stats["rejected_steps"] > step_room(build_plan(scenario)[0])
+    assert run.stats["steps"] - run.stats["rejected_steps"] > step_room(build_plan(scenario)[0], sweep=True)
     assert all(np.isfinite(values).all() for values in run.series.values())
     swept = sweep(load_scenario(SCENARIOS / "modelica" / "First.yaml", sweeps=["simulation.rtol=1e-8,1e-9"]))
     for one in swept.runs:
