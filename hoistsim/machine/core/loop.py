@@ -291,7 +291,7 @@ def restart_loop(plan: Plan, solver, log_size: int, step_room: int = 0, columns:
         # a switch located at the very end is still decided (a pass of no length follows it)
         return ((c.t < plan.duration) | c.pending) & (c.status == OK) & (c.segments < max_segments)
 
-    # The kept steps are a buffer of the run's loop too: a pass writes them in place (see stepping).
+    # The kept steps and the event log are buffers of the run's loop too: written in place (see stepping).
     c = private_api.while_loop(going, functools.partial(_step, plan, solver, columns), c, kind="lax",
                                buffers=lambda k: (k.kept, k.log))
     status = jnp.where((c.status == OK) & (c.t < plan.duration), TOO_MANY_SEGMENTS, c.status)
