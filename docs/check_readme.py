@@ -228,7 +228,7 @@ def _decide(step: Step, *, tests: str, long: bool, venv: bool) -> None:
         else:
             step.handling = "skip"
             step.reason = ("the quick test loop, minutes: --tests quick runs it" if quick
-                           else "the whole test suite, about 10 minutes here: --tests all runs it")
+                           else "the whole test suite, about 13 minutes here: --tests all runs it")
     elif venv and (words[:3] == ["python3", "-m", "venv"] or program == "pip"):
         step.handling, step.reason = "skip", "the environment given with --venv"
     elif program.startswith("python") and words[1:2] == ["docs/check_readme.py"]:

@@ -128,15 +128,21 @@ def log_rows(plan: Plan, log_size: int | None = None) -> int:
 def step_room(plan: Plan, kept: int | None = None, sweep: bool = False) -> int:
     """The accepted steps a run keeps room for, for its output rows (a static size of the loop).  One run
     keeps room for a step a padded row (a hoist's start takes some 60-1 500 steps for 2 000-5 000 rows: a
-    new value seldom outgrows it, and a run that does is run again, once).  A sweep's chunk keeps room for
-    a quarter of its padded rows, at least MIN_STEP_ROOM (room for a step a row in each of 256 runs is
-    several times the memory of the rows themselves).  ``kept`` asks for room for that many (a run that
-    took more steps than it could keep is run again with room for them all)."""
-    rows = int(plan.grid.shape[0])
-    room = max(MIN_STEP_ROOM, rows // 4) if sweep else rows
+    new value seldom outgrows it), and STEPS_PER_CYCLE for each cycle a machine with a period of its own is
+    expected to turn (an engine's cycle is a hundred steps and more, between knots of its tables).  A
+    sweep's chunk keeps room for a quarter of that, at least MIN_STEP_ROOM (room for a step a row in each of
+    256 runs is several times the memory of the rows themselves).  None where no row falls before the end
+    (a summary's one row takes the final state).  ``kept`` asks for room for that many (a run that took
+    more steps than it could keep is run again with room for them all)."""
+    if not np.any(np.asarray(plan.grid) < float(plan.duration)):
+        return 0
+    room = max(int(plan.grid.shape[0]), int(expected_cycles(plan)) * STEPS_PER_CYCLE)
+    room = max(MIN_STEP_ROOM, room // 4) if sweep else room
     return room if kept is None else max(room, _power_of_two(kept))
 
 
+# Steps kept at first for each cycle a machine with a period of its own is expected to turn.
+STEPS_PER_CYCLE = 128
 MIN_STEP_ROOM = 256
 
 # The switches the event log has room for at first (the default max_switches); a run that switches more is

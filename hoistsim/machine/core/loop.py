@@ -268,7 +268,7 @@ def restart_loop(plan: Plan, solver, log_size: int, step_room: int = 0, columns:
         segments=jnp.array(0),
         steps=jnp.array(0),
         rejected=jnp.array(0),
-        kept=no_steps(solver, plan.initial_state, step_room, couplings) if columns else None,
+        kept=no_steps(solver, plan.initial_state, step_room, couplings) if columns and step_room else None,
         kept_count=jnp.array(0),
         log_count=jnp.array(0),
         kind_counts=jnp.zeros((len(layout.event_kinds),), int),
@@ -298,9 +298,9 @@ def restart_loop(plan: Plan, solver, log_size: int, step_room: int = 0, columns:
     # The rows: before where the run ended, on the steps that cover them; from there on (the duration, the
     # grid's padding), the final state (nothing where the run failed).
     ended = (plan.grid >= c.t)[:, None]
-    if columns:
+    if c.kept is not None:
         stepped_state, stepped_modes = rows_from_steps(solver, c.kept, c.kept_count, plan.grid)
-    else:  # one row, at the end: no steps kept
+    else:  # no row before the end (a summary's one row): no steps kept
         stepped_state, stepped_modes = jnp.full((rows, size), nan), jnp.full((rows, couplings), -1)
     grid_state = jnp.where(ended, jnp.where(status == OK, c.y, nan), stepped_state)
     grid_modes = jnp.where(ended, jnp.where(status == OK, c.modes, -1), stepped_modes)
