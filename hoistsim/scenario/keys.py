@@ -56,13 +56,20 @@ def members_of(section: type[BaseModel], name: str) -> tuple[type, type[Section]
 
 
 
+def field_at(dotted: str):
+    """The schema field a dotted key names (a drawn part's through its name or index), or None."""
+    model: type[BaseModel] | None = Scenario
+    parts = dotted.split(".")
+    i = 0
+    while model is not None and i < len(parts) - 1:
+        members = members_of(model, parts[i])
+        model, i = (members[1], i + 2) if members is not None else (model_of(model, parts[i]), i + 1)
+    return model.model_fields.get(parts[-1]) if model is not None and i == len(parts) - 1 else None
+
+
 def key_units(dotted: str) -> str:
     """The SI unit a scenario key is stored in ("" for a pure number, a table or an unknown key)."""
-    model: type[BaseModel] | None = Scenario
-    *sections, leaf = dotted.split(".")
-    for part in sections:
-        model = model_of(model, part) if model is not None else None
-    field = model.model_fields.get(leaf) if model is not None else None
+    field = field_at(dotted)
     dimension = u.dimension_of(field) if field is not None else None
     return dimension.si_unit if dimension is not None else ""
 

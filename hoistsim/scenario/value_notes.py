@@ -18,7 +18,7 @@ from ..errors import ScenarioError
 from . import tables
 from . import units as u
 from .plausible import Plausible
-from .keys import members_of, model_of
+from .keys import field_at, members_of, model_of
 from .schema import Scenario
 from .yamlsource import line_of
 
@@ -71,17 +71,6 @@ def swept_notes(key: str, spec, numbers: np.ndarray, tree: Any, source: str) -> 
         notes.append(ScenarioError(f"sweep.{key}", f"{name}: {note}", source=source,
                                    line=line_of(tree, path) if tree is not None else None))
     return notes
-
-
-def field_at(dotted: str):
-    """The schema field a dotted key names (a drawn part's by its name), or None."""
-    model: type[BaseModel] | None = Scenario
-    parts = dotted.split(".")
-    i = 0
-    while model is not None and i < len(parts) - 1:
-        members = members_of(model, parts[i])
-        model, i = (members[1], i + 2) if members is not None else (model_of(model, parts[i]), i + 1)
-    return model.model_fields.get(parts[-1]) if model is not None and i == len(parts) - 1 else None
 
 
 def _section_notes(data: dict, model: type[BaseModel], path: tuple):

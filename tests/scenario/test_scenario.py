@@ -481,3 +481,15 @@ def test_a_large_listed_sweep_reads_without_the_round_trip_tree_and_errors_still
     assert err.value.line == bad.count("\n") and "value 51" in err.value.message
     assert isinstance(yamlsource.read_yaml(BASE, "s.yaml").data, dict)
     assert yamlsource.read_yaml(BASE, "s.yaml")._tree is None  # no round-trip parse unless asked
+
+
+def test_a_swept_keys_unit_is_found_through_a_drawn_parts_name():
+    """The unit a swept key's values are written in (a results file's attribute, compare's header): the hoist's
+    keys and a drawn part's, through its name or a list's index."""
+    from hoistsim.scenario.keys import key_units
+
+    assert key_units("clutch.engagement_force") == "N" and key_units("load.mass") == "kg"
+    assert key_units("drivetrain.shafts.J1.inertia") == "kg*m^2"
+    assert key_units("drivetrain.springs.spring.stiffness") == "N*m/rad"
+    assert key_units("drivetrain.torques.1.torque") == "N*m"
+    assert key_units("clutch.static_friction") == "" and key_units("no.such.key") == ""
