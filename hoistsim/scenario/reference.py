@@ -51,9 +51,6 @@ def _members(annotation) -> list:
     return [annotation]
 
 
-_metadata = u.metadata_of
-
-
 def _section_of(field) -> tuple[str, type[Section]] | None:
     """("section" | "by name" | "list", its model) for a key holding sections, else None."""
     for member in _members(field.annotation):
@@ -72,7 +69,7 @@ def _units(dimension: u.Dimension) -> str:
 
 
 def _columns(field) -> str:
-    columns = _metadata(field, tables.Columns)
+    columns = u.metadata_of(field, tables.Columns)
     if columns is not None:
         return "[[" + ", ".join(name for name, _ in columns.columns) + "], ...]"
     first = tables.first_column_of(field)
@@ -106,8 +103,8 @@ def _plain_value(annotation, metadata: tuple = ()) -> str:
 
 def value_of(field) -> str:
     """The value column: a unit, a table's columns, choices, a section's link (filled in by the caller)."""
-    if _metadata(field, tables.Columns) is not None or tables.first_column_of(field) is not None:
-        dimension = _metadata(field, u.Dimension)
+    if u.metadata_of(field, tables.Columns) is not None or tables.first_column_of(field) is not None:
+        dimension = u.metadata_of(field, u.Dimension)
         table = f"table {_columns(field)}"
         return f"{_units(dimension)}, or a {table}" if dimension is not None else table
     members = _members(field.annotation)
@@ -141,25 +138,25 @@ def default_of(field) -> str:
     if isinstance(value, (list, dict)) and not value:
         return "none"
     if isinstance(value, TimeSignal):
-        return _shown(value.values[0], _metadata(field, u.Dimension))
+        return _shown(value.values[0], u.metadata_of(field, u.Dimension))
     if isinstance(value, BaseModel):
         return "its defaults"
     if isinstance(value, float):
-        return _shown(value, _metadata(field, u.Dimension))
+        return _shown(value, u.metadata_of(field, u.Dimension))
     return str(value)
 
 
 def range_of(field) -> str:
     """The range column: the limits a quantity is held to, a count's least value."""
-    count = _metadata(field, u.Count)
+    count = u.metadata_of(field, u.Count)
     if count is not None:
         return f"≥ {count.minimum}"
-    limits, dimension = _metadata(field, u.Limits), _metadata(field, u.Dimension)
+    limits, dimension = u.metadata_of(field, u.Limits), u.metadata_of(field, u.Dimension)
     if limits is None:
         return ""
     bounds = [(">", limits.gt), ("≥", limits.ge), ("<", limits.lt), ("≤", limits.le)]
     text = ", ".join(f"{sign} {_shown(bound, dimension)}" for sign, bound in bounds if bound is not None)
-    plausible = _metadata(field, Plausible)
+    plausible = u.metadata_of(field, Plausible)
     if plausible is not None:  # outside it: a warning (an error under --strict)
         text += f"{'; ' if text else ''}plausible {plausible.low} to {plausible.high}"
     return text
@@ -279,8 +276,8 @@ def _dimensions() -> list[u.Dimension]:
 
     def visit(model, seen):
         for field in model.model_fields.values():
-            for meta in (_metadata(field, u.Dimension), *(d for _, d in getattr(
-                    _metadata(field, tables.Columns), "columns", ()))):
+            for meta in (u.metadata_of(field, u.Dimension), *(d for _, d in getattr(
+                    u.metadata_of(field, tables.Columns), "columns", ()))):
                 if meta is not None and meta not in found:
                     found.append(meta)
             inner = _section_of(field)

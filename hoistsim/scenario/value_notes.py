@@ -120,7 +120,7 @@ def _value_note(value: Any, field) -> str | None:
         return None
     if isinstance(value, bool) or not isinstance(value, (int, float, str)) or not dimension.si_unit:
         return None
-    plausible = _plausible(field)
+    plausible = u.metadata_of(field, Plausible)
     if plausible is None and not u.bare_number_read_as(value, dimension):
         return None
     return _scalar_note(value, u.to_si(value, dimension), dimension, plausible)
@@ -153,7 +153,3 @@ def _columns_of(field, dimension: u.Dimension | None) -> list[u.Dimension]:
         return [u.TIME, dimension]
     first = tables.first_column_of(field)
     return [first] if first is not None else []
-
-
-def _plausible(field) -> Plausible | None:
-    return u.metadata_of(field, Plausible)
