@@ -51,13 +51,16 @@ def make_record(indices, outcomes, *, summary_only: bool, time, padded: bool) ->
     """Runs at ``indices`` (RunResults, or their :class:`hoistsim.results.run_result.Summaries` when
     summary-only) as a record."""
     indices = np.asarray(list(indices), dtype=np.int64)
-    values = summary_values(outcomes if summary_only else Summaries.from_rows([o.summary for o in outcomes]))
+    if not summary_only:
+        from .run_summaries import summaries_of  # the machine's ledger: a full run's record only
+    values = summary_values(outcomes if summary_only else summaries_of(outcomes))
     if summary_only:
         return Record(indices, values)
     runs, first = outcomes, outcomes[0]
     series = {name: (first.units[name], first.descriptions.get(name, ""), block)
               for name, block in series_blocks(runs, time, padded).items()}
     tables = [run.instants for run in runs]
+    instant_rows = [run.instant_rows() for run in runs]
     instants = {}
     for name in INSTANT_COLUMNS:
         values_ = np.concatenate([np.asarray(t[name]) for t in tables])
@@ -65,7 +68,8 @@ def make_record(indices, outcomes, *, summary_only: bool, time, padded: bool) ->
     return Record(
         indices, values, extras=_run_extras(runs), series=series,
         counts=np.asarray([len(t["time"]) for t in tables], dtype=np.int64), instants=instants,
-        after={name: np.concatenate([run.series[name][run.instant_rows()] for run in runs]) for name in first.series},
+        after={name: np.concatenate([run.series[name][rows] for run, rows in zip(runs, instant_rows)])
+               for name in first.series},
         periodic={k: run.periodic for k, run in enumerate(runs) if run.periodic is not None})
 
 
@@ -148,11 +152,12 @@ def series_blocks(runs, time, padded: bool) -> dict[str, np.ndarray]:
 
 def _run_extras(runs) -> dict:
     """Per-run numbers beside the summary: the energy ledger's terms and the solver's counts."""
+    from ..machine.core.ledger import balance_columns
+    from .run_summaries import ledger_columns
+
     extras = {}
-    balances = [run.energy_balance for run in runs]  # each closes the run's ledger: once a run
-    for key in balances[0]:
-        extras[f"energy_{key}"] = ("1" if key.endswith("relative_residual") else "J",
-                                   np.asarray([balance[key] for balance in balances], dtype=float))
+    for key, values in balance_columns(ledger_columns(runs)).items():  # every run's ledger closed at once
+        extras[f"energy_{key}"] = ("1" if key.endswith("relative_residual") else "J", np.asarray(values, dtype=float))
     for key in runs[0].stats:
         extras[f"solver_{key}"] = ("s" if key == "wall_time" else "1",
                                    np.asarray([run.stats[key] for run in runs]))

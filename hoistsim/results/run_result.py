@@ -6,8 +6,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..machine.core.ledger import balance, balance_columns
+from ..machine.core.ledger import balance
 from ..scenario.loading import Scenario
+from .run_summaries import summarize
 from .summaries import Summaries as Summaries  # noqa: F401  (part of this module's interface)
 
 
@@ -99,40 +100,3 @@ class RunResult:
         data = {name: ("time", values, {"units": self.units[name]}) for name, values in self.series.items()}
         return xr.Dataset(data, coords={"time": ("time", self.time, {"units": "s"})},
                           attrs={"name": self.name, "label": self.label})
-
-
-def summarize(label: str, values: dict, ledger: dict, locks: int, unlocks: int) -> dict:
-    """The numbers a designer compares runs by, from the elements' summary values and the ledger.
-
-    Peaks and the lowest load position are exact: the run stops at every slip
-    peak and load turnaround (and at every switch) to record them.
-    """
-    energy = balance(ledger)
-    return {
-        "label": label,
-        **values,
-        "lock_events": int(locks),
-        "unlock_events": int(unlocks),
-        "energy_residual": energy["residual"],
-        "energy_relative_residual": energy["relative_residual"],
-        **_heat_residual(energy),
-    }
-
-
-def summary_columns(labels: list[str], values: dict, ledger: dict, locks, unlocks) -> dict[str, np.ndarray]:
-    """:func:`summarize` for many runs at once: each value an array over the runs, the same numbers."""
-    energy = balance_columns(ledger)
-    return {
-        "label": np.asarray(labels, dtype=object),
-        **values,
-        "lock_events": np.asarray(locks, dtype=np.int64),
-        "unlock_events": np.asarray(unlocks, dtype=np.int64),
-        "energy_residual": energy["residual"],
-        "energy_relative_residual": energy["relative_residual"],
-        **_heat_residual(energy),
-    }
-
-
-def _heat_residual(energy: dict) -> dict:
-    """Where a part's heat is followed (stored, passed to ambient), how well it accounts for the loss."""
-    return {"heat_relative_residual": energy["heat_relative_residual"]} if "heat_relative_residual" in energy else {}

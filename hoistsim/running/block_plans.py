@@ -11,8 +11,9 @@ is reached by a key of its own section or of a section its ``from_spec`` reads
 from the scenario (seen once, by building it with the scenario behind a
 recorder).  Each block's first, middle and last runs are also built the full
 way and compared leaf by leaf: on any difference the block is built the full
-way, as it is wherever this does not apply (full output, periodic runs, a
-swept ``simulation.`` key, steady-lift starting speeds).
+way, as it is wherever this does not apply (a drawn drivetrain, a swept
+``simulation.`` or ``initial.`` key, steady-lift starting speeds).  Full output
+is built so too: its runs share the output grid as they share the simulation.
 """
 
 from __future__ import annotations
@@ -83,8 +84,9 @@ class BlockPlans:
     longest tables: each row added is one more boundary at the end).
     """
 
-    def __init__(self, template: Plan, rebuilt: dict[int, object], sim, runs: int):
+    def __init__(self, template: Plan, rebuilt: dict[int, object], sim, runs: int, grid: np.ndarray):
         self.template, self.rebuilt, self.runs = template, rebuilt, runs
+        self.grid = grid  # every run's output times (unpadded)
         duration = float(sim.duration)
         shared = [e for k, e in enumerate(template.elements) if k not in rebuilt]
         fixed = np.array([0.0, duration, *scheduled_times(shared)], dtype=float)
@@ -224,13 +226,14 @@ def padded(elements: list) -> list:
     return out
 
 
-def block_plans(runs, indices: list[int]) -> BlockPlans | None:
-    """Summary-only plans of runs ``indices`` of a :class:`hoistsim.scenario.sweep_runs.SweepRuns`, from the first
-    one's; None where that does not apply or a checked run differs (build them in full then)."""
+def block_plans(runs, indices: list[int], summary_only: bool = True) -> BlockPlans | None:
+    """The plans of runs ``indices`` of a :class:`hoistsim.scenario.sweep_runs.SweepRuns`, from the first
+    one's; None where that does not apply or a checked run differs (build them in full then).  Every run
+    of a sweep that applies to has the first one's output grid (no ``simulation.`` key is swept)."""
     if not applies(runs):
         return None
     template_scenario = runs.scenario(indices[0])
-    template, _ = build_plan(template_scenario, summary_only=True)
+    template, grid = build_plan(template_scenario, summary_only=summary_only)
     sections = element_sections(template_scenario)
     # worked out for each block (some 40 us: each element built once behind a recorder), not kept on the runs
     reach = reached_sections(template_scenario, runs.keys)
@@ -239,8 +242,8 @@ def block_plans(runs, indices: list[int]) -> BlockPlans | None:
         rebuilt = columns(runs, indices, template, template_scenario, sections, reach, positions)
         if rebuilt is None:
             continue
-        plans = BlockPlans(template, rebuilt, template_scenario.simulation, len(indices))
-        if all(same_plan(build_plan(runs.scenario(indices[r]), summary_only=True)[0], plans.plan(r))
+        plans = BlockPlans(template, rebuilt, template_scenario.simulation, len(indices), grid)
+        if all(same_plan(build_plan(runs.scenario(indices[r]), summary_only=summary_only)[0], plans.plan(r))
                for r in {len(indices) // 2, len(indices) - 1} - {0}):
             return plans
     return None

@@ -29,7 +29,8 @@ from ..machine.core.plan import OK, Plan
 from ..machine.core.schedule import scheduled_times
 from ..machine.core.readout import EVENT_COUNT, KEPT_STEPS, STATUS, BatchReadout, Readout
 from ..results.periodic.analysis import periodic_regime
-from ..results.run_result import Summaries, summary_columns
+from ..results.run_result import Summaries
+from ..results.run_summaries import summary_columns
 from ..scenario.loading import Scenario
 from .block_plans import block_plans, padded
 from .simulation import SimulationError, failure_message, run_result, scenario_errors, simulate
@@ -113,8 +114,8 @@ def _block_steps(runs, start: int, stop: int, *, summary_only: bool, chunk: int,
     one ``yield``, then read back; returns the :class:`Block`."""
     indices = range(start, stop)
     scenarios = _Scenarios(runs, start)
-    # a summary-only sweep's plans from the block's first run's (block_plans), else each built in full
-    fast = block_plans(runs, list(indices)) if summary_only else None
+    # the plans from the block's first run's (block_plans) where that applies, else each built in full
+    fast = block_plans(runs, list(indices), summary_only=summary_only)
     if fast is not None:
         plans, groups = None, [list(range(len(indices)))]
     else:
@@ -134,7 +135,8 @@ def _block_steps(runs, start: int, stop: int, *, summary_only: bool, chunk: int,
             if not summary_only:
                 for k, lane in enumerate(part):
                     one = Readout(layout, raw, lane=k)
-                    rows[lane] = run_result(scenarios[lane], runs.label(start + lane), plans[lane][1], one, elapsed)
+                    grid = fast.grid if fast is not None else plans[lane][1]
+                    rows[lane] = run_result(scenarios[lane], runs.label(start + lane), grid, one, elapsed)
                     warnings.extend(rows[lane].warnings)
                 continue
             labels = _labels(runs, scenarios, start, part)

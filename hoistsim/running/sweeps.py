@@ -24,6 +24,7 @@ from .. import _jax  # noqa: F401  (float64 before any array exists)
 from ..errors import ScenarioError
 from ..machine.assemble import build_plan, output_grid
 from ..results.run_result import RunResult, Summaries
+from ..results.run_summaries import summaries_of
 from ..scenario.loading import Scenario
 from ..scenario.sweep_runs import SweepRuns
 from .blocks import chunk_for, run_blocks
@@ -172,7 +173,7 @@ def _sweep(runs, client, *, summary_only, chunk_size, progress, output, command,
         return FileSummaries(output, flags), None, warnings
     if summary_only:
         return outcome, None, warnings
-    return Summaries.from_rows([run.summary for run in outcome]), outcome, warnings
+    return summaries_of(outcome), outcome, warnings
 
 
 class ListedRuns:

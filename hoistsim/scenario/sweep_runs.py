@@ -15,11 +15,12 @@ from collections.abc import Sequence
 from functools import cached_property
 
 import numpy as np
+from pydantic import BaseModel
 
 from ..errors import ScenarioError
 from .keys import ALTERNATIVES
 from .schema import Scenario
-from .sweep_spec import with_swept_value
+from .sweep_spec import with_swept_value, with_validated_value
 
 
 class SweepRuns:
@@ -88,9 +89,22 @@ class SweepRuns:
         raw = dict(run.provenance.raw)
         for key, p in zip(self.keys, self.positions(i)):
             value = self.swept[key].values[p]
-            run = with_swept_value(run, key, value, raw)
+            if _in_sections(run, key):  # as validated when read (its checks, and every combination's, passed)
+                run = with_validated_value(run, key, self.swept[key].validated[p])
+            else:  # a key in a section the sweep adds, or in a drawn part: validated again
+                run = with_swept_value(run, key, value, raw)
             _assign_copied(raw, key, value)
         return run.with_provenance(self._run_base.provenance.of_run(raw))
+
+
+def _in_sections(scenario: Scenario, key: str) -> bool:
+    """Whether every section on a key's path is there, each a section (not parts by name, not a list)."""
+    node = scenario
+    for part in key.split(".")[:-1]:
+        node = getattr(node, part, None)
+        if not isinstance(node, BaseModel):
+            return False
+    return True
 
 
 class Labels(Sequence):

@@ -21,6 +21,7 @@ from ruamel.yaml.comments import CommentedMap, CommentedSeq
 from ruamel.yaml.error import MarkedYAMLError
 
 from ..errors import ScenarioError
+from .listed_items import PlainItems, cut_long_lists
 
 
 def yaml_reader() -> YAML:
@@ -57,13 +58,26 @@ def read_yaml(text: str, source: str) -> Lines:
     try:
         fast = YAML(typ="safe", pure=False)
         fast.allow_duplicate_keys = False
-        data = fast.load(io.StringIO(text))
+        data = _with_long_lists(text, fast) or fast.load(io.StringIO(text))
         if isinstance(data, dict):
             return Lines(text, source, data)
     except Exception:  # read it round-trip: that says what is wrong, with its line
         pass
     tree = _read_round_trip(text, source)
     return Lines(text, source, tree, tree)
+
+
+def _with_long_lists(text: str, fast: YAML) -> dict | None:
+    """The data, a sweep's long lists read as columns (:mod:`.listed_items`); None where there are none."""
+    cut = cut_long_lists(text, lambda piece: fast.load(io.StringIO(piece)))
+    if cut is None:
+        return None
+    data = fast.load(io.StringIO(cut[0]))
+    sweep = data.get("sweep") if isinstance(data, dict) else None
+    if not isinstance(sweep, dict) or any(sweep.get(key, 0) is not None for key in cut[1]):
+        return None  # not where they were seen to be: YAML reads it all
+    sweep.update(cut[1])
+    return data
 
 
 def _read_round_trip(text: str, source: str) -> CommentedMap:
@@ -146,6 +160,8 @@ def line_of(node: Any, path: tuple) -> int | None:
 
 def to_plain(node: Any, budget: list[int] | None = None) -> Any:
     """ruamel's round-trip types -> plain dict, list, str, int, float, bool."""
+    if type(node) is PlainItems:  # a sweep's long list, read as plain data
+        return list(node)
     budget = [100_000] if budget is None else budget  # values left: aliases can nest exponentially
     budget[0] -= 1
     if budget[0] < 0:

@@ -72,7 +72,7 @@ def test_the_summaries_are_those_of_plans_built_run_by_run(monkeypatch):
     s = load_scenario(BRAKE, sweeps=["clutch.engagement_force=[[[0 s, 0 N], [0.5 s, 0 N], [0.6 s, 5 kN]], "
                                      "3 kN, 7 kN, [[0 s, 0 N], [0.3 s, 2 kN], [0.4 s, 2 kN], [0.6 s, 7 kN]]]"])
     fast = sweep(s, summary_only=True, chunk_size=4).summary
-    monkeypatch.setattr("hoistsim.running.blocks.block_plans", lambda runs, indices: None)
+    monkeypatch.setattr("hoistsim.running.blocks.block_plans", lambda runs, indices, **_: None)
     slow = sweep(s, summary_only=True, chunk_size=4).summary
     for key, values in fast.items():
         for a, b in zip(values, slow[key]):
