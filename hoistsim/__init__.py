@@ -21,6 +21,8 @@ _PUBLIC = {
     "RunResult": "results.run_result",
     "sweep": "running.sweeps",
     "SweepResult": "running.sweeps",
+    "sensitivity": "running.sensitivity",
+    "Sensitivity": "running.sensitivity",
     "exact_from_scenario": "references.exact",
     "solve_exact": "references.exact",
     "open_results": "results.reading",

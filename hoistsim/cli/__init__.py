@@ -7,5 +7,5 @@ Dask.  :mod:`.watching` is ``hoistsim watch``'s loop, :mod:`.terminal` its notic
 It may import every layer.
 """
 
-from . import file_commands, run_commands, study_commands  # noqa: F401  (each registers its commands on main)
+from . import file_commands, run_commands, sensitivity_commands, study_commands  # noqa: F401  (each registers its commands on main)
 from .group import main as main

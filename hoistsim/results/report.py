@@ -287,3 +287,35 @@ def compare_table(rows: list[dict], units: dict[str, str], columns: list[str] | 
         text += (f"\n({left} more column{'s' if left != 1 else ''}: --wide or --csv for all, "
                  "--columns A,B,... to choose)")
     return text
+
+
+def sensitivity_table(result, width: int | None = None) -> str:
+    """A :class:`hoistsim.running.sensitivity.Sensitivity` as two tables, a row a summary: each derivative with
+    its units, then the elasticities (dimensionless: comparable across keys); within ``width`` characters as
+    :func:`fitted_table` stacks them."""
+    keys = list(result.keys)
+    at = [f"{key} = {fmt(value, 6)}" + ("" if result.key_units[key] == "1" else f" {result.key_units[key]}")
+          for key, value in result.keys.items()]
+    lines = ["at"]
+    for k, item in enumerate(at):  # a key and its value kept on one line
+        item += "," if k < len(at) - 1 else ""
+        if len(lines[-1]) + 1 + len(item) > (width or 100):
+            lines.append("  ")
+        lines[-1] += " " + item
+    headers = ["summary", "value"] + [f"d/d {key}" for key in keys]
+    derivatives, elasticities = [], []
+    for name, value in result.values.items():
+        units = "" if result.units[name] == "1" else f" {result.units[name]}"
+        cells = [f"{fmt(result.derivatives[name][key], 5)} {result.derivative_units(name, key)}"
+                 if result.derivatives[name][key] == result.derivatives[name][key] else "-" for key in keys]
+        derivatives.append([name, fmt(value, 6) + units, *cells])
+        elasticities.append([name, *(fmt(result.elasticity(name, key), 3) for key in keys)])
+    return "\n".join([
+        f"{result.name}: how each summary moves with each key,",
+        *lines,
+        *(f"({key} is a table: its number is its largest force, every force scaled with it)"
+          for key in result.tables),
+        "(derivatives exact through every switch; '-': none, the summary itself is none)", "",
+        fitted_table(headers, derivatives, width), "",
+        "elasticity = key / summary x derivative: the summary's relative change per relative change of the key",
+        "", fitted_table(["summary", *keys], elasticities, width)])

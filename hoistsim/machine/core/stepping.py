@@ -35,6 +35,7 @@ import jax
 import jax.numpy as jnp
 
 from . import private_api
+from .event_time import event_time
 from .dynamics import vector_field
 
 # Bisection stops where the bracket is this narrow (absolute and relative to the time), or holds no float.
@@ -282,10 +283,17 @@ def _crossing(guards, args, interpolant, lower, upper, crossed):
     # The guards below zero at the bracket's upper end are carried along (at the step's end: those that
     # crossed), not worked out again where the bisection stops: the guards are most of the program.
     _, t, fired = jax.lax.while_loop(going, halve, (lower, upper, crossed))
-    y = interpolant.evaluate(t)
     fired = jnp.where(jnp.any(fired), fired, crossed)  # round-off: the guard that crossed at the step's end
-    first = jnp.argmax(fired)
-    return t, y, jnp.arange(fired.shape[0]) == first
+    which = jnp.arange(fired.shape[0]) == jnp.argmax(fired)
+    # the instant's derivative, where the run is differentiated: the fired guard's zero (event_time)
+    t = event_time(t, functools.partial(_fired_guard, guards), (interpolant, args, which))
+    return t, interpolant.evaluate(t), which
+
+
+def _fired_guard(guards, t, inputs):
+    """The guard that fired (``which``) at ``t`` on the step's interpolant."""
+    interpolant, args, which = inputs
+    return jnp.sum(jnp.where(which, guards(t, interpolant.evaluate(t), args), 0.0))
 
 
 def rows_from_steps(solver, kept: Steps, count, grid):
