@@ -62,7 +62,7 @@ def main() -> None:
         run = median_seconds(lambda: lean(plan).scalars)
         for n in (1, 3, 5):
             wrt = keys[:n]
-            directions = [sens._plan_direction(scenario, key, sens._key_value(scenario, key), plan) for key in wrt]
+            directions = [sens.plan_direction(scenario, key, sens.key_value(scenario, key), plan) for key in wrt]
             stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *directions)
             program = jax.jit(sens._program(scenario.simulation.solver))
             started = time.perf_counter()

@@ -48,6 +48,11 @@ PLACEHOLDERS = {
            "OUT.h5": "reference_out.h5", "FIG.png": "reference_fig.png"},
     # a flywheel is sized for a machine with a periodic regime: the README's own example
     "flywheel": {"SCENARIO.yaml": "scenarios/motor_ripple_tredgold.yaml"},
+    "sensitivity": {"KEY,KEY": "load.mass,clutch.kinetic_friction"},
+    # a fit needs a trace of its scene: the README's own rig
+    "fit": {"SCENARIO.yaml": "scenarios/clutch_rig.yaml", "TRACE.csv": "scenarios/clutch_rig_trace.csv",
+            "SERIES,..": "motor_speed,drum_speed", "KEY,..": "clutch.static_friction,clutch.kinetic_friction",
+            "FITTED.yaml": "reference_fitted.yaml"},
 }
 # a sweep of more runs than this runs only with --long
 BIG_SWEEP = 10_000

@@ -23,6 +23,8 @@ _PUBLIC = {
     "SweepResult": "running.sweeps",
     "sensitivity": "running.sensitivity",
     "Sensitivity": "running.sensitivity",
+    "fit": "studies.fit",
+    "FitResult": "studies.fit",
     "exact_from_scenario": "references.exact",
     "solve_exact": "references.exact",
     "open_results": "results.reading",

@@ -1,4 +1,5 @@
-"""`hoistsim sensitivity`: how far each summary moves with each key, derivatives through every switch."""
+"""`hoistsim sensitivity` and `fit`: how far each summary moves with each key (derivatives through every
+switch), and the keys that explain a trace measured on a rig."""
 
 from __future__ import annotations
 
@@ -49,3 +50,63 @@ def sensitivity(scenario, wrt, of, as_json, overrides):
         click.echo(json.dumps(result.to_dict(), indent=2))
         return
     click.echo(sensitivity_table(result, table_width()))
+
+
+@main.command()
+@click.argument("scenario", type=click.Path(dir_okay=False))
+@click.option("--measured", required=True, type=click.Path(dir_okay=False), metavar="TRACE.csv",
+              help="The measured trace: a CSV whose header names a 'time [s]' column and the matched series as "
+                   "the results file does, units in brackets ('motor_speed [rpm]').")
+@click.option("--match", required=True, metavar="SERIES,...", help="The series to match, e.g. motor_speed,drum_speed.")
+@click.option("--fit", "keys", required=True, metavar="KEY,...",
+              help="The scenario keys to fit, each holding a number, e.g. "
+                   "clutch.static_friction,clutch.kinetic_friction; they start at the scenario's values.")
+@click.option("--bounds", multiple=True, metavar="KEY=LO:HI",
+              help='Hold a fitted key within LO and HI, e.g. --bounds "clutch.kinetic_friction=0.05:0.2". Repeatable.')
+@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), metavar="FITTED.yaml",
+              help="The scenario with the fitted values (its comments kept), written atomically.")
+@click.option("--plot", "figure", type=click.Path(dir_okay=False), metavar="FIG.png",
+              help="Also draw each matched series measured against fitted, with the residual (.png, .svg, .pdf).")
+@click.option("--json", "as_json", is_flag=True, help="Print the fitted values, errors and intervals as JSON (SI).")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a scenario key.")
+@strict_option
+@debug_option
+@one_line_errors
+def fit(scenario, measured, match, keys, bounds, output, figure, as_json, overrides):
+    """Fit keys of SCENARIO to a trace measured on a rig: least squares of the run's series against the
+    measured columns at the measured times (Levenberg-Marquardt with the exact Jacobian, through every
+    switch), each key with its standard error and 95 % interval; writes the fitted scenario."""
+    import json
+    from pathlib import Path
+
+    from .. import _jax
+    from ..results.atomic import atomic_path
+    from ..results.report import fit_table
+    from ..running.simulation import SimulationError
+    from ..studies.fit import fit as fit_keys
+    from ..studies.fit import fitted_text, parse_bounds
+
+    if figure is not None and Path(figure).suffix.lower() not in (".png", ".svg", ".pdf"):
+        fail(f"{figure}: the figure must be .png, .svg or .pdf")
+    if Path(output).suffix.lower() not in (".yaml", ".yml"):
+        fail(f"{output}: the fitted scenario is written as YAML: name it .yaml")
+    scenario = read_scenario(scenario, overrides)
+    limits = parse_bounds(list(bounds))
+    _jax.enable_compilation_cache()
+    _jax.compile_notice = compiling
+    try:
+        result = fit_keys(scenario, measured, _names(match), _names(keys), limits)
+    except SimulationError as exc:
+        fail(str(exc), RUN_FAILED)
+    with atomic_path(output) as path:
+        path.write_text(fitted_text(result), encoding="utf-8")
+    if figure is not None:
+        from ..figures.fit import fit_figure
+
+        with atomic_path(figure) as path:
+            fit_figure(result, path, title=scenario.name, kind=Path(figure).suffix[1:].lower())
+    if as_json:
+        click.echo(json.dumps(result.to_dict(), indent=2))
+    else:
+        click.echo(fit_table(scenario.name, result))
+    click.echo(f"wrote {output}" + (f" and {figure}" if figure else ""), err=as_json)

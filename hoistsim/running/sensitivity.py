@@ -88,8 +88,8 @@ def sensitivity(scenario: Scenario, wrt: list[str], of: list[str] | None = None)
             raise ScenarioError("--of", f"no summary {name!r} in this scene; it has {', '.join(numbers)}")
         if summaries[name] == "bool":
             raise ScenarioError("--of", f"{name} is a yes/no: it has no derivative")
-    values = {key: _key_value(scenario, key) for key in wrt}
-    directions = [_plan_direction(scenario, key, values[key], plan) for key in wrt]
+    values = {key: key_value(scenario, key) for key in wrt}
+    directions = [plan_direction(scenario, key, values[key], plan) for key in wrt]
     stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *directions)
     solver = scenario.simulation.solver
     program = _jax.executable(functools.partial(_program, solver), plan, stacked, name=f"sensitivity-{solver}")
@@ -116,22 +116,22 @@ def _existing(value: float, derivative: float) -> float:
     return derivative if math.isfinite(value) and math.isfinite(derivative) else math.nan
 
 
-def _key_value(scenario: Scenario, key: str) -> float:
+def key_value(scenario: Scenario, key: str, option: str = "--wrt") -> float:
     """The SI number a key holds; for a force table, its largest force (the table scaled with it)."""
-    check_key(key, "--wrt", scenario.provenance.raw)
-    held = _held(scenario, key)
+    check_key(key, option, scenario.provenance.raw)
+    held = _held(scenario, key, option)
     if hasattr(held, "forces"):
         return float(max(held.forces, key=abs))
     if isinstance(held, bool) or not isinstance(held, (int, float)):
-        raise ScenarioError(f"--wrt {key}", f"holds {held!r}, not a number: a derivative is taken with respect "
-                                            "to a number")
+        raise ScenarioError(f"{option} {key}", f"holds {held!r}, not a number: a derivative is taken with "
+                                               "respect to a number")
     return float(held)
 
 
-def _set_to(scenario: Scenario, key: str, x: float):
+def value_to_set(scenario: Scenario, key: str, x: float):
     """The value to give ``key`` for its number to be ``x``: a force table's rows with every force scaled by
     x over its largest (its shape kept; the times as they are)."""
-    held = _held(scenario, key)
+    held = _held(scenario, key, "--wrt")
     if not hasattr(held, "forces"):
         return x
     peak = float(max(held.forces, key=abs))
@@ -140,7 +140,7 @@ def _set_to(scenario: Scenario, key: str, x: float):
     return [[t, f * (x / peak)] for t, f in zip(held.times, held.forces)]
 
 
-def _held(scenario: Scenario, key: str):
+def _held(scenario: Scenario, key: str, option: str = "--wrt"):
     node = scenario
     for part in key.split("."):
         if isinstance(node, dict):
@@ -150,23 +150,24 @@ def _held(scenario: Scenario, key: str):
         else:
             node = getattr(node, part, None)
         if node is None:
-            raise ScenarioError(f"--wrt {key}", "is not set in this scenario: a derivative is taken where a "
-                                                "value is given")
+            raise ScenarioError(f"{option} {key}", "is not set in this scenario: a derivative is taken where a "
+                                                   "value is given")
     return node
 
 
-def _plan_direction(scenario: Scenario, key: str, x: float, plan):
-    """The plan's derivative with respect to ``key`` at ``x``: the direction of the run's inputs the key
-    moves them in (integer leaves: none)."""
+def plan_direction(scenario: Scenario, key: str, x: float, plan, option: str = "--wrt"):
+    """The derivative of ``plan`` (the scenario's, on any output grid) with respect to ``key`` at ``x``: the
+    direction of the run's inputs the key moves them in (integer leaves: none)."""
     h = PLAN_STEP * (abs(x) or 1.0)
 
     def leaves_at(offset: float):
-        moved, _ = build_plan(with_swept_value(scenario, key, _set_to(scenario, key, x + offset)),
+        moved, _ = build_plan(with_swept_value(scenario, key, value_to_set(scenario, key, x + offset)),
                               summary_only=True)
+        moved = dataclasses.replace(moved, grid=plan.grid)  # the key does not move the output times
         if (jax.tree.structure(moved) != jax.tree.structure(plan) or static_values(moved) != static_values(plan)
                 or any(np.shape(a) != np.shape(b) for a, b in zip(jax.tree.leaves(moved), jax.tree.leaves(plan)))):
-            raise ScenarioError(f"--wrt {key}", "changes the machine's structure near its value (which "
-                                                "elements, a table's rows): it has no derivative here")
+            raise ScenarioError(f"{option} {key}", "changes the machine's structure near its value (which "
+                                                   "elements, a table's rows): it has no derivative here")
         return [np.asarray(leaf) for leaf in jax.tree.leaves(moved)]
 
     def quotient(up, down, step):  # a leaf the key leaves as it is (an infinite limit too) does not move
