@@ -23,11 +23,14 @@ def _names(text: str | None) -> list[str] | None:
                    "lockup_time,slip_energy.")
 @click.option("--json", "as_json", is_flag=True,
               help="Print the values, derivatives (SI) and elasticities as a JSON object.")
+@click.option("--series", "series", type=click.Path(dir_okay=False), metavar="OUT.h5",
+              help="Also write the run's results file with each series' derivative with respect to each key as "
+                   "a series of its own, d_<series>_d_<key> (written atomically).")
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a scenario key.")
 @strict_option
 @debug_option
 @one_line_errors
-def sensitivity(scenario, wrt, of, as_json, overrides):
+def sensitivity(scenario, wrt, of, as_json, series, overrides):
     """How far each summary of SCENARIO moves with each key: its derivative, exact through every switch,
     and its elasticity (key / summary x derivative: the summary's relative change per relative change of
     the key).  A summary that does not exist (a lock-up that never comes) has none: '-'."""
@@ -42,14 +45,27 @@ def sensitivity(scenario, wrt, of, as_json, overrides):
     _jax.compile_notice = compiling
     from ..running.simulation import SimulationError
 
+    from .group import RESULT_SUFFIXES
+
+    if series is not None and not series.lower().endswith(RESULT_SUFFIXES):
+        fail(f"{series}: the results file must be named .h5, .hdf5 or .nc")
     try:
         result = differentiate(scenario, _names(wrt), _names(of))
+        if series is not None:
+            from ..results.output import write_runs
+            from ..running.sensitivity import series_sensitivity
+
+            write_runs(series, [series_sensitivity(scenario, _names(wrt))],
+                       command=" ".join(["hoistsim sensitivity", str(scenario.provenance.source), "--wrt", wrt,
+                                         "--series", series, *(f"--set {o}" for o in overrides)]))
     except SimulationError as exc:  # a run that cannot be completed (a chattering clutch): exit 1
         fail(str(exc), RUN_FAILED)
     if as_json:
         click.echo(json.dumps(result.to_dict(), indent=2))
-        return
-    click.echo(sensitivity_table(result, table_width()))
+    else:
+        click.echo(sensitivity_table(result, table_width()))
+    if series is not None:
+        click.echo(f"wrote {series} (each series' derivatives: d_<series>_d_<key>)", err=as_json)
 
 
 @main.command()

@@ -29,7 +29,7 @@ from .._pytree import static_values
 from ..errors import ScenarioError
 from ..machine.assemble import build_plan
 from ..machine.core.loop import SOLVERS, restart_loop
-from ..machine.core.plan import STATUS_TEXT
+from ..machine.core.plan import OK, STATUS_TEXT
 from ..machine.core.readout import STATUS
 from ..scenario.keys import check_key, key_units
 from ..scenario.loading import Scenario
@@ -122,6 +122,8 @@ def key_value(scenario: Scenario, key: str, option: str = "--wrt") -> float:
     held = _held(scenario, key, option)
     if hasattr(held, "forces"):
         return float(max(held.forces, key=abs))
+    if type(held) is int:  # a count (teeth, surfaces): it moves in whole steps
+        raise ScenarioError(f"{option} {key}", f"is a count ({held}), a whole number: it has no derivative")
     if isinstance(held, bool) or not isinstance(held, (int, float)):
         raise ScenarioError(f"{option} {key}", f"holds {held!r}, not a number: a derivative is taken with "
                                                "respect to a number")
@@ -203,3 +205,64 @@ def _ratio(top: str, bottom: str) -> str:
     bottom = f"({bottom})" if any(c in bottom for c in "*/") else bottom
     return f"{top or '1'}/{bottom}"
 
+
+
+def series_sensitivity(scenario: Scenario, wrt: list[str]):
+    """The run, as :func:`hoistsim.simulate` gives it, with each series' derivative with respect to each key of
+    ``wrt`` added as a series of its own, ``d_<series>_d_<key>`` (its units the series' over the key's; flags and
+    modes have none), on the same rows: the output grid and the state just after each event."""
+    import time
+
+    from ..machine.assemble import log_rows, step_room
+    from ..machine.core.readout import Readout
+    from .simulation import failure_message, row_order, run_result
+
+    if scenario.sweep:
+        raise ScenarioError("sweep", "a sensitivity is of one run: remove the sweep (or use --set for its key)")
+    plan, grid = build_plan(scenario)
+    values = {key: key_value(scenario, key) for key in wrt}
+    directions = [plan_direction(scenario, key, values[key], plan) for key in wrt]
+    stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *directions)
+    solver = scenario.simulation.solver
+    sizes = (log_rows(plan), step_room(plan))
+    while True:
+        program = _jax.executable(functools.partial(_series_program, solver, *sizes), plan, stacked,
+                                  name=f"series-sensitivity-{solver}-{sizes}")
+        started = time.perf_counter()
+        raw, at_grid, at_events = jax.device_get(program(plan, stacked))
+        readout = Readout(plan.layout, jax.tree.map(lambda leaf: leaf[0], raw))
+        elapsed = time.perf_counter() - started
+        if not readout.log_overflowed and not readout.steps_overflowed:
+            break
+        sizes = (log_rows(plan, log_size=readout.event_count + 1), step_room(plan, readout.kept_steps))
+    if readout.status != OK:
+        raise SimulationError(failure_message(scenario, readout))
+    run = run_result(scenario, "", grid, readout, elapsed)
+    order, keep = row_order(grid, readout.events()[0])
+    rows, events = grid.size, readout.event_count
+    key_units_ = {key: key_units(key) or "1" for key in wrt}
+    for i, (name, (units, _)) in enumerate(plan.layout.columns().items()):
+        if units == "1":  # a flag or a mode: whole steps, no derivative
+            continue
+        for k, key in enumerate(wrt):
+            derivative = np.concatenate([at_grid[k, i, :rows], at_events[k, i, :events]])[order][keep]
+            column = f"d_{name}_d_{key}"
+            run.series[column] = derivative
+            run.units[column] = _ratio(units, key_units_[key])
+            run.descriptions[column] = f"derivative of {name} with respect to {key} (at {values[key]:.6g})"
+    return run
+
+
+def _series_program(solver_name: str, log_size: int, room: int):
+    """The jitted full run and, along each direction, the derivatives of its output columns at the grid's rows
+    and at the events' rows."""
+    solver = SOLVERS[solver_name]()
+
+    def run(plan):
+        return restart_loop(plan, solver=solver, log_size=log_size, step_room=room, columns=True)
+
+    def along(plan, direction):
+        raw, tangent = jax.jvp(run, (plan,), (direction,))
+        return raw, tangent.grid_columns, tangent.event_columns
+
+    return jax.jit(lambda plan, directions: jax.vmap(along, in_axes=(None, 0))(plan, directions))

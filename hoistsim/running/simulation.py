@@ -88,16 +88,21 @@ def scene_summary_units(scenario: Scenario) -> dict[str, str]:
     return summary_units(Layout(machine_elements(scenario)))
 
 
+def row_order(grid: np.ndarray, event_time: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(order, keep) of the grid's rows followed by the event rows: their time order, and where an event falls
+    on a grid time (or several events at one time) the last row kept, which holds the state after the switch."""
+    times = np.concatenate([grid, event_time])
+    order = np.argsort(times, kind="stable")
+    times = times[order]
+    return order, np.append(times[1:] != times[:-1], True)
+
+
 def run_result(scenario: Scenario, label: str, grid: np.ndarray, raw: Readout, elapsed: float) -> RunResult:
     layout = raw.layout
     series = raw.columns(grid.size)
     event_time, kinds, elements, margins = raw.events()
-    times = np.concatenate([grid, event_time])
-    # Rows in time order; where an event falls on a grid time (or several events at one
-    # time) keep the last row, which holds the state after the switch.
-    order = np.argsort(times, kind="stable")
-    times = times[order]
-    keep = np.append(times[1:] != times[:-1], True)
+    order, keep = row_order(grid, event_time)
+    times = np.concatenate([grid, event_time])[order]
     series = {name: values[order][keep] for name, values in series.items()}
     # observations and the ends of cycles are rows, not events
     switches = ~np.isin(kinds, layout.observation_kinds + [kind for _, _, kind in layout.cycles])

@@ -91,6 +91,8 @@ def test_a_summary_that_does_not_exist_has_no_derivative():
 @pytest.mark.parametrize("keys, of, message", [
     (["clutch.nonsense"], None, "clutch.nonsense"),
     (["brake.release_time", "load.gravity"], None, "load.gravity"),
+    (["gears.pinion_teeth"], None, "is a count (17)"),
+    (["clutch"], None, "is a section"),
     (["name"], None, "not a number"),
     (["load.mass"], ["load_lifted"], "yes/no"),
     (["load.mass"], ["no_such_summary"], "no summary"),
@@ -137,3 +139,33 @@ def test_a_bad_key_ends_the_command_at_one_line():
     assert done.stderr.strip().splitlines() == [
         "hoistsim: error: --wrt name: holds 'engage-at-speed-with-brake', not a number: a derivative is taken "
         "with respect to a number"]
+
+
+@pytest.mark.slow
+def test_the_series_derivatives_are_written_and_meet_finite_differences(tmp_path):
+    """`--series OUT.h5`: each series' derivative on the run's rows, as a variable of the results file with
+    units, against central differences of the runs on the grid's rows (away from the lock's instant, where
+    the series has a corner and a difference across it means nothing)."""
+    import numpy as np
+    from click.testing import CliRunner
+
+    from hoistsim import open_results, simulate
+    from hoistsim.cli import main
+
+    out = tmp_path / "sensitivity.h5"
+    done = CliRunner().invoke(main, ["sensitivity", str(ENGAGE), "--wrt", "load.mass,clutch.kinetic_friction",
+                                     "--of", "lockup_time", "--series", str(out)])
+    assert done.exit_code == 0, done.output
+    data = open_results(out)
+    assert data["d_motor_speed_d_load.mass"].attrs["units"] == "rad/s/kg"
+    assert "d_clutch_locked_d_load.mass" not in data  # a flag has no derivative
+    base = simulate(load_scenario(ENGAGE))
+    h = 0.05  # kg
+    up, down = (simulate(load_scenario(ENGAGE, overrides=[f"load.mass={500 + d!r}"])) for d in (h, -h))
+    lock = base.values["lockup_time"]
+    rows = base.grid_rows()
+    away = np.abs(base.time[rows] - lock) > 0.002
+    derivative = data["d_motor_speed_d_load.mass"].values.ravel()[:rows.size]
+    difference = (up["motor_speed"][up.grid_rows()] - down["motor_speed"][down.grid_rows()]) / (2 * h)
+    scale = np.max(np.abs(derivative))
+    assert scale > 0 and np.max(np.abs(difference - derivative)[away]) < 1e-5 * scale

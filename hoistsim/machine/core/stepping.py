@@ -286,7 +286,7 @@ def _crossing(guards, args, interpolant, lower, upper, crossed):
     fired = jnp.where(jnp.any(fired), fired, crossed)  # round-off: the guard that crossed at the step's end
     which = jnp.arange(fired.shape[0]) == jnp.argmax(fired)
     # the instant's derivative, where the run is differentiated: the fired guard's zero (event_time)
-    t = event_time(t, functools.partial(_fired_guard, guards), (interpolant, args, which))
+    t = event_time(t, functools.partial(_fired_guard, guards), lower, (interpolant, args, which))
     return t, interpolant.evaluate(t), which
 
 
