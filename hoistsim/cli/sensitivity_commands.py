@@ -50,12 +50,11 @@ def sensitivity(scenario, wrt, of, as_json, series, overrides):
     if series is not None and not series.lower().endswith(RESULT_SUFFIXES):
         fail(f"{series}: the results file must be named .h5, .hdf5 or .nc")
     try:
-        result = differentiate(scenario, _names(wrt), _names(of))
+        result = differentiate(scenario, _names(wrt), _names(of), series=series is not None)
         if series is not None:
             from ..results.output import write_runs
-            from ..running.sensitivity import series_sensitivity
 
-            write_runs(series, [series_sensitivity(scenario, _names(wrt))],
+            write_runs(series, [result.run],
                        command=" ".join(["hoistsim sensitivity", str(scenario.provenance.source), "--wrt", wrt,
                                          "--series", series, *(f"--set {o}" for o in overrides)]))
     except SimulationError as exc:  # a run that cannot be completed (a chattering clutch): exit 1

@@ -20,6 +20,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import math
+import time
 
 import jax
 import numpy as np
@@ -30,11 +31,10 @@ from ..errors import ScenarioError
 from ..machine.assemble import build_plan
 from ..machine.core.loop import SOLVERS, restart_loop
 from ..machine.core.plan import OK, STATUS_TEXT
-from ..machine.core.readout import STATUS
 from ..scenario.keys import check_key, key_units
 from ..scenario.loading import Scenario
-from ..scenario.sweep_spec import with_swept_value
-from .simulation import SimulationError
+from ..scenario.sweep_spec import held_at, with_swept_value
+from .simulation import SimulationError, failure_message, row_order, run_result
 
 # The relative step of the plan's central difference (extrapolated once: its error is of the order of the
 # step to the fourth power times the plan's fifth derivative in the key, and round-off / step).
@@ -52,6 +52,7 @@ class Sensitivity:
     units: dict[str, str]  # summary -> its units
     derivatives: dict[str, dict[str, float]]  # summary -> key -> d summary / d key (SI); NaN: none exists
     tables: tuple[str, ...] = ()  # keys that hold a force table: their number is its largest force
+    run: object = None  # with ``series``: the RunResult with each series' derivatives (d_<series>_d_<key>)
 
     def elasticity(self, summary: str, key: str) -> float:
         """(key / summary) * d summary / d key: the summary's relative change per relative change of the key."""
@@ -72,14 +73,17 @@ class Sensitivity:
                               for s in self.values}}
 
 
-def sensitivity(scenario: Scenario, wrt: list[str], of: list[str] | None = None) -> Sensitivity:
+def sensitivity(scenario: Scenario, wrt: list[str], of: list[str] | None = None,
+                series: bool = False) -> Sensitivity:
     """The derivatives of ``of`` (summary names; None: every summary that is a number) with respect to each
-    key of ``wrt`` (dotted scenario keys, each holding a number), at the scenario's values."""
+    key of ``wrt`` (dotted scenario keys, each holding a number), at the scenario's values.  ``series``: the
+    run too, as :func:`hoistsim.simulate` gives it, with each series' derivative with respect to each key as
+    a series of its own, ``d_<series>_d_<key>`` (``Sensitivity.run``; from the same differentiated run)."""
     if scenario.sweep:
         raise ScenarioError("sweep", "a sensitivity is of one run: remove the sweep (or use --set for its key)")
     if not wrt:
         raise ScenarioError("--wrt", "name at least one key, like --wrt clutch.kinetic_friction")
-    plan, _ = build_plan(scenario, summary_only=True)
+    plan, grid = build_plan(scenario, summary_only=not series)
     summaries = plan.layout.summaries
     numbers = [name for name, units in summaries.items() if units != "bool"]
     of = list(numbers if of is None else of)
@@ -89,15 +93,14 @@ def sensitivity(scenario: Scenario, wrt: list[str], of: list[str] | None = None)
         if summaries[name] == "bool":
             raise ScenarioError("--of", f"{name} is a yes/no: it has no derivative")
     values = {key: key_value(scenario, key) for key in wrt}
-    directions = [plan_direction(scenario, key, values[key], plan) for key in wrt]
-    stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *directions)
-    solver = scenario.simulation.solver
-    program = _jax.executable(functools.partial(_program, solver), plan, stacked, name=f"sensitivity-{solver}")
-    scalars, tangents, counters = program(plan, stacked)
-    scalars, tangents, counters = np.asarray(scalars[0]), np.asarray(tangents), np.asarray(counters[0])
-    if int(counters[STATUS]):
-        raise SimulationError(f"{scenario.name}: the run stopped at t = {float(scalars[0]):.6g} s: "
-                              f"{STATUS_TEXT[int(counters[STATUS])]}")
+    directions = stacked_directions(scenario, wrt, values, plan)
+    readout, d_scalars, at_grid, at_events, elapsed = differentiated(plan, directions, scenario.simulation.solver,
+                                                                     columns=series)
+    if readout.status != OK:
+        raise SimulationError(failure_message(scenario, readout) if series else
+                              f"{scenario.name}: the run stopped at t = {readout.end_time:.6g} s: "
+                              f"{STATUS_TEXT[readout.status]}")
+    scalars, tangents = np.asarray(readout.raw.scalars), np.asarray(d_scalars)
     names = list(summaries)
     value = {name: float(scalars[1 + names.index(name)]) for name in of}
     derivative = {name: {key: _existing(value[name], float(tangents[k, 1 + names.index(name)]))
@@ -106,8 +109,12 @@ def sensitivity(scenario: Scenario, wrt: list[str], of: list[str] | None = None)
 
     units = summary_units(plan.layout)
     tables = tuple(key for key in wrt if hasattr(_held(scenario, key), "forces"))
-    return Sensitivity(scenario.name, values, {key: key_units(key) or "1" for key in wrt}, value,
-                       {name: units.get(name, "") or "1" for name in of}, derivative, tables)
+    result = Sensitivity(scenario.name, values, {key: key_units(key) or "1" for key in wrt}, value,
+                         {name: units.get(name, "") or "1" for name in of}, derivative, tables)
+    if series:
+        result.run = _with_series(run_result(scenario, "", grid, readout, elapsed), plan, readout, grid, values,
+                                  result.key_units, at_grid, at_events)
+    return result
 
 
 def _existing(value: float, derivative: float) -> float:
@@ -143,18 +150,11 @@ def value_to_set(scenario: Scenario, key: str, x: float):
 
 
 def _held(scenario: Scenario, key: str, option: str = "--wrt"):
-    node = scenario
-    for part in key.split("."):
-        if isinstance(node, dict):
-            node = node.get(part)
-        elif isinstance(node, (list, tuple)):
-            node = node[int(part)] if part.isdigit() and int(part) < len(node) else None
-        else:
-            node = getattr(node, part, None)
-        if node is None:
-            raise ScenarioError(f"{option} {key}", "is not set in this scenario: a derivative is taken where a "
-                                                   "value is given")
-    return node
+    held = held_at(scenario, key)
+    if held is None:
+        raise ScenarioError(f"{option} {key}", "is not set in this scenario: a derivative is taken where a "
+                                               "value is given")
+    return held
 
 
 def plan_direction(scenario: Scenario, key: str, x: float, plan, option: str = "--wrt"):
@@ -183,18 +183,45 @@ def plan_direction(scenario: Scenario, key: str, x: float, plan, option: str = "
     return jax.tree.unflatten(jax.tree.structure(plan), leaves)
 
 
-def _program(solver_name: str):
-    """The jitted run and its derivative along each direction: (summaries, their tangents, counters); one
-    compiled program a structure and count of keys (:func:`hoistsim._jax.executable` holds and stores it)."""
+def stacked_directions(scenario: Scenario, keys: list[str], values: dict, plan, option: str = "--wrt"):
+    """Each key's :func:`plan_direction`, stacked on a leading axis (one a key)."""
+    directions = [plan_direction(scenario, key, values[key], plan, option) for key in keys]
+    return jax.tree.map(lambda *leaves: np.stack(leaves), *directions)
+
+
+def differentiated(plan, directions, solver_name: str, columns: bool):
+    """The run of ``plan`` and its derivatives along each of ``directions`` (stacked: one a key), one compiled
+    program a structure and count of keys (:func:`hoistsim._jax.executable` holds and stores it):
+    (the run's Readout, the derivatives of its scalars (keys, scalars), of its grid columns (keys, columns,
+    rows) and of its event columns (keys, columns, events), the seconds the run took).  ``columns`` False: the
+    summaries alone (no rows, a log that only counts), as a summary-only sweep's run; else room for every
+    event row and kept step, the run taken again with more where it needed it."""
+    from ..machine.assemble import log_rows, step_room
+    from ..machine.core.readout import Readout
+
+    sizes = (log_rows(plan), step_room(plan)) if columns else (1, 0)
+    while True:
+        program = _jax.executable(functools.partial(_program, solver_name, *sizes, columns), plan, directions,
+                                  name=f"derivatives-{solver_name}-{sizes}-{columns}")
+        started = time.perf_counter()
+        raw, d_scalars, d_grid, d_events = jax.device_get(program(plan, directions))
+        elapsed = time.perf_counter() - started
+        readout = Readout(plan.layout, jax.tree.map(lambda leaf: leaf[0], raw))  # every direction's run is one
+        if not columns or (not readout.log_overflowed and not readout.steps_overflowed):
+            return readout, d_scalars, d_grid, d_events, elapsed
+        sizes = (log_rows(plan, log_size=readout.event_count + 1), step_room(plan, readout.kept_steps))
+
+
+def _program(solver_name: str, log_size: int, room: int, columns: bool):
+    """The jitted run and, along each direction, the derivatives of its scalars and output columns."""
     solver = SOLVERS[solver_name]()
 
-    def scalars(plan):
-        raw = restart_loop(plan, solver=solver, log_size=1, step_room=0, columns=False)
-        return raw.scalars, raw.counters
+    def run(plan):
+        return restart_loop(plan, solver=solver, log_size=log_size, step_room=room, columns=columns)
 
     def along(plan, direction):
-        values, tangent, counters = jax.jvp(scalars, (plan,), (direction,), has_aux=True)
-        return values, tangent, counters
+        raw, tangent = jax.jvp(run, (plan,), (direction,))
+        return raw, tangent.scalars, tangent.grid_columns, tangent.event_columns
 
     return jax.jit(lambda plan, directions: jax.vmap(along, in_axes=(None, 0))(plan, directions))
 
@@ -206,63 +233,17 @@ def _ratio(top: str, bottom: str) -> str:
     return f"{top or '1'}/{bottom}"
 
 
-
-def series_sensitivity(scenario: Scenario, wrt: list[str]):
-    """The run, as :func:`hoistsim.simulate` gives it, with each series' derivative with respect to each key of
-    ``wrt`` added as a series of its own, ``d_<series>_d_<key>`` (its units the series' over the key's; flags and
-    modes have none), on the same rows: the output grid and the state just after each event."""
-    import time
-
-    from ..machine.assemble import log_rows, step_room
-    from ..machine.core.readout import Readout
-    from .simulation import failure_message, row_order, run_result
-
-    if scenario.sweep:
-        raise ScenarioError("sweep", "a sensitivity is of one run: remove the sweep (or use --set for its key)")
-    plan, grid = build_plan(scenario)
-    values = {key: key_value(scenario, key) for key in wrt}
-    directions = [plan_direction(scenario, key, values[key], plan) for key in wrt]
-    stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *directions)
-    solver = scenario.simulation.solver
-    sizes = (log_rows(plan), step_room(plan))
-    while True:
-        program = _jax.executable(functools.partial(_series_program, solver, *sizes), plan, stacked,
-                                  name=f"series-sensitivity-{solver}-{sizes}")
-        started = time.perf_counter()
-        raw, at_grid, at_events = jax.device_get(program(plan, stacked))
-        readout = Readout(plan.layout, jax.tree.map(lambda leaf: leaf[0], raw))
-        elapsed = time.perf_counter() - started
-        if not readout.log_overflowed and not readout.steps_overflowed:
-            break
-        sizes = (log_rows(plan, log_size=readout.event_count + 1), step_room(plan, readout.kept_steps))
-    if readout.status != OK:
-        raise SimulationError(failure_message(scenario, readout))
-    run = run_result(scenario, "", grid, readout, elapsed)
+def _with_series(run, plan, readout, grid, values: dict, units_of_keys: dict, at_grid, at_events):
+    """``run`` with each output column's derivative along each key added as a series of its own (its units the
+    column's over the key's; flags and modes have none), on the run's rows: the grid's and each event's."""
     order, keep = row_order(grid, readout.events()[0])
     rows, events = grid.size, readout.event_count
-    key_units_ = {key: key_units(key) or "1" for key in wrt}
     for i, (name, (units, _)) in enumerate(plan.layout.columns().items()):
         if units == "1":  # a flag or a mode: whole steps, no derivative
             continue
-        for k, key in enumerate(wrt):
-            derivative = np.concatenate([at_grid[k, i, :rows], at_events[k, i, :events]])[order][keep]
+        for k, key in enumerate(values):
             column = f"d_{name}_d_{key}"
-            run.series[column] = derivative
-            run.units[column] = _ratio(units, key_units_[key])
+            run.series[column] = np.concatenate([at_grid[k, i, :rows], at_events[k, i, :events]])[order][keep]
+            run.units[column] = _ratio(units, units_of_keys[key])
             run.descriptions[column] = f"derivative of {name} with respect to {key} (at {values[key]:.6g})"
     return run
-
-
-def _series_program(solver_name: str, log_size: int, room: int):
-    """The jitted full run and, along each direction, the derivatives of its output columns at the grid's rows
-    and at the events' rows."""
-    solver = SOLVERS[solver_name]()
-
-    def run(plan):
-        return restart_loop(plan, solver=solver, log_size=log_size, step_room=room, columns=True)
-
-    def along(plan, direction):
-        raw, tangent = jax.jvp(run, (plan,), (direction,))
-        return raw, tangent.grid_columns, tangent.event_columns
-
-    return jax.jit(lambda plan, directions: jax.vmap(along, in_axes=(None, 0))(plan, directions))

@@ -95,6 +95,20 @@ def with_validated_value(scenario: Scenario, key: str, value: Any) -> Scenario:
     return _copied_with(models, key, value, check=False)
 
 
+def held_at(scenario: Scenario, key: str):
+    """What a dotted key holds in a validated scenario, through sections, parts by name and lists' indices;
+    None where something on its path is absent."""
+    node = scenario
+    for part in key.split("."):
+        try:
+            node = _child(node, part)
+        except (AttributeError, KeyError, IndexError, ValueError):
+            return None
+        if node is None:
+            return None
+    return node
+
+
 def _child(parent, part: str):
     """What ``part`` names in a section, or in sections by name (a dict) or in a list (by index)."""
     if isinstance(parent, dict):

@@ -18,19 +18,14 @@ and its 95 % interval from Student's t with m - n degrees of freedom.
 from __future__ import annotations
 
 import dataclasses
-import functools
 import math
 
-import jax
 import numpy as np
 
-from .. import _jax
 from ..errors import ScenarioError
-from ..machine.assemble import build_plan, log_rows, step_room
-from ..machine.core.loop import SOLVERS, restart_loop
+from ..machine.assemble import build_plan
 from ..machine.core.plan import OK
-from ..machine.core.readout import EVENT_COUNT, KEPT_STEPS, STATUS
-from ..running.sensitivity import key_value, plan_direction, value_to_set
+from ..running.sensitivity import differentiated, key_value, stacked_directions, value_to_set
 from ..scenario.keys import key_units
 from ..scenario.loading import Scenario
 from ..scenario.sweep_spec import with_swept_value
@@ -179,11 +174,12 @@ def _levenberg_marquardt(residuals, start, scale, low, high):
 
 
 class _Model:
-    """The run's matched series at the measured times and their derivatives along each key, at given values."""
+    """The run's matched series at the measured times and their derivatives along each key, at given values
+    (the last few kept: the fit asks again at its start and its optimum)."""
 
     def __init__(self, scenario: Scenario, keys: list[str], trace: Trace, match: list[str]):
         self.base, self.keys, self.trace, self.match = scenario, keys, trace, match
-        self.sizes = None
+        self.seen: dict[tuple, tuple] = {}
 
     def scenario_at(self, values) -> Scenario:
         run = self.base
@@ -194,6 +190,14 @@ class _Model:
     def __call__(self, values):
         """({column: rows}, {column: (rows, keys) Jacobian}); (None, None) where the scenario refuses the
         values or the run fails."""
+        key = tuple(float(x) for x in values)
+        if key not in self.seen:
+            if len(self.seen) > 8:
+                self.seen.pop(next(iter(self.seen)))
+            self.seen[key] = self._evaluated(key)
+        return self.seen[key]
+
+    def _evaluated(self, values):
         try:
             scenario = self.scenario_at(values)
         except ScenarioError:
@@ -202,44 +206,20 @@ class _Model:
         times = self.trace.time
         grid = np.concatenate([times, np.full(_padded_size(times.size) - times.size, times[-1])])
         plan = dataclasses.replace(plan, grid=grid)
-        directions = [plan_direction(scenario, key, float(x), plan, "--fit") for key, x in zip(self.keys, values)]
-        stacked = jax.tree.map(lambda *leaves: np.stack(leaves), *directions)
-        self.sizes = self.sizes or (log_rows(plan), step_room(plan))
-        solver = scenario.simulation.solver
-        while True:
-            program = _jax.executable(functools.partial(_rows_program, solver, *self.sizes), plan, stacked,
-                                      name=f"fit-{solver}-{self.sizes}")
-            rows, tangents, counters = (np.asarray(a) for a in program(plan, stacked))
-            counters = counters[0]
-            logged, kept = int(counters[EVENT_COUNT]), int(counters[KEPT_STEPS])
-            if logged <= self.sizes[0] and kept <= self.sizes[1]:
-                break
-            self.sizes = (log_rows(plan, log_size=logged + 1), step_room(plan, kept))
-        if int(counters[STATUS]) != OK:
+        directions = stacked_directions(scenario, self.keys, dict(zip(self.keys, values)), plan, "--fit")
+        readout, _, tangents, _, _ = differentiated(plan, directions, scenario.simulation.solver, columns=True)
+        if readout.status != OK:
             return None, None
+        rows = np.asarray(readout.raw.grid_columns)
         names = list(plan.layout.columns())
         m = times.size
-        found = {name: rows[0, names.index(name), :m] for name in self.match}
-        jacobian = {name: tangents[:, names.index(name), :m].T for name in self.match}
+        found = {name: rows[names.index(name), :m] for name in self.match}
+        jacobian = {name: np.asarray(tangents)[:, names.index(name), :m].T for name in self.match}
         return found, jacobian
 
 
 def _padded_size(count: int) -> int:
     return max(64, 1 << int(np.ceil(np.log2(count))))
-
-
-def _rows_program(solver_name: str, log_size: int, room: int):
-    """The jitted run's output columns at the plan's grid and their derivatives along each direction."""
-    solver = SOLVERS[solver_name]()
-
-    def columns(plan):
-        raw = restart_loop(plan, solver=solver, log_size=log_size, step_room=room, columns=True)
-        return raw.grid_columns, raw.counters
-
-    def along(plan, direction):
-        return jax.jvp(columns, (plan,), (direction,), has_aux=True)
-
-    return jax.jit(lambda plan, directions: jax.vmap(along, in_axes=(None, 0))(plan, directions))
 
 
 def parse_bounds(items: list[str]) -> dict[str, tuple[float, float]]:
