@@ -23,14 +23,16 @@ def _names(text: str | None) -> list[str] | None:
                    "lockup_time,slip_energy.")
 @click.option("--json", "as_json", is_flag=True,
               help="Print the values, derivatives (SI) and elasticities as a JSON object.")
-@click.option("--series", "series", type=click.Path(dir_okay=False), metavar="OUT.h5",
-              help="Also write the run's results file with each series' derivative with respect to each key as "
-                   "a series of its own, d_<series>_d_<key> (written atomically).")
+@click.option("--series", is_flag=True,
+              help="Also write the run's results file (-o) with each series' derivative with respect to each key as "
+                   "a series of its own, d_<series>_d_<key>.")
+@click.option("-o", "--output", "output", type=click.Path(dir_okay=False), metavar="OUT.h5",
+              help="The results file --series writes (replaced atomically).")
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a scenario key.")
 @strict_option
 @debug_option
 @one_line_errors
-def sensitivity(scenario, wrt, of, as_json, series, overrides):
+def sensitivity(scenario, wrt, of, as_json, series, output, overrides):
     """How far each summary of SCENARIO moves with each key: its derivative, exact through every switch,
     and its elasticity (key / summary x derivative: the summary's relative change per relative change of
     the key).  A summary that does not exist (a lock-up that never comes) has none: '-'."""
@@ -47,24 +49,28 @@ def sensitivity(scenario, wrt, of, as_json, series, overrides):
 
     from .group import RESULT_SUFFIXES
 
-    if series is not None and not series.lower().endswith(RESULT_SUFFIXES):
-        fail(f"{series}: the results file must be named .h5, .hdf5 or .nc")
+    if series and output is None:
+        fail("--series writes the run's results file: name it with -o OUT.h5")
+    if output is not None and not series:
+        fail("-o names the results file --series writes: add --series")
+    if output is not None and not output.lower().endswith(RESULT_SUFFIXES):
+        fail(f"{output}: the results file must be named .h5, .hdf5 or .nc")
     try:
-        result = differentiate(scenario, _names(wrt), _names(of), series=series is not None)
-        if series is not None:
+        result = differentiate(scenario, _names(wrt), _names(of), series=series)
+        if series:
             from ..results.output import write_runs
 
-            write_runs(series, [result.run],
+            write_runs(output, [result.run],
                        command=" ".join(["hoistsim sensitivity", str(scenario.provenance.source), "--wrt", wrt,
-                                         "--series", series, *(f"--set {o}" for o in overrides)]))
+                                         "--series", "-o", output, *(f"--set {o}" for o in overrides)]))
     except SimulationError as exc:  # a run that cannot be completed (a chattering clutch): exit 1
         fail(str(exc), RUN_FAILED)
     if as_json:
         click.echo(json.dumps(result.to_dict(), indent=2))
     else:
         click.echo(sensitivity_table(result, table_width()))
-    if series is not None:
-        click.echo(f"wrote {series} (each series' derivatives: d_<series>_d_<key>)", err=as_json)
+    if series:
+        click.echo(f"wrote {output} (each series' derivatives: d_<series>_d_<key>)", err=as_json)
 
 
 @main.command()
@@ -78,8 +84,8 @@ def sensitivity(scenario, wrt, of, as_json, series, overrides):
                    "clutch.static_friction,clutch.kinetic_friction; they start at the scenario's values.")
 @click.option("--bounds", multiple=True, metavar="KEY=LO:HI",
               help='Hold a fitted key within LO and HI, e.g. --bounds "clutch.kinetic_friction=0.05:0.2". Repeatable.')
-@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), metavar="FITTED.yaml",
-              help="The scenario with the fitted values (its comments kept), written atomically.")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), metavar="FITTED.yaml",
+              help="Also write the scenario with the fitted values (its comments kept), atomically.")
 @click.option("--plot", "figure", type=click.Path(dir_okay=False), metavar="FIG.png",
               help="Also draw each matched series measured against fitted, with the residual (.png, .svg, .pdf).")
 @click.option("--json", "as_json", is_flag=True, help="Print the fitted values, errors and intervals as JSON (SI).")
@@ -90,7 +96,7 @@ def sensitivity(scenario, wrt, of, as_json, series, overrides):
 def fit(scenario, measured, match, keys, bounds, output, figure, as_json, overrides):
     """Fit keys of SCENARIO to a trace measured on a rig: least squares of the run's series against the
     measured columns at the measured times (Levenberg-Marquardt with the exact Jacobian, through every
-    switch), each key with its standard error and 95 % interval; writes the fitted scenario."""
+    switch), each key with its standard error and 95 % interval; -o writes the fitted scenario."""
     import json
     from pathlib import Path
 
@@ -103,7 +109,7 @@ def fit(scenario, measured, match, keys, bounds, output, figure, as_json, overri
 
     if figure is not None and Path(figure).suffix.lower() not in (".png", ".svg", ".pdf"):
         fail(f"{figure}: the figure must be .png, .svg or .pdf")
-    if Path(output).suffix.lower() not in (".yaml", ".yml"):
+    if output is not None and Path(output).suffix.lower() not in (".yaml", ".yml"):
         fail(f"{output}: the fitted scenario is written as YAML: name it .yaml")
     scenario = read_scenario(scenario, overrides)
     limits = parse_bounds(list(bounds))
@@ -113,8 +119,9 @@ def fit(scenario, measured, match, keys, bounds, output, figure, as_json, overri
         result = fit_keys(scenario, measured, _names(match), _names(keys), limits)
     except SimulationError as exc:
         fail(str(exc), RUN_FAILED)
-    with atomic_path(output) as path:
-        path.write_text(fitted_text(result), encoding="utf-8")
+    if output is not None:
+        with atomic_path(output) as path:
+            path.write_text(fitted_text(result), encoding="utf-8")
     if figure is not None:
         from ..figures.fit import fit_figure
 
@@ -124,4 +131,6 @@ def fit(scenario, measured, match, keys, bounds, output, figure, as_json, overri
         click.echo(json.dumps(result.to_dict(), indent=2))
     else:
         click.echo(fit_table(scenario.name, result))
-    click.echo(f"wrote {output}" + (f" and {figure}" if figure else ""), err=as_json)
+    written = [name for name in (output, figure) if name is not None]
+    if written:
+        click.echo(f"wrote {' and '.join(written)}", err=as_json)

@@ -63,14 +63,14 @@ class Sensitivity:
         return _ratio(self.units[summary], self.key_units[key])
 
     def to_dict(self) -> dict:
-        return {"name": self.name, "keys": {k: {"value": v, "units": self.key_units[k],
-                                                **({"scales": "the table's forces"} if k in self.tables else {})}
-                                            for k, v in self.keys.items()},
-                "summaries": {s: {"value": self.values[s], "units": self.units[s],
-                                  "derivatives": {k: {"value": d, "units": self.derivative_units(s, k),
-                                                      "elasticity": self.elasticity(s, k)}
-                                                  for k, d in self.derivatives[s].items()}}
-                              for s in self.values}}
+        """``{summary: {key: {"derivative": d, "elasticity": e, "unit": "..."}}}``, SI; None where none exists."""
+        def number(x: float):
+            return x if math.isfinite(x) else None
+
+        return {s: {k: {"derivative": number(d), "elasticity": number(self.elasticity(s, k)),
+                        "unit": self.derivative_units(s, k)}
+                    for k, d in self.derivatives[s].items()}
+                for s in self.values}
 
 
 def sensitivity(scenario: Scenario, wrt: list[str], of: list[str] | None = None,

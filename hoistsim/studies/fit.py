@@ -56,14 +56,12 @@ class FitResult:
     at_start: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)  # the run at the starting values
 
     def to_dict(self) -> dict:
-        return {"keys": {key: {"start": self.start[key], "value": self.values[key],
-                               "standard_error": self.standard_errors[key],
-                               "interval_95": list(self.intervals[key]), "units": self.key_units[key]}
-                         for key in self.keys},
-                "residual_rms": {name: {"value": v, "units": self.trace.units[name]}
-                                 for name, v in self.residual_rms.items()},
-                "iterations": self.iterations, "converged": self.converged,
-                "correlation": self.correlation.tolist()}
+        """``{key: {"value": v, "standard_error": s, "interval_95": [lo, hi]}, "rms": r}`` in SI: ``r`` the RMS of
+        every matched series' residuals, each in its series' SI unit."""
+        pooled = [self.fitted[name] - self.trace.columns[name] for name in self.fitted]
+        return {**{key: {"value": self.values[key], "standard_error": self.standard_errors[key],
+                         "interval_95": list(self.intervals[key])} for key in self.keys},
+                "rms": float(np.sqrt(np.mean(np.concatenate(pooled) ** 2)))}
 
 
 def fit(scenario: Scenario, measured, match: list[str], keys: list[str],

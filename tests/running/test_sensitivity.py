@@ -121,12 +121,13 @@ def test_the_command_prints_the_derivatives_and_their_elasticities():
     assert "elasticity" in shown.stdout and "clutch.kinetic_friction = 0.1" in shown.stdout
     printed = json.loads(CliRunner().invoke(main, [*args, "--json"]).stdout)
     result = sensitivity(load_scenario(ENGAGE, overrides=TIGHT), keys, of=["lockup_time", "slip_energy"])
+    assert set(printed) == {"lockup_time", "slip_energy"}  # {summary: {key: {derivative, elasticity, unit}}}
     for name in ("lockup_time", "slip_energy"):
         for key in keys:
-            entry = printed["summaries"][name]["derivatives"][key]
-            assert entry["value"] == result.derivatives[name][key]
+            entry = printed[name][key]
+            assert entry["derivative"] == result.derivatives[name][key]
             assert entry["elasticity"] == pytest.approx(result.elasticity(name, key), rel=1e-15)
-    assert printed["summaries"]["lockup_time"]["derivatives"]["load.mass"]["units"] == "s/kg"
+    assert printed["lockup_time"]["load.mass"]["unit"] == "s/kg"
 
 
 def test_a_bad_key_ends_the_command_at_one_line():
@@ -143,7 +144,7 @@ def test_a_bad_key_ends_the_command_at_one_line():
 
 @pytest.mark.slow
 def test_the_series_derivatives_are_written_and_meet_finite_differences(tmp_path):
-    """`--series OUT.h5`: each series' derivative on the run's rows, as a variable of the results file with
+    """`--series -o OUT.h5`: each series' derivative on the run's rows, as a variable of the results file with
     units, against central differences of the runs on the grid's rows (away from the lock's instant, where
     the series has a corner and a difference across it means nothing)."""
     import numpy as np
@@ -154,7 +155,7 @@ def test_the_series_derivatives_are_written_and_meet_finite_differences(tmp_path
 
     out = tmp_path / "sensitivity.h5"
     done = CliRunner().invoke(main, ["sensitivity", str(ENGAGE), "--wrt", "load.mass,clutch.kinetic_friction",
-                                     "--of", "lockup_time", "--series", str(out)])
+                                     "--of", "lockup_time", "--series", "-o", str(out)])
     assert done.exit_code == 0, done.output
     data = open_results(out)
     assert data["d_motor_speed_d_load.mass"].attrs["units"] == "rad/s/kg"

@@ -91,6 +91,12 @@ def test_the_command_writes_the_fitted_scenario_and_its_figure(tmp_path):
     assert fitted.clutch.static_friction == pytest.approx(TRUE["clutch.static_friction"], abs=0.002)
     assert fitted.clutch.kinetic_friction == pytest.approx(TRUE["clutch.kinetic_friction"], abs=0.0005)
     assert "# A clutch on a test rig" in output.read_text()  # the scenario's comments kept
+    import json
+
+    printed = json.loads(CliRunner().invoke(main, ["fit", str(RIG), "--measured", str(TRACE), "--match",
+                                                   ",".join(MATCH), "--fit", ",".join(KEYS), "--json"]).stdout)
+    assert set(printed) == {*KEYS, "rms"} and set(printed[KEYS[0]]) == {"value", "standard_error", "interval_95"}
+    assert printed[KEYS[0]]["value"] == pytest.approx(fitted.clutch.static_friction, rel=1e-5)
 
 
 def _csv(tmp_path, text: str):
