@@ -27,50 +27,62 @@ def _names(text: str | None) -> list[str] | None:
               help="Also write the run's results file (-o) with each series' derivative with respect to each key as "
                    "a series of its own, d_<series>_d_<key>.")
 @click.option("-o", "--output", "output", type=click.Path(dir_okay=False), metavar="OUT.h5",
-              help="The results file --series writes (replaced atomically).")
+              help="The results file --series writes (replaced atomically); of a sweep, its summary-only file with "
+                   "each run's derivatives as summary columns, d_<summary>_d_<key>.")
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a scenario key.")
+@click.option("--sweep", "sweeps", multiple=True, metavar="KEY=V1,V2,..|KEY=FROM:TO:COUNT",
+              help="Sweep a key (replacing the scenario's sweep of it): every run differentiated at its own values.")
 @strict_option
 @debug_option
 @one_line_errors
-def sensitivity(scenario, wrt, of, as_json, series, output, overrides):
+def sensitivity(scenario, wrt, of, as_json, series, output, overrides, sweeps):
     """How far each summary of SCENARIO moves with each key: its derivative, exact through every switch,
     and its elasticity (key / summary x derivative: the summary's relative change per relative change of
-    the key).  A summary that does not exist (a lock-up that never comes) has none: '-'."""
+    the key).  A summary that does not exist (a lock-up that never comes) has none: '-'.  A scenario with a
+    sweep: every run's, each at its own values."""
     import json
 
     from .. import _jax
-    from ..results.report import sensitivity_table
+    from ..results.report import sensitivity_table, sweep_sensitivity_table
     from ..running.sensitivity import sensitivity as differentiate
 
-    scenario = read_scenario(scenario, overrides)
+    scenario = read_scenario(scenario, overrides, sweeps)
     _jax.enable_compilation_cache()
     _jax.compile_notice = compiling
     from ..running.simulation import SimulationError
 
     from .group import RESULT_SUFFIXES
 
+    swept = bool(scenario.sweep)
     if series and output is None:
         fail("--series writes the run's results file: name it with -o OUT.h5")
-    if output is not None and not series:
+    if output is not None and not series and not swept:
         fail("-o names the results file --series writes: add --series")
     if output is not None and not output.lower().endswith(RESULT_SUFFIXES):
         fail(f"{output}: the results file must be named .h5, .hdf5 or .nc")
+    command = " ".join(["hoistsim sensitivity", str(scenario.provenance.source), "--wrt", wrt,
+                        *(["--of", of] if of else []), *(["--series"] if series else []), "-o", str(output),
+                        *(f"--set {o}" for o in overrides), *(f"--sweep {w}" for w in sweeps)])
     try:
         result = differentiate(scenario, _names(wrt), _names(of), series=series)
         if series:
             from ..results.output import write_runs
 
-            write_runs(output, [result.run],
-                       command=" ".join(["hoistsim sensitivity", str(scenario.provenance.source), "--wrt", wrt,
-                                         "--series", "-o", output, *(f"--set {o}" for o in overrides)]))
+            write_runs(output, [result.run], command=command)
+        elif output is not None:
+            result.to_hdf5(output, command=command)
     except SimulationError as exc:  # a run that cannot be completed (a chattering clutch): exit 1
         fail(str(exc), RUN_FAILED)
     if as_json:
         click.echo(json.dumps(result.to_dict(), indent=2))
+    elif swept:
+        click.echo(sweep_sensitivity_table(result, table_width()))
     else:
         click.echo(sensitivity_table(result, table_width()))
-    if series:
-        click.echo(f"wrote {output} (each series' derivatives: d_<series>_d_<key>)", err=as_json)
+    if output is not None:
+        what = "each series' derivatives: d_<series>_d_<key>" if series else \
+            "each run's summaries and derivatives: d_<summary>_d_<key>"
+        click.echo(f"wrote {output} ({what})", err=as_json)
 
 
 @main.command()

@@ -60,12 +60,13 @@ def write_runs(path, runs, *, command: str = "", parameters: dict | None = None)
                    runs[0].summary_units, summary_only=False, command=command)
 
 
-def write_sweep(path, result, *, command: str = "") -> None:
-    """Write a sweep: every run's time series, or (summary-only) the run variables alone."""
+def write_sweep(path, result, *, command: str = "", units: dict[str, str] | None = None) -> None:
+    """Write a sweep: every run's time series, or (summary-only) the run variables alone.  ``units``: the
+    summary columns' (None: the scene's summaries')."""
     summary_only = result.runs is None
     _write_at_once(path, result.scenario, result.labels, result.parameters,
-                   result.summaries if summary_only else result.runs, result.summary_units, summary_only=summary_only,
-                   command=command)
+                   result.summaries if summary_only else result.runs, units or result.summary_units,
+                   summary_only=summary_only, command=command)
 
 
 def _write_at_once(path, scenario, labels, parameters, outcomes, units, *, summary_only: bool, command: str) -> None:

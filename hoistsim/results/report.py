@@ -7,6 +7,8 @@ import math
 import re
 from numbers import Real as numbers_Real
 
+import numpy as np
+
 
 def table(headers: list[str], rows: list[list[str]], align: str | None = None) -> str:
     """A plain-text table; ``align`` has one 'l' or 'r' per column (default: first left, rest right)."""
@@ -290,18 +292,11 @@ def compare_table(rows: list[dict], units: dict[str, str], columns: list[str] | 
 
 
 def sensitivity_table(result, width: int | None = None) -> str:
-    """A :class:`hoistsim.running.sensitivity.Sensitivity` as two tables, a row a summary: each derivative with
+    """A :class:`hoistsim.results.sensitivity_result.Sensitivity` as two tables, a row a summary: each derivative with
     its units, then the elasticities (dimensionless: comparable across keys); within ``width`` characters as
     :func:`fitted_table` stacks them."""
     keys = list(result.keys)
-    at = [f"{key} = {fmt(value, 6)}" + ("" if result.key_units[key] == "1" else f" {result.key_units[key]}")
-          for key, value in result.keys.items()]
-    lines = ["at"]
-    for k, item in enumerate(at):  # a key and its value kept on one line
-        item += "," if k < len(at) - 1 else ""
-        if len(lines[-1]) + 1 + len(item) > (width or 100):
-            lines.append("  ")
-        lines[-1] += " " + item
+    lines = _key_values(result.keys, result.key_units, width)
     headers = ["summary", "value"] + [f"d/d {key}" for key in keys]
     derivatives, elasticities = [], []
     for name, value in result.values.items():
@@ -319,6 +314,47 @@ def sensitivity_table(result, width: int | None = None) -> str:
         fitted_table(headers, derivatives, width), "",
         "elasticity = key / summary x derivative: the summary's relative change per relative change of the key",
         "", fitted_table(["summary", *keys], elasticities, width)])
+
+
+def _key_values(values: dict, units: dict, width: int | None) -> list[str]:
+    """"at key = value unit, ..." within ``width``, a key and its value kept on one line."""
+    at = [f"{key} = {fmt(value, 6)}" + ("" if units[key] == "1" else f" {units[key]}") for key, value in values.items()]
+    lines = ["at"]
+    for k, item in enumerate(at):
+        item += "," if k < len(at) - 1 else ""
+        if len(lines[-1]) + 1 + len(item) > (width or 100):
+            lines.append("  ")
+        lines[-1] += " " + item
+    return lines
+
+
+def sweep_sensitivity_table(result, width: int | None = None, head: int = 12, tail: int = 6) -> str:
+    """A :class:`hoistsim.running.sweep_sensitivity.SweepSensitivity` as a table a summary: the runs as rows, the
+    summary's value, its derivative with respect to each key (units in the headers) and the elasticities; long
+    sweeps show their first and last runs."""
+    count = len(result)
+    rows = list(range(count)) if count <= head + tail else [*range(head), None, *range(count - tail, count)]
+    shown = [i for i in rows if i is not None]
+    held = {key: float(v[0]) for key, v in result.wrt.items() if key not in result.keys and np.all(v == v[0])}
+    texts = [f"{result.scenario.name}, {count} runs: how each summary moves with each key" + ("," if held else ""),
+             *(_key_values(held, result.key_units, width) if held else []),
+             *(f"({key} is a table: its number is its largest force, every force scaled with it)"
+               for key in result.tables),
+             "(derivatives exact through every switch; '-': none, the summary itself is none;",
+             " elasticity = key / summary x derivative)"]
+    for name, values in result.values.items():
+        units = "" if result.units[name] == "1" else f" [{result.units[name]}]"
+        headers = ["run", f"{name}{units}",
+                   *(f"d/d {key} [{result.derivative_units(name, key)}]" for key in result.wrt),
+                   *(f"elasticity {key}" for key in result.wrt)]
+        columns = [column_cells([float(values[i]) for i in shown], 6),
+                   *(column_cells([float(result.derivatives[name][key][i]) for i in shown], 5) for key in result.wrt),
+                   *(column_cells([float(result.elasticity(name, key)[i]) for i in shown], 3) for key in result.wrt)]
+        cells = iter(zip(*columns))
+        table_rows = [[result.labels[i], *next(cells)] if i is not None else ["..."] + [""] * len(columns)
+                      for i in rows]
+        texts += ["", fitted_table(headers, table_rows, width)]
+    return "\n".join(texts)
 
 
 def fit_table(name: str, result) -> str:

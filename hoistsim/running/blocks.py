@@ -131,7 +131,7 @@ def _block_steps(runs, start: int, stop: int, *, summary_only: bool, chunk: int,
     for group in launched:
         layout, lean, periodic = group["layout"], group["lean"], group["periodic"]
         for part, raw, elapsed in _results(group):
-            _check_status(runs, scenarios, part, start, layout, raw, lean)
+            check_status(runs, scenarios, part, start, layout, raw, lean)
             if not summary_only:
                 for k, lane in enumerate(part):
                     one = Readout(layout, raw, lane=k)
@@ -149,7 +149,7 @@ def _block_steps(runs, start: int, stop: int, *, summary_only: bool, chunk: int,
                                       batch_read.count("unlock"))
             parts.append((np.asarray(part), columns))
     if summary_only:
-        return Block(start, stop, _in_order(parts, len(indices)), warnings)
+        return Block(start, stop, in_order(parts, len(indices)), warnings)
     return Block(start, stop, rows, warnings)
 
 
@@ -246,7 +246,7 @@ def _by_swept_value(runs, start: int, group: list[int]) -> list[int]:
     return [group[k] for k in np.lexsort(values)]
 
 
-def _in_order(parts, count: int) -> Summaries:
+def in_order(parts, count: int) -> Summaries:
     """Summary columns of each group's chunks, back in the runs' order."""
     order = np.concatenate([lanes for lanes, _ in parts])
     place = np.empty(count, dtype=np.int64)
@@ -266,7 +266,7 @@ def _periodic_values(scenarios, part, layout, raw, labels, warnings) -> dict[str
     return {key: np.asarray([row[key] for row in rows]) for key in rows[0]}
 
 
-def _check_status(runs, scenarios, part, start, layout, raw, lean) -> None:
+def check_status(runs, scenarios, part, start, layout, raw, lean) -> None:
     """A run of the chunk that crossed a limit saying its scenario is wrong (an element's ``errors``), or
     that failed (chattering, the solver), fails the sweep, saying which run and why."""
     _check_errors(runs, scenarios, part, start, layout, raw, lean)
@@ -363,8 +363,13 @@ def compiled_batch(solver_name: str, log_size: int, step_room: int, columns: boo
     done, never waiting for the others'.
     """
     solver = SOLVERS[solver_name]()
-    batch = jax.vmap(functools.partial(restart_loop, solver=solver, log_size=log_size, step_room=step_room,
-                                       columns=columns))
+    return over_devices(jax.vmap(functools.partial(restart_loop, solver=solver, log_size=log_size,
+                                                   step_room=step_room, columns=columns)), devices)
+
+
+def over_devices(batch, devices: int):
+    """``batch`` (a function vmapped over a leading axis of runs) jitted, its runs split over ``devices``: each
+    device runs its share through its own loop (``shard_map``), stepping until its slowest run is done."""
     if devices == 1:
         return jax.jit(batch)
     mesh = Mesh(np.array(jax.devices()[:devices]), ("runs",))

@@ -25,7 +25,8 @@ import numpy as np
 from ..errors import ScenarioError
 from ..machine.assemble import build_plan
 from ..machine.core.plan import OK
-from ..running.sensitivity import differentiated, key_value, stacked_directions, value_to_set
+from ..running.derivative_program import differentiated
+from ..running.key_directions import key_value, stacked_directions, value_to_set
 from ..scenario.keys import key_units
 from ..scenario.loading import Scenario
 from ..scenario.sweep_spec import with_swept_value
