@@ -114,9 +114,11 @@ def common_time(grids) -> tuple[np.ndarray, bool]:
 # ------------------------------------------------------------------ records: runs as they finish
 
 def write_record(f: h5py.Group, indices, outcomes, *, summary_only: bool, time, padded: bool) -> None:
-    """Runs at ``indices`` (RunResults, or their :class:`hoistsim.results.run_result.Summaries` when summary-only)
-    kept in ``f`` as a record for :func:`assemble` (read back with :func:`.records.read_record`)."""
-    store_record(f, make_record(indices, outcomes, summary_only=summary_only, time=time, padded=padded))
+    """Runs at ``indices`` (RunResults, or their :class:`hoistsim.results.run_result.Summaries` when summary-only,
+    or their :class:`.records.Record` made already) kept in ``f`` as a record for :func:`assemble` (read back with
+    :func:`.records.read_record`)."""
+    store_record(f, outcomes if isinstance(outcomes, Record) else
+                 make_record(indices, outcomes, summary_only=summary_only, time=time, padded=padded))
 
 
 @dataclass

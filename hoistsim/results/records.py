@@ -73,6 +73,36 @@ def make_record(indices, outcomes, *, summary_only: bool, time, padded: bool) ->
         periodic={k: run.periodic for k, run in enumerate(runs) if run.periodic is not None})
 
 
+def joined(records: list[Record]) -> Record:
+    """Records of runs kept apart (a block's chunks, a file's blocks) as one, its runs in the order of their
+    indices (each run's instants kept together, in their order)."""
+    if len(records) == 1 and np.all(np.diff(records[0].indices) > 0):
+        return records[0]
+    indices = np.concatenate([r.indices for r in records])
+    order = np.argsort(indices, kind="stable")
+    counts = np.concatenate([r.counts for r in records])
+    starts = np.cumsum(counts) - counts
+    # each run's instant rows, the runs in their new order
+    rows = np.repeat(starts[order] - np.cumsum(np.append(0, counts[order][:-1])), counts[order]) \
+        + np.arange(counts.sum())
+
+    def cat(parts):
+        return np.concatenate(parts)
+
+    place = dict(zip(indices[order].tolist(), range(indices.size)))  # a run's index -> its place in the record
+
+    first = records[0]
+    return Record(
+        indices[order], {key: cat([r.values[key] for r in records])[order] for key in first.values},
+        extras={key: (units, cat([r.extras[key][1] for r in records])[order]) for key, (units, _) in first.extras.items()},
+        series={name: (units, text, cat([r.series[name][2] for r in records])[order])
+                for name, (units, text, _) in first.series.items()},
+        counts=counts[order], instants={name: cat([r.instants[name] for r in records])[rows] for name in first.instants},
+        after={name: cat([r.after[name] for r in records])[rows] for name in first.after},
+        periodic={int(place[r.indices[k]]): periodic for r in records for k, periodic in r.periodic.items()}
+        if any(r.periodic for r in records) else {})
+
+
 def store_record(f: h5py.Group, record: Record) -> None:
     """``record`` kept in an HDF5 group (a streamed sweep's chunk file)."""
     f["indices"] = record.indices

@@ -29,6 +29,8 @@ from ..machine.core.plan import OK, Plan
 from ..machine.core.schedule import scheduled_times
 from ..machine.core.readout import EVENT_COUNT, KEPT_STEPS, STATUS, BatchReadout, Readout
 from ..results.periodic.analysis import periodic_regime
+from ..results.chunk_records import chunk_record
+from ..results.records import joined
 from ..results.run_result import Summaries
 from ..results.run_summaries import summary_columns
 from ..scenario.loading import Scenario
@@ -93,14 +95,16 @@ def _finished(steps) -> Block:
     raise RuntimeError("a block's steps yield once")
 
 
-def run_blocks(runs, blocks, *, summary_only: bool, chunk: int):
+def run_blocks(runs, blocks, *, summary_only: bool, chunk: int, records: bool = False):
     """Blocks ``(start, stop)`` in order, each built and launched while the one before computes: the
     compiled calls run on their own threads, so the host's work for the next block (its plans) costs
-    no wall time while there are runs to wait for."""
+    no wall time while there are runs to wait for.  ``records``: full output as a results file's record
+    where a block's runs allow (:func:`_block_steps`)."""
     waiting = None
     with _no_cyclic_collection():
         for start, stop in blocks:
-            steps = _block_steps(runs, start, stop, summary_only=summary_only, chunk=chunk, devices=None)
+            steps = _block_steps(runs, start, stop, summary_only=summary_only, chunk=chunk, devices=None,
+                                 records=records)
             next(steps)
             if waiting is not None:
                 yield _finished(waiting)
@@ -109,9 +113,13 @@ def run_blocks(runs, blocks, *, summary_only: bool, chunk: int):
             yield _finished(waiting)
 
 
-def _block_steps(runs, start: int, stop: int, *, summary_only: bool, chunk: int, devices: int | None):
+def _block_steps(runs, start: int, stop: int, *, summary_only: bool, chunk: int, devices: int | None,
+                 records: bool = False):
     """A block's runs: built, their compiled calls launched (summary-only: all of them, not waited for),
-    one ``yield``, then read back; returns the :class:`Block`."""
+    one ``yield``, then read back; returns the :class:`Block`.  Full output is a RunResult a run, or with
+    ``records`` (a file's records wanted, not runs) where the block's plans come from its first run's and
+    have no periodic regime, the block's record read straight from its chunks' arrays
+    (:func:`hoistsim.results.chunk_records.chunk_record`)."""
     indices = range(start, stop)
     scenarios = _Scenarios(runs, start)
     # the plans from the block's first run's (block_plans) where that applies, else each built in full
@@ -128,10 +136,15 @@ def _block_steps(runs, start: int, stop: int, *, summary_only: bool, chunk: int,
     warnings: list[str] = []
     rows: list = [None] * len(indices)  # each run's RunResult, or its chunk's summary columns and lane
     parts: list = []
+    kept: list = []  # the chunks' records
     for group in launched:
         layout, lean, periodic = group["layout"], group["lean"], group["periodic"]
         for part, raw, elapsed in _results(group):
             check_status(runs, scenarios, part, start, layout, raw, lean)
+            if records and not summary_only and fast is not None and not periodic:
+                kept.append(chunk_record(layout, raw, len(part), fast.grid, np.asarray(part) + start,
+                                         _labels(runs, scenarios, start, part), elapsed))
+                continue
             if not summary_only:
                 for k, lane in enumerate(part):
                     one = Readout(layout, raw, lane=k)
@@ -150,6 +163,8 @@ def _block_steps(runs, start: int, stop: int, *, summary_only: bool, chunk: int,
             parts.append((np.asarray(part), columns))
     if summary_only:
         return Block(start, stop, in_order(parts, len(indices)), warnings)
+    if kept:
+        return Block(start, stop, joined(kept), warnings)
     return Block(start, stop, rows, warnings)
 
 

@@ -15,6 +15,7 @@ from ..machine.core.element import MODE_NAMES
 from ..machine.core.layout import SWITCH_KINDS
 from ..machine.core.plan import CHATTERING, OK, SOLVER_FAILED, STATUS_TEXT
 from ..machine.core.readout import Readout
+from ..results.chunk_records import instant_categories
 from ..results.output import summary_units
 from ..results.run_result import RunResult
 from ..scenario.loading import Scenario
@@ -115,11 +116,7 @@ def run_result(scenario: Scenario, label: str, grid: np.ndarray, raw: Readout, e
         from ..results.periodic.analysis import periodic_regime
 
         periodic = periodic_regime(scenario, raw)
-    cycles = [kind for _, _, kind in layout.cycles]
-    limits = {kind for element in layout.elements for kind in element.limits}  # thresholds crossed: warnings
-    category = np.asarray(["limit" if k in limits else "observation" if k in layout.observation_kinds
-                           else "cycle" if k in cycles else "switch" if k in SWITCH_KINDS else "scheduled"
-                           for k in kinds], dtype=object)
+    category = instant_categories(layout, kinds)
     return RunResult(
         scenario=scenario,
         label=label,

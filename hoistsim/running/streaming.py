@@ -30,7 +30,7 @@ import h5py
 import numpy as np
 
 from ..results import output
-from ..results.records import read_record
+from ..results.records import Record, joined, make_record, read_record
 from ..results.summaries import Summaries
 
 FILE_BYTES = 32 * 2**20  # series gathered into one chunk file
@@ -109,7 +109,8 @@ class StreamedFile:
         """
         self.pending.append(block)
         runs = sum(b.stop - b.start for b in self.pending)
-        size = 0 if self.summary_only else runs * self.time.size * 8 * len(block.outcome[0].series)
+        size = 0 if self.summary_only else runs * self.time.size * 8 * len(
+            block.outcome.series if isinstance(block.outcome, Record) else block.outcome[0].series)
         if size >= FILE_BYTES or runs >= FILE_RUNS or clock() - self.written_at >= FILE_SECONDS:
             self._flush()
 
@@ -117,10 +118,16 @@ class StreamedFile:
         if not self.pending:
             return
         indices = np.arange(self.pending[0].start, self.pending[-1].stop)
+        made = [b.outcome for b in self.pending if isinstance(b.outcome, Record)]  # read from the chunks' arrays
         if self.summary_only:
             outcomes = Summaries.concatenate([b.outcome for b in self.pending])
         else:
-            outcomes = [run for b in self.pending for run in b.outcome]
+            outcomes = [run for b in self.pending if not isinstance(b.outcome, Record) for run in b.outcome]
+            if made and outcomes:  # runs made one by one beside them: a record of their own, joined to them
+                made.append(make_record(np.concatenate([np.arange(b.start, b.stop) for b in self.pending
+                                                        if not isinstance(b.outcome, Record)]),
+                                        outcomes, summary_only=False, time=self.time, padded=self.padded))
+            outcomes = joined(made) if made else outcomes
         self.files += 1
         final = self._chunk(self.files)
         partial = final.with_suffix(".tmp")

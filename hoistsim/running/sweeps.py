@@ -220,7 +220,7 @@ def simulate_many(runs, labels: list[str] | None = None, *, summary_only: bool =
 
         finished = cluster_blocks(client, runs, todo, summary_only=summary_only, chunk=chunk)
     else:
-        finished = run_blocks(runs, todo, summary_only=summary_only, chunk=chunk)
+        finished = run_blocks(runs, todo, summary_only=summary_only, chunk=chunk, records=sink is not None)
     kept: list = []
     for block in finished:
         if warnings is not None:

@@ -70,6 +70,20 @@ def test_the_streamed_file_is_the_file_written_at_once(tmp_path):
     same(datasets(tmp_path / "streamed.h5"), datasets(tmp_path / "at_once.h5"))
 
 
+@pytest.mark.slow
+def test_a_record_read_from_the_chunks_arrays_is_the_record_of_the_runs(tmp_path):
+    """A streamed sweep's record is read straight from each chunk's arrays; the runs of a chunk go in the
+    order of their swept values (here the reverse of the sweep's), and come back in the sweep's order: the
+    file is the one written from each run's RunResult, bit for bit."""
+    from hoistsim import load_scenario
+
+    scenario = load_scenario(SWEEP_FILE, overrides=["simulation.duration=0.4 s"],
+                             sweeps=["clutch.engagement_force=12 kN,9 kN,7 kN,5 kN,3 kN"])
+    sweep(scenario, chunk_size=4, output=tmp_path / "streamed.h5")
+    sweep(scenario, chunk_size=4).to_hdf5(tmp_path / "at_once.h5")
+    same(datasets(tmp_path / "streamed.h5"), datasets(tmp_path / "at_once.h5"))
+
+
 def test_resume_refuses_another_scenario_in_one_line(tmp_path, monkeypatch):
     target = tmp_path / "forces.h5"
     _interrupted(short_sweep(10), target, 1, True, monkeypatch)
