@@ -43,6 +43,7 @@ SOLVERS = {"tsit5": diffrax.Tsit5, "dopri5": diffrax.Dopri5, "dopri8": diffrax.D
            "heun": diffrax.Heun, "kvaerno3": diffrax.Kvaerno3, "kvaerno5": diffrax.Kvaerno5}
 
 MAX_STEPS_PER_SEGMENT = 200_000
+MAX_SHRINKS = 3  # times a pass is solved again with shorter steps for crossings found in one step
 _REDUCTIONS = {"max": -jnp.inf, "min": jnp.inf, "first": jnp.nan, "first_value": jnp.nan, "duration": 0.0}
 
 # Incremented each time the loop is traced (i.e. compiled): tests use it to show
@@ -94,6 +95,7 @@ class _Carry(eqx.Module):
     kinks: jax.Array  # passes ended at a kink
     cycle_start: jax.Array  # switches, observations and kinks when the last cycle began (see AbstractElement.cycles)
     step_cap: jax.Array  # s: the largest step allowed (inf but while re-solving a missed crossing)
+    shrinks: jax.Array  # times the pass now under way was solved again for crossings found together
     switches_from: jax.Array  # s: switches held off before this time (-inf but while re-solving for a limit)
     fired: dict  # observation and valley guards -> whether one ended the last pass
     # a switch located at the end of the last pass, to be decided at the start of the next (see _decide)
@@ -212,8 +214,12 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
                                       jnp.zeros((), bool))
     found_first = hit & located_switch & (overtaken | limit_overtaken) & ~missed & jnp.isneginf(c.switches_from)
     cap = jnp.minimum(c.step_cap, t_end - start_t) / 8.0
-    # else the pass is solved again with shorter steps (at most three times), so that each crossing has a step
-    shrink = missed | (hit & overtaken & ~found_first & (cap * 8.0**3 >= t_end - start_t))
+    # else the pass is solved again with shorter steps (at most three times), so that each crossing has a step.
+    # The times are counted: each pass solved again may find its crossing sooner, so that its own length, and
+    # with it the bound on the cap, shrinks with the cap (guards at round-off could then shrink it for ever,
+    # and the pass that no longer crosses would creep to its end at the last cap)
+    shrink = missed | (hit & overtaken & ~found_first & (cap * 8.0**3 >= t_end - start_t)
+                       & (c.shrinks < MAX_SHRINKS))
     missed = shrink | found_first
     kept = ~missed
     masks = {name: m & kept for name, m in masks.items()}
@@ -240,10 +246,10 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     switches, _, _ = _in_cycle(c)
     status = jnp.where(failed, SOLVER_FAILED, jnp.where(switches > plan.max_switches, CHATTERING, c.status))
     return eqx.tree_at(
-        lambda k: (k.t, k.at_boundary, k.status, k.step_cap, k.switches_from),
+        lambda k: (k.t, k.at_boundary, k.status, k.step_cap, k.shrinks, k.switches_from),
         c,
         (t_reached, kept & (~hit | (t_end >= segment.end)), status,
-         jnp.where(shrink, cap, jnp.inf), jnp.where(found_first, t_end, -jnp.inf)),
+         jnp.where(shrink, cap, jnp.inf), jnp.where(shrink, c.shrinks + 1, 0), jnp.where(found_first, t_end, -jnp.inf)),
     )
 
 
@@ -277,6 +283,7 @@ def restart_loop(plan: Plan, solver, log_size: int, step_room: int = 0, columns:
         kinks=jnp.array(0),
         cycle_start=jnp.zeros((3,), int),
         step_cap=jnp.full((), jnp.inf),
+        shrinks=jnp.array(0),
         switches_from=jnp.full((), -jnp.inf),
         fired={name: jnp.array(False) for role, name, _ in switching.guards(layout) if role in ("observe", "limit", "valley")},
         pending=jnp.array(False),
