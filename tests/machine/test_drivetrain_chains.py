@@ -307,16 +307,19 @@ def test_a_chain_with_a_spring_keeps_its_ledger_and_momentum(data):
 
 
 @pytest.mark.slow
-def test_a_spring_rung_down_between_open_clutches_is_stepped_to_the_end():
-    """A case the search found: J2 and J3 rung down on a stiff spring to round-off, every clutch open.  At the
+@pytest.mark.parametrize("speed, unstretched", [(1.0, 0.25), (-2.0, 0.125)])
+def test_a_spring_rung_down_between_open_clutches_is_stepped_to_the_end(speed, unstretched):
+    """Cases the search found: J2 and J3 rung down on a stiff spring to round-off, every clutch open.  At the
     boundary at 0.6 s two guards at round-off crossed in one step again and again, each pass solved again with
     steps eight times shorter and its crossing found sooner, until the pass that no longer crossed crept on
-    at 0.2 us a step and ran out of steps: a pass is solved again three times at most."""
-    data = chain([1.0, 0.1, 0.1], [1.0, 0.0, 0.0],
+    at 0.2 us a step and ran out of steps.  A pass is solved again three times at most, and its steps are
+    capped only up to the crossing that sent it back."""
+    data = chain([1.0, 0.1, 0.1], [speed, 0.0, 0.0],
                  [(1.0, 1.0, 1.0, 1, (0.75, 0.98), (0.0,) * 4), (0.5, 1.0, 0.1, 1, (0.3, 0.6), (0.0,) * 4)],
                  None, (0.0, ((0.0, 1.0, 0.0), (0.0, 1.0, 0.0))))
     data["drivetrain"]["springs"] = {"spring": {"between": ["J2", "J3"], "stiffness": "8516.5 N*m/rad",
-                                                "damping": "6.1875 N*m*s/rad", "unstretched_angle": "0.25 rad"}}
+                                                "damping": "6.1875 N*m*s/rad",
+                                                "unstretched_angle": f"{unstretched!r} rad"}}
     run = _sprung_chain_holds(data)
     assert run.time[-1] == DURATION
 

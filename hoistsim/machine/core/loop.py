@@ -96,6 +96,7 @@ class _Carry(eqx.Module):
     cycle_start: jax.Array  # switches, observations and kinks when the last cycle began (see AbstractElement.cycles)
     step_cap: jax.Array  # s: the largest step allowed (inf but while re-solving a missed crossing)
     shrinks: jax.Array  # times the pass now under way was solved again for crossings found together
+    cap_until: jax.Array  # s: up to where the steps are capped (the crossing that sent the pass back; else inf)
     switches_from: jax.Array  # s: switches held off before this time (-inf but while re-solving for a limit)
     fired: dict  # observation and valley guards -> whether one ended the last pass
     # a switch located at the end of the last pass, to be decided at the start of the next (see _decide)
@@ -165,7 +166,7 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
     armed = {name: starting[i] for i, (role, name, _) in enumerate(guards) if role != "switch"}
     return pass_args, armed, integrate_pass(
         solver, pass_args, switching.guard_values, c.t, c.y, end,
-        rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap, max_steps=MAX_STEPS_PER_SEGMENT,
+        rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap, cap_until=c.cap_until, max_steps=MAX_STEPS_PER_SEGMENT,
         kept=c.kept, count=c.kept_count, modes=c.modes)
 
 
@@ -246,10 +247,11 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     switches, _, _ = _in_cycle(c)
     status = jnp.where(failed, SOLVER_FAILED, jnp.where(switches > plan.max_switches, CHATTERING, c.status))
     return eqx.tree_at(
-        lambda k: (k.t, k.at_boundary, k.status, k.step_cap, k.shrinks, k.switches_from),
+        lambda k: (k.t, k.at_boundary, k.status, k.step_cap, k.shrinks, k.cap_until, k.switches_from),
         c,
         (t_reached, kept & (~hit | (t_end >= segment.end)), status,
-         jnp.where(shrink, cap, jnp.inf), jnp.where(shrink, c.shrinks + 1, 0), jnp.where(found_first, t_end, -jnp.inf)),
+         jnp.where(shrink, cap, jnp.inf), jnp.where(shrink, c.shrinks + 1, 0), jnp.where(shrink, t_end, jnp.inf),
+         jnp.where(found_first, t_end, -jnp.inf)),
     )
 
 
@@ -284,6 +286,7 @@ def restart_loop(plan: Plan, solver, log_size: int, step_room: int = 0, columns:
         cycle_start=jnp.zeros((3,), int),
         step_cap=jnp.full((), jnp.inf),
         shrinks=jnp.array(0),
+        cap_until=jnp.full((), jnp.inf),
         switches_from=jnp.full((), -jnp.inf),
         fired={name: jnp.array(False) for role, name, _ in switching.guards(layout) if role in ("observe", "limit", "valley")},
         pending=jnp.array(False),

@@ -177,22 +177,29 @@ class _Carry(eqx.Module):
 
 
 def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, dtmax, max_steps: int,
-                   kept: Steps | None = None, count=0, modes=None, field: Callable = vector_field) -> Pass:
+                   kept: Steps | None = None, count=0, modes=None, field: Callable = vector_field,
+                   cap_until=jnp.inf) -> Pass:
     """Step dy/dt = ``field(t, y, args)`` from (t0, y0) towards ``end`` until a guard (``guards(t, y, args)``:
-    an array) falls to zero.
+    an array) falls to zero.  Steps start no longer than ``dtmax`` before ``cap_until`` (a pass solved again
+    so that crossings found in one step get a step each: beyond the crossing that sent it back, a pass that
+    has not crossed again steps as the error allows, rather than creep on capped).
 
     A guard crosses where it goes from positive at a step's start to zero or
     below at its end.  Each accepted step, and the crossing's step up to the
     crossing, is added to ``kept`` (from place ``count``, with ``modes``) for the
     output rows, when a buffer is given.
     """
-    controller = diffrax.PIDController(rtol=rtol, atol=atol, dtmax=dtmax)
+    controller = diffrax.PIDController(rtol=rtol, atol=atol)
     solver = _with_step_tolerances(solver, controller)
     stepper = _Stepper(solver, args, field)
     error_order = solver.error_order(stepper.term)
     floor = end - END_ULPS * (end - private_api.prevbefore(end))  # one ulp below the end, END_ULPS times over
     first, control = controller.init(stepper.term, t0, end, y0, None, args, solver.func, error_order)
-    t_next = jnp.minimum(first, end)
+
+    def capped(start, t1):  # the controller's dtmax, up to cap_until (t + min(dt, dtmax): the same float)
+        return jnp.where(start < cap_until, jnp.minimum(t1, start + dtmax), t1)
+
+    t_next = jnp.minimum(capped(t0, first), end)
     values = guards(t0, y0, args)
     nothing = jnp.zeros_like(values, dtype=bool)
     state = stepper.init(t0, t_next, y0)
@@ -209,6 +216,7 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
         error = jnp.where(jnp.isnan(error) | ~taken, jnp.inf, error)
         keep, next_t0, next_t1, _, control, _ = controller.adapt_step_size(
             c.t, c.t_next, c.y, y1, args, error, error_order, c.control)
+        next_t1 = capped(next_t0, next_t1)
         next_t1 = jnp.where(next_t1 > floor, jnp.where(keep, end, next_t0 + 0.5 * (end - next_t0)), next_t1)
         values = guards(c.t_next, y1, args)
         crossed = keep & (c.values > 0.0) & (values <= 0.0)
