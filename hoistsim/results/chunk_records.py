@@ -95,8 +95,9 @@ def _modes_after(layout: Layout, raw, run, k, element_codes) -> np.ndarray:
     """Each instant's coupling's mode after it ('' for an element that is no coupling)."""
     couplings = np.asarray([layout.coupling_names.index(s) if s in layout.coupling_names else -1
                             for s in layout.sections])[element_codes]
-    names = np.asarray(["", *(MODE_NAMES[m] for m in sorted(MODE_NAMES))], dtype=object)
-    modes = np.asarray(raw.event_modes)[run, k][np.arange(run.size), np.maximum(couplings, 0)] \
-        if run.size and np.asarray(raw.event_modes).shape[-1] else np.zeros(run.size, dtype=int)
-    codes = np.searchsorted(sorted(MODE_NAMES), modes) + 1
-    return np.where(couplings >= 0, names[codes], "").astype(object)
+    if not layout.coupling_names:
+        return np.full(run.size, "", dtype=object)
+    names = np.full(max(MODE_NAMES) + 1, "", dtype=object)
+    names[list(MODE_NAMES)] = list(MODE_NAMES.values())
+    modes = np.asarray(raw.event_modes)[run, k, np.maximum(couplings, 0)]
+    return np.where(couplings >= 0, names[modes], "").astype(object)

@@ -5,6 +5,8 @@ from __future__ import annotations
 import dataclasses
 import math
 
+import numpy as np
+
 from ..errors import ScenarioError
 
 
@@ -57,3 +59,9 @@ def units_over(top: str, bottom: str) -> str:
         return top or "1"
     bottom = f"({bottom})" if any(c in bottom for c in "*/") else bottom
     return f"{top or '1'}/{bottom}"
+
+
+def existing(values, derivatives):
+    """The derivatives (a number or an array over runs), NaN where the summary itself is none (a lock-up that
+    never comes) or the derivative is not finite (a switch that only grazes its threshold)."""
+    return np.where(np.isfinite(values) & np.isfinite(derivatives), derivatives, np.nan)

@@ -121,7 +121,7 @@ def _block_steps(runs, start: int, stop: int, *, summary_only: bool, chunk: int,
     have no periodic regime, the block's record read straight from its chunks' arrays
     (:func:`hoistsim.results.chunk_records.chunk_record`)."""
     indices = range(start, stop)
-    scenarios = _Scenarios(runs, start)
+    scenarios = LazyScenarios(runs, start)
     # the plans from the block's first run's (block_plans) where that applies, else each built in full
     fast = block_plans(runs, list(indices), summary_only=summary_only)
     if fast is not None:
@@ -234,10 +234,10 @@ def _labels(runs, scenarios, start: int, part: list[int]):
     return [runs.label(start + lane) or scenarios[lane].name for lane in part]
 
 
-class _Scenarios:
+class LazyScenarios:
     """The scenarios of a block's runs, each built when first asked for (a summary-only sweep asks for few)."""
 
-    def __init__(self, runs, start: int):
+    def __init__(self, runs, start: int = 0):
         self.runs, self.start, self.built = runs, start, {}
 
     def __getitem__(self, k: int):

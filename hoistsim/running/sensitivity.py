@@ -8,7 +8,6 @@ in :mod:`hoistsim.running.sweep_sensitivity`.
 
 from __future__ import annotations
 
-import math
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -16,7 +15,7 @@ import numpy as np
 from ..errors import ScenarioError
 from ..machine.assemble import build_plan
 from ..machine.core.plan import OK, STATUS_TEXT
-from ..results.sensitivity_result import Sensitivity, differentiable_summaries, units_over
+from ..results.sensitivity_result import Sensitivity, differentiable_summaries, existing, units_over
 from ..scenario.keys import key_units
 from ..scenario.loading import Scenario
 from .derivative_program import differentiated
@@ -60,7 +59,7 @@ def sensitivity(scenario: Scenario, wrt: list[str], of: list[str] | None = None,
     scalars, tangents = np.asarray(readout.raw.scalars), np.asarray(d_scalars)
     names = list(summaries)
     value = {name: float(scalars[1 + names.index(name)]) for name in of}
-    derivative = {name: {key: existing(value[name], float(tangents[k, 1 + names.index(name)]))
+    derivative = {name: {key: float(existing(value[name], tangents[k, 1 + names.index(name)]))
                          for k, key in enumerate(wrt)} for name in of}
     from ..results.output import summary_units
 
@@ -72,12 +71,6 @@ def sensitivity(scenario: Scenario, wrt: list[str], of: list[str] | None = None,
         result.run = _with_series(run_result(scenario, "", grid, readout, elapsed), plan, readout, grid, values,
                                   result.key_units, at_grid, at_events)
     return result
-
-
-def existing(value: float, derivative: float) -> float:
-    """The derivative, or NaN where the summary itself is none (a lock-up that never comes) or the
-    derivative is not finite (a switch that only grazes its threshold)."""
-    return derivative if math.isfinite(value) and math.isfinite(derivative) else math.nan
 
 
 def _with_series(run, plan, readout, grid, values: dict, units_of_keys: dict, at_grid, at_events):

@@ -26,9 +26,9 @@ from ..results.summaries import Summaries
 from ..scenario.loading import Scenario
 from ..scenario.sweep_runs import SweepRuns
 from ..scenario.sweep_spec import with_swept_value
-from .blocks import check_status, devices_for, in_order, over_devices
+from .blocks import LazyScenarios, check_status, devices_for, in_order, over_devices
 from .block_plans import applies, block_plans, reached_sections
-from ..results.sensitivity_result import Sensitivity, differentiable_summaries, units_over
+from ..results.sensitivity_result import Sensitivity, differentiable_summaries, existing, units_over
 from .derivative_program import along_directions
 from .key_directions import PLAN_STEP, extrapolated, is_table, key_value, offsets, plan_direction, value_to_set
 from .simulation import scene_summary_units
@@ -111,25 +111,23 @@ def sweep_sensitivity(scenario: Scenario, wrt: list[str], of: list[str] | None =
     of = differentiable_summaries(layout.summaries, of)
     values = {key: np.full(count, key_value(first, key)) for key in wrt}
     unswept = _unreached_keys(runs, first, wrt)
-    scenarios = _Scenarios(runs)  # each run's, to say what went wrong in a run that failed
+    scenarios = LazyScenarios(runs)  # each run's, to say what went wrong in a run that failed
     chunks = _from_template(runs, first, plan, wrt, values, unswept)
     if chunks is None:
         chunks = _built_run_by_run(runs, scenarios, wrt, values, unswept)
-    scalars = np.empty((count, 1 + len(layout.summaries)))  # as a run's scalars, up to its summaries
-    tangents = np.empty((count, len(wrt), scalars.shape[1]))
+    tangents = np.empty((count, len(wrt), 1 + len(layout.summaries)))  # as a run's scalars, up to its summaries
     columns: list = []
     for part, raw, d_scalars in chunks:
         check_status(runs, scenarios, part, 0, raw.layout, raw.first, lean=True)
-        scalars[part] = np.asarray(raw.first.scalars[: len(part), : scalars.shape[1]])
-        tangents[part] = np.asarray(d_scalars[: len(part), :, : scalars.shape[1]])
+        tangents[part] = np.asarray(d_scalars[: len(part), :, : tangents.shape[2]])
         batch = BatchReadout(raw.layout, raw.first, len(part))
         columns.append((np.asarray(part), summary_columns(runs.labels_of(np.asarray(part)), batch.summary(),
                                                           batch.ledger(), batch.count("lock"), batch.count("unlock"))))
-    names = list(layout.summaries)
-    value = {name: scalars[:, 1 + names.index(name)] for name in of}
-    derivative = {name: {key: _existing(value[name], tangents[:, k, 1 + names.index(name)])
-                         for k, key in enumerate(wrt)} for name in of}
     summaries = in_order(columns, count)
+    names = list(layout.summaries)
+    value = {name: summaries.columns[name] for name in of}
+    derivative = {name: {key: existing(value[name], tangents[:, k, 1 + names.index(name)])
+                         for k, key in enumerate(wrt)} for name in of}
     for name in of:
         for key in wrt:
             summaries.columns[column_name(name, key)] = derivative[name][key]
@@ -140,18 +138,6 @@ def sweep_sensitivity(scenario: Scenario, wrt: list[str], of: list[str] | None =
         scenario, runs.labels, runs.keys, runs.parameters, values, {key: key_units(key) or "1" for key in wrt},
         value, {name: units.get(name, "") or "1" for name in of}, derivative, summaries,
         tuple(key for key in wrt if is_table(first, key)))
-
-
-class _Scenarios(dict):
-    """Run index -> its scenario, each built when first asked for."""
-
-    def __init__(self, runs: SweepRuns):
-        super().__init__()
-        self.runs = runs
-
-    def __missing__(self, i: int) -> Scenario:
-        self[i] = self.runs.scenario(i)
-        return self[i]
 
 
 def _unreached_keys(runs: SweepRuns, first: Scenario, wrt: list[str]) -> set[str]:
@@ -265,11 +251,6 @@ def _directions(group: list, wrt: list[str], values: dict, unswept: set[str]) ->
 def _width(runs: int) -> int:
     """Runs a compiled call takes: a power of two (few compiled shapes), at most SWEEP_CHUNK."""
     return min(SWEEP_CHUNK, 1 << math.ceil(math.log2(runs)))
-
-
-def _existing(values: np.ndarray, derivatives: np.ndarray) -> np.ndarray:
-    """The derivatives, NaN where the summary itself is none or the derivative is not finite (a graze)."""
-    return np.where(np.isfinite(values) & np.isfinite(derivatives), derivatives, np.nan)
 
 
 @dataclasses.dataclass
