@@ -335,6 +335,24 @@ def test_a_chain_with_backlash_keeps_its_ledger_and_momentum(data):
 
 
 @pytest.mark.slow
+def test_a_chain_whose_steps_fill_their_room_exactly_keeps_its_last_rows():
+    """Found by the search above: this chain's run kept exactly as many steps as it had room for (512), and the
+    pass's closing write (no crossing, nothing kept) fell on the last place, so the last step's rows, 0.994 to
+    0.998 s, read zeros.  A write past a full buffer is now dropped."""
+    data = chain([1.5, 1.0, 0.421875], [14.625, -5.36799966219222, -2.1785699153521207],
+                 [(0.61328125, 0.2946624755859375 / 0.61328125, 0.48005777533396105, 3,
+                   (0.31510638101117927, 0.5539667107931856), (0.0, 81.953125, 0.0, 32.7827421115704)),
+                  (0.5, 1.0, 0.1, 1, (0.3, 0.6), (0.0, 0.0, 0.0, 0.0))],
+                 None, (-17.020035456084894, ((24.0, 0.849609375, 3.5037287073293704), (18.60546875, 0.658203125, 5.71875))))
+    data["drivetrain"]["springs"] = {"spring": {"between": ["J2", "J3"], "stiffness": "2404.5625 N*m/rad",
+                                                "damping": "5.59765625 N*m*s/rad", "unstretched_angle": "0.0 rad",
+                                                "backlash": "0.3125 rad"}}
+    run = _sprung_chain_holds(data, ledger=1e-7)
+    assert run.stats["steps"] - run.stats["rejected_steps"] >= 512
+    assert np.all(run["J1_speed"][-5:] > 2.0)
+
+
+@pytest.mark.slow
 def test_a_chain_ringing_down_to_rest_with_open_couplings():
     """Found by the search above: nothing drives it, the spring starts strained by 0.5 rad and rings down (zeta
     0.16 at 38 Hz) to 1e-11 rad/s by 0.74 s.  While the spring's twist was the difference of its shafts' angles

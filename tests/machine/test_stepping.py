@@ -24,12 +24,12 @@ def moving(t, y, args):
     return jnp.ones_like(y)
 
 
-def solve(field, guards, y0, end, *, solver=diffrax.Tsit5(), rtol=1e-12, grid=None, max_steps=100_000):
-    """The pass, and (``grid_state``) its rows at ``grid`` from the steps it kept."""
+def solve(field, guards, y0, end, *, solver=diffrax.Tsit5(), rtol=1e-12, grid=None, max_steps=100_000, room=1024):
+    """The pass, and (``grid_state``) its rows at ``grid`` from the steps it kept (room for ``room``)."""
     grid = np.array([end]) if grid is None else grid
 
     def go(y0):
-        kept = no_steps(solver, y0, room=1024, couplings=0)
+        kept = no_steps(solver, y0, room=room, couplings=0)
         out = integrate_pass(solver, None, guards, 0.0, y0, end, rtol=rtol, atol=rtol * 1e-2, dtmax=jnp.inf,
                              max_steps=max_steps, kept=kept, count=0, modes=jnp.zeros((0,), int), field=field)
         return out, rows_from_steps(solver, out.kept, out.count, jnp.asarray(grid))[0]
@@ -79,6 +79,21 @@ def test_an_implicit_solver_steps_in_the_same_loop():
 def test_a_pass_that_runs_out_of_steps_says_it_failed():
     out = solve(oscillator, lambda t, y, a: jnp.stack([1.0 + 0.0 * t]), [1.0, 0.0], 100.0, max_steps=20)
     assert bool(out.failed) and not bool(out.hit) and float(out.t) < 100.0
+
+
+def test_a_buffer_filled_exactly_keeps_its_last_step_and_one_too_small_says_so():
+    """A pass that keeps as many steps as its room: its last step's rows are read from that step, not from the
+    pass's closing write (no crossing: nothing to keep, and nowhere left to write it).  One place fewer and
+    the count runs past the room (the run is taken again with more)."""
+    grid = np.linspace(0.0, 3.0, 61)
+    never = lambda t, y, a: jnp.stack([1.0 + 0.0 * t])
+    whole = solve(oscillator, never, [1.0, 0.0], 3.0, grid=grid, rtol=1e-8)
+    steps = int(whole.count)
+    exact = solve(oscillator, never, [1.0, 0.0], 3.0, grid=grid, rtol=1e-8, room=steps)
+    np.testing.assert_array_equal(exact.grid_state, whole.grid_state)
+    np.testing.assert_allclose(exact.grid_state[:-1, 0], np.cos(grid[:-1]), atol=1e-6)
+    short = solve(oscillator, never, [1.0, 0.0], 3.0, grid=grid, rtol=1e-8, room=steps - 1)
+    assert int(short.count) > steps - 1
 
 
 @pytest.mark.slow

@@ -72,13 +72,17 @@ def no_steps(solver, y0, room: int, couplings: int) -> Steps:
 
 
 def _kept(steps: Steps, count, t0, t1, until, dense, modes, take):
-    """The buffer with the step written at ``count`` (the first free place, or the last where it is full),
-    and the count, one more if ``take``.  Written whether taken or not: a step not taken is written where the
-    next one will be, and never read.  (Writes alone, each ``.at[].set``: the buffer is written in place.)"""
-    i = jnp.minimum(count, steps.t0.shape[0] - 1)
-    written = Steps(t0=steps.t0.at[i].set(t0), t1=steps.t1.at[i].set(t1), until=steps.until.at[i].set(until),
-                    dense={name: steps.dense[name].at[i].set(value) for name, value in dense.items()},
-                    modes=steps.modes.at[i].set(modes))
+    """The buffer with the step written at ``count`` (the first free place), and the count, one more if
+    ``take``.  Written whether taken or not: a step not taken is written where the next one will be, and never
+    read.  Where the buffer is full the write is dropped, never moved onto the last place: a step not taken
+    would overwrite the last one kept (a run that filled its room exactly read its last step's rows as
+    zeros), and a step taken past the room counts the run as one to take again.  (Writes alone, each
+    ``.at[].set``: the buffer is written in place.)"""
+    at = lambda leaf: leaf.at[count]
+    written = Steps(t0=at(steps.t0).set(t0, mode="drop"), t1=at(steps.t1).set(t1, mode="drop"),
+                    until=at(steps.until).set(until, mode="drop"),
+                    dense={name: at(steps.dense[name]).set(value, mode="drop") for name, value in dense.items()},
+                    modes=at(steps.modes).set(modes, mode="drop"))
     return written, count + take
 
 
