@@ -99,7 +99,10 @@ def drawn(name: str, duration="1 s", interval="1 ms", rtol=1e-11, atol=1e-13, **
 
 # ----------------------------------------------------------------------------------- property searches
 def property_settings(examples: int, **more) -> settings:
-    """``examples`` random scenes a property in CI; HOISTSIM_PROPERTY_EXAMPLES=400 for a deeper search by hand."""
+    """``examples`` random scenes a property in CI; HOISTSIM_PROPERTY_EXAMPLES=400 for a deeper search by hand.
+    With ``derandomize=True``, the same scenes every run of the same code (see _draws_from_the_strategies_alone)."""
+    if more.get("derandomize"):
+        _draws_from_the_strategies_alone()
     return settings(max_examples=int(os.environ.get("HOISTSIM_PROPERTY_EXAMPLES", str(examples))), deadline=None,
                     suppress_health_check=[HealthCheck.too_slow], **more)
 
@@ -147,3 +150,17 @@ def reduced(run):
     from hoistsim.references.model import Machine
 
     return Machine.from_scenario(run.scenario).reduced()
+
+
+def _draws_from_the_strategies_alone():
+    """Hypothesis also draws numbers it finds in the modules a process has imported (each module's literal
+    constants), and which test modules a worker has imported depends on the files it ran before: the same
+    derandomized search drew other chains from one run of the suite to the next, on the same code.  With that
+    pool empty, its draws are the strategies' and the seed's alone.  The pool is private to Hypothesis: where
+    it is gone, nothing is changed."""
+    from hypothesis.internal.conjecture import providers
+
+    if callable(getattr(providers, "_get_local_constants", None)) and hasattr(providers, "CONSTANTS_CACHE"):
+        nothing = providers.Constants()
+        providers._get_local_constants = lambda: nothing
+        providers.CONSTANTS_CACHE.cache.clear()  # the pools drawn from so far
