@@ -58,12 +58,15 @@ class Block:
     warnings: list
 
 
-def run_block(runs, start: int, stop: int, *, summary_only: bool, chunk: int, devices: int | None = None) -> Block:
+def run_block(runs, start: int, stop: int, *, summary_only: bool, chunk: int, devices: int | None = None,
+              records: bool = False) -> Block:
     """Runs ``start`` to ``stop``: their scenarios and plans built here, grouped by the compiled loop they
     share, each group in chunks of ``chunk`` runs through one vmapped call (padded to a full chunk), split
-    over ``devices`` (None: :func:`devices_for` the chunk; a cluster's worker is told the client's)."""
+    over ``devices`` (None: :func:`devices_for` the chunk; a cluster's worker is told the client's).
+    ``records``: full output as a results file's record where the block's runs allow (:func:`_block_steps`)."""
     with _no_cyclic_collection():
-        return _run_block(runs, start, stop, summary_only=summary_only, chunk=chunk, devices=devices)
+        return _run_block(runs, start, stop, summary_only=summary_only, chunk=chunk, devices=devices,
+                          records=records)
 
 
 @contextlib.contextmanager
@@ -80,8 +83,10 @@ def _no_cyclic_collection():
             gc.enable()
 
 
-def _run_block(runs, start: int, stop: int, *, summary_only: bool, chunk: int, devices: int | None) -> Block:
-    steps = _block_steps(runs, start, stop, summary_only=summary_only, chunk=chunk, devices=devices)
+def _run_block(runs, start: int, stop: int, *, summary_only: bool, chunk: int, devices: int | None,
+               records: bool) -> Block:
+    steps = _block_steps(runs, start, stop, summary_only=summary_only, chunk=chunk, devices=devices,
+                         records=records)
     next(steps)
     return _finished(steps)
 

@@ -4,9 +4,10 @@ Each worker is sent the sweep's description once (its base scenario and swept
 values, :class:`hoistsim.scenario.sweep_runs.SweepRuns`), takes blocks of runs, builds
 their scenarios and plans itself, runs them through the vectorised loop it
 compiled (or loaded from the persistent cache) once, and sends back arrays:
-the block's summaries, or its runs' time series.  The client writes: blocks
-are taken back in sweep order, so the file is the one a single process
-writes, bit for bit.  A worker lost mid-sweep has its blocks run again
+the block's summaries, or its runs' time series (for a file, the block's
+record read straight from its chunks' arrays: no run's objects made or
+sent).  The client writes: blocks are taken back in sweep order, so the
+file is the one a single process writes, bit for bit.  A worker lost mid-sweep has its blocks run again
 elsewhere by Dask; a block the cluster cancels (the client's connection to
 the scheduler dropped) is submitted again; a block is only ever taken back
 once.  Dask is an optional
@@ -33,8 +34,9 @@ class ClusterLost(ClusterError):
     """The cluster went away during the sweep (its finished blocks are kept for --resume)."""
 
 
-def cluster_blocks(client, runs, blocks, *, summary_only: bool, chunk: int):
-    """The blocks ``(start, stop)`` of ``runs`` computed on the cluster, yielded in order as they finish."""
+def cluster_blocks(client, runs, blocks, *, summary_only: bool, chunk: int, records: bool = False):
+    """The blocks ``(start, stop)`` of ``runs`` computed on the cluster, yielded in order as they finish
+    (``records``: full output as a results file's records, where the blocks' runs allow)."""
     sweep_id = uuid.uuid4().hex[:12]  # a running cluster may serve other sweeps: keys of our own
     shared = [client.scatter(runs, broadcast=True)]  # sent once to each worker, not with every block
     from .blocks import devices_for  # here: the command line names this module's errors before any sweep
@@ -45,8 +47,9 @@ def cluster_blocks(client, runs, blocks, *, summary_only: bool, chunk: int):
 
     def submit(start: int, stop: int):
         tries[start] += 1
+        key = f"hoistsim-block-{sweep_id}-{start}-{tries[start]}"
         return (start, stop), client.submit(_remote_block, shared[0], start, stop, summary_only, chunk, devices,
-                                            pure=False, key=f"hoistsim-block-{sweep_id}-{start}-{tries[start]}")
+                                            records, pure=False, key=key)
 
     def taken(block, future):
         # A block is taken back once.  Dask reruns a lost worker's tasks itself; a future it cancels
@@ -103,7 +106,7 @@ def connect(workers: int | None = None, scheduler: str | None = None):
         yield client
 
 
-def _remote_block(runs, start: int, stop: int, summary_only: bool, chunk: int, devices: int):
+def _remote_block(runs, start: int, stop: int, summary_only: bool, chunk: int, devices: int, records: bool = False):
     """On a worker: one block, its chunks split over the client's ``devices`` (the programs compiled once
     per worker process, kept in the persistent cache)."""
     from .. import _jax
@@ -115,4 +118,4 @@ def _remote_block(runs, start: int, stop: int, summary_only: bool, chunk: int, d
     if len(jax.devices()) < devices:  # another split would give other bits (to round-off)
         raise ClusterError(f"a worker has {len(jax.devices())} CPU device(s), the sweep splits its chunks over "
                            f"{devices}: start the workers with HOISTSIM_CPU_DEVICES={devices}")
-    return run_block(runs, start, stop, summary_only=summary_only, chunk=chunk, devices=devices)
+    return run_block(runs, start, stop, summary_only=summary_only, chunk=chunk, devices=devices, records=records)

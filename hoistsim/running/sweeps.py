@@ -218,7 +218,7 @@ def simulate_many(runs, labels: list[str] | None = None, *, summary_only: bool =
     if client is not None:
         from .cluster import cluster_blocks
 
-        finished = cluster_blocks(client, runs, todo, summary_only=summary_only, chunk=chunk)
+        finished = cluster_blocks(client, runs, todo, summary_only=summary_only, chunk=chunk, records=sink is not None)
     else:
         finished = run_blocks(runs, todo, summary_only=summary_only, chunk=chunk, records=sink is not None)
     kept: list = []

@@ -136,7 +136,7 @@ class _Cancelling:
 def test_a_block_the_cluster_cancels_is_submitted_again_and_taken_once(monkeypatch):
     from hoistsim.running import cluster
 
-    monkeypatch.setattr(cluster, "_remote_block", lambda runs, start, stop, summary_only, chunk, devices: (start, stop))
+    monkeypatch.setattr(cluster, "_remote_block", lambda runs, start, stop, *how: (start, stop))
     client = _Cancelling(cancel_start=4)
     blocks = [(0, 4), (4, 8), (8, 10)]
     taken = list(cluster.cluster_blocks(client, object(), blocks, summary_only=True, chunk=4))
