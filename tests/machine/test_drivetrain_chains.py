@@ -209,6 +209,39 @@ def _swept_scenario():
     return load_scenario(COUPLED, sweeps=[f"{CLUTCH2_FORCE}=[{', '.join(map(_stepping_to, STEP_LEVELS))}]"])
 
 
+@pytest.mark.slow
+def test_a_shaft_stopping_against_a_clutch_and_a_brake_at_once_is_decided_for_both():
+    """Found by the search above (random draws): J3 at -1 and J5 at +1 rad/s, J4 at rest between them, clutches
+    3 and 4 slipping (11.5 N*m each), a brake on J5 (2.859375 N*m).  J4 takes as much from J5 as it gives to J3:
+    it stays at rest, and J5 stops against clutch 4 and the brake at one instant.  The bisection stops at the
+    first of the two roots in list order (clutch 4's); the brake's slip, a few 1e-14 rad/s past zero there
+    (the root's resolution in time times J5's deceleration), was once read as still sliding forwards, and the
+    brake pulled J4 and J5 backwards for the rest of the run.  Each stage in closed form: J5 stops at
+    1/14.359375 s; clutch 4 locks there and the brake turns to slip backwards, J4 and J5 slowing at
+    (11.5 - 2.859375)/2 rad/s^2 until J3 (gaining 11.5 rad/s^2) meets them and clutch 3 locks; J3-J5 then come
+    to rest against the brake at 2.859375/3 rad/s^2, and the brake locks."""
+    kinetic, brake = 0.5 * 46.0 * 0.5, 3.0 * 0.953125
+    pulling = (1.0, 0.5, 0.5, 1, (0.5, 0.98), (46.0, 0.0, 0.0, 0.0))
+    data = chain([1.0] * 5, [0.0, 0.0, -1.0, 0.0, 1.0],
+                 [(1.0, 1.0, 1.0, 1, (0.5, 0.98), (0.0,) * 4)] * 2 + [pulling] * 2,
+                 (1.0, 1.0, 0.953125, 1, (0.5, 0.98), (3.0, 0.0, 0.0, 0.0)),
+                 (0.0, ((0.0, 1.0, 0.0), (0.0, 1.0, 0.0))))
+    scene = scenario_from_dict(data, name="chain")
+    run = simulate(scene)
+    for name, spec in scene.drivetrain.clutches.items():
+        _check_friction_law(run, name, spec)
+    stopped = 1.0 / (kinetic + brake)
+    shared = (kinetic - brake) / 2.0
+    met = (1.0 + shared * stopped) / (kinetic + shared)
+    rest = met + (1.0 - kinetic * met) / (brake / 3.0)
+    events = [(round(float(t), 9), e, k) for t, e, k in zip(run.events["time"], run.events["element"],
+                                                             run.events["kind"]) if t < 0.5]
+    assert [(e, k) for _, e, k in events] == [("clutch4", "lock"), ("brake", "reversal"), ("clutch3", "lock"),
+                                              ("brake", "lock")]
+    np.testing.assert_allclose([t for t, _, _ in events], [stopped, stopped, met, rest], rtol=0, atol=2e-9)
+    assert run.energy_balance["relative_residual"] < 1e-8
+
+
 def test_a_drivetrain_key_can_be_swept_and_set():
     """The sweep's runs hold clutch 2's table at each level (the rest as in the file), and each is the
     scenario with that table set by an override."""

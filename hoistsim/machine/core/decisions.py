@@ -126,15 +126,19 @@ def apply_event(plan, segment, c, t, y, masks: dict, hit, coinciding: dict,
                                                                        jnp.where(met, STUCK, modes[k]))))
         candidates[k] = (candidates[k] & ~up & ~down) | met
     # Sides that meet where another coupling's sides meet (one zero of speed shared by both, a shaft
-    # stopping against two holds at once) are tried stuck too: a pass reports one guard.
+    # stopping against two holds at once) are tried stuck too: a pass reports one guard.  Shared: a slip
+    # within round-off of zero, or a slip guard that crossed in the same step and is at or below zero at the
+    # located root (the root's own resolution in time moves a slip by its acceleration times it, more than
+    # round-off where the shaft decelerates fast).
     meeting = functools.reduce(jnp.logical_or, [masks[GuardId(e.section, SLIP)] for e in layout.coupling_elements
                                                 if e.can_slip], jnp.zeros((), bool))
     x = Instant(layout, t, y)
     for k, coupling in enumerate(layout.coupling_elements):
         if not coupling.can_slip:
             continue
-        together = meeting & (slip_sign(modes[k]) != 0.0) & switching.touching(coupling, x) & (
+        shared = coinciding.get(GuardId(coupling.section, SLIP), jnp.zeros((), bool)) | (
             jnp.abs(x.relative_speed(coupling.section)) <= SHARED_ZERO * SLIP_RESOLUTION * plan.speed_scale)
+        together = meeting & (slip_sign(modes[k]) != 0.0) & switching.touching(coupling, x) & shared
         modes = modes.at[k].set(jnp.where(together, STUCK, modes[k]))
         candidates[k] = candidates[k] | together
     # decided where the next pass starts, with the boundary's decision (one static check a step)

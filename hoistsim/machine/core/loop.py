@@ -28,7 +28,7 @@ from .columns import row_outputs, summary_values
 from .dynamics import Instant, slip_sign
 from .element import STUCK
 from .eventlog import LOG_FIELDS, unpack
-from .guard_id import (BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, MARGIN_VALLEY, MARGIN_VALLEYS_EACH_WAY, SLIP_VALLEY,
+from .guard_id import (BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, MARGIN_VALLEY, MARGIN_VALLEYS_EACH_WAY, SLIP, SLIP_VALLEY,
                        GuardId)
 from .layout import Layout
 from .ledger import ledger_values
@@ -161,9 +161,10 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
     end = jnp.where(jnp.isneginf(c.switches_from), segment.end, jnp.minimum(segment.end, c.switches_from))
     pass_args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, offsets, kinking, anchors,
                      args.orients, c.switches_from)
-    # The guards other than switches where the pass starts (those above zero are armed).
+    # The guards other than switches where the pass starts (those above zero are armed), and the couplings'
+    # slip zeros (one crossed along with the located switch is decided with it: switching.crossed_together).
     starting = switching.guard_values(c.t, c.y, pass_args)
-    armed = {name: starting[i] for i, (role, name, _) in enumerate(guards) if role != "switch"}
+    armed = {name: starting[i] for i, (role, name, _) in enumerate(guards) if role != "switch" or name.kind == SLIP}
     return pass_args, armed, integrate_pass(
         solver, pass_args, switching.guard_values, c.t, c.y, end,
         rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap, cap_until=c.cap_until, max_steps=MAX_STEPS_PER_SEGMENT,

@@ -292,13 +292,17 @@ def crossed_together(guards, values, armed: dict, masks: dict, events=frozenset(
     limit overtaken, the knots reached and the limits and events crossed at (t, y)
     along with the located guard: a period that ends on a table's knot is reached;
     a limit reached as a coupling locks was crossed, there; a backlash's sides
-    parting where the shaft they let go of turns round was an event, there).
+    parting where the shaft they let go of turns round was an event, there; a
+    coupling's slip zero, where ``armed`` has it, reached with the located one
+    (a shaft stopping against two holds at once), to be decided with it).
     ``values``: every guard at (t, y) (:func:`guard_values`); ``events``: the
     observations that are events (their elements' ``crossing_events``).
     """
     overtaken, limit_overtaken, coinciding = jnp.zeros((), bool), jnp.zeros((), bool), {}
     for i, (role, name, _) in enumerate(guards):
         if role == "switch":
+            if name in armed:  # the bisection stopped at the first root in list order: this one shares it
+                coinciding[name] = (armed[name] > 0.0) & ~masks[name] & (values[i] <= 0.0)
             continue
         value = values[i]
         resolution = {"kink": KNOT_RESOLUTION, "limit": 1e-9 * jnp.abs(armed[name])}.get(
