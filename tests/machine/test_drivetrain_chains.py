@@ -367,6 +367,25 @@ def test_a_chain_with_backlash_keeps_its_ledger_and_momentum(data):
     _sprung_chain_holds(data, ledger=1e-7)
 
 
+def _released_backlash():
+    """Found by a random search of the property above: nothing driven, a stiff spring with backlash released
+    from a full strain (0.25 rad beyond the play, 74 J), 33 contacts and separations in 1 s."""
+    data = chain([1.0, 1.0, 2.0], [0.0, 0.0, 0.0], [(1.0, 1.0, 1.0, 1, (0.5, 0.98), (0.0,) * 4),
+                                                     (0.5, 1.0, 0.1, 1, (0.3, 0.6), (0.0,) * 4)],
+                 None, (0.0, ((0.0, 1.0, 0.0), (0.0, 1.0, 0.0))))
+    data["drivetrain"]["springs"] = {"spring": {"between": ["J2", "J3"], "stiffness": "9486.0 N*m/rad",
+                                                "damping": "4.0 N*m*s/rad", "unstretched_angle": "0.25 rad",
+                                                "backlash": "0.25 rad"}}
+    return data
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="known: the ledger closes to 2.9e-7 at rtol 1e-10 (7.1e-9 at 1e-11, 2.5e-10 "
+                   "at 1e-12): integration error some 3 000 times the rtol, where it accumulates not yet found")
+def test_a_backlash_released_from_a_full_strain_closes_its_ledger_to_the_property_s_tolerance():
+    _sprung_chain_holds(_released_backlash(), ledger=1e-7)
+
+
 @pytest.mark.slow
 def test_a_chain_whose_steps_fill_their_room_exactly_keeps_its_last_rows():
     """Found by the search above: this chain's run kept exactly as many steps as it had room for (512), and the
