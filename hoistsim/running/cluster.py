@@ -7,10 +7,10 @@ compiled (or loaded from the persistent cache) once, and sends back arrays:
 the block's summaries, or its runs' time series (for a file, the block's
 record read straight from its chunks' arrays: no run's objects made or
 sent).  The client writes: blocks are taken back in sweep order, so the
-file is the one a single process writes, bit for bit.  A worker lost mid-sweep has its blocks run again
-elsewhere by Dask; a block the cluster cancels (the client's connection to
-the scheduler dropped) is submitted again; a block is only ever taken back
-once.  Dask is an optional
+file is the one a single process writes, bit for bit.  A worker lost
+mid-sweep has its blocks run again elsewhere by Dask; a block the cluster
+cancels (the client's connection to the scheduler dropped) is submitted
+again; a block is only ever taken back once.  Dask is an optional
 dependency (``pip install -e ".[cluster]"``).
 """
 

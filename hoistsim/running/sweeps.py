@@ -215,12 +215,13 @@ def simulate_many(runs, labels: list[str] | None = None, *, summary_only: bool =
         sink.begin(_grids(runs) if not summary_only else None)
     done = sum(stop - start for start, stop in blocks[:skip_blocks])
     todo = blocks[skip_blocks:]
+    records = sink is not None  # a file's records wanted, not runs
     if client is not None:
         from .cluster import cluster_blocks
 
-        finished = cluster_blocks(client, runs, todo, summary_only=summary_only, chunk=chunk, records=sink is not None)
+        finished = cluster_blocks(client, runs, todo, summary_only=summary_only, chunk=chunk, records=records)
     else:
-        finished = run_blocks(runs, todo, summary_only=summary_only, chunk=chunk, records=sink is not None)
+        finished = run_blocks(runs, todo, summary_only=summary_only, chunk=chunk, records=records)
     kept: list = []
     for block in finished:
         if warnings is not None:
