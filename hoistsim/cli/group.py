@@ -63,7 +63,8 @@ def one_line_errors(func):
         except ScenarioError as exc:
             if debug:
                 raise
-            click.echo(f"hoistsim: error: {exc}", err=True)
+            for each in exc.each():  # one line each (--strict: every value it names)
+                click.echo(f"hoistsim: error: {each}", err=True)
             sys.exit(BAD_INPUT)
         except KeyboardInterrupt:
             click.echo("hoistsim: interrupted; nothing was written", err=True)

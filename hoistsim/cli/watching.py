@@ -75,7 +75,10 @@ class Watch:
             result = simulate(scenario)
         except (ScenarioError, SimulationError) as exc:
             kept = " (the last good results are kept)" if self.runs else ""
-            self.echo(f"hoistsim: error: {exc}{kept}")
+            *others, last = exc.each() if isinstance(exc, ScenarioError) else (exc,)
+            for each in others:  # --strict: every value it names, one line each
+                self.echo(f"hoistsim: error: {each}")
+            self.echo(f"hoistsim: error: {last}{kept}")
             return False
         # the answer first: the file and the figure take some tenths of a second more
         said = "; ".join(_headline(result.summary, result.events))

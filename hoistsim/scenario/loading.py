@@ -34,7 +34,8 @@ from .yamlsource import to_plain as _to_plain
 def load_scenario(source: str | Path, overrides: list[str] | dict[str, Any] | None = None,
                   sweeps: list[str] | None = None, strict: bool = False) -> Scenario:
     """Read and validate a scenario file, with optional ``dotted.key=value`` overrides; ``strict``: a value
-    that may not say what was meant (a bare number on a length, a 40 m drum) is an error, not a warning."""
+    that may not say what was meant (a bare number on a length, a 40 m drum) is an error, not a warning (the
+    error raised is the first, the others its ``also``)."""
     path = Path(source)
     try:
         text = path.read_text(encoding="utf-8")
@@ -90,10 +91,11 @@ def scenario_from_text(text: str, source: str = "<scenario>",
         swept[key] = SweptKey(values=values, labels=labels, numbers=numbers, validated=validated)
         notes += swept_notes(key, spec, numbers, lines, where)
     notes = value_notes(raw, tree, source, overridden) + notes
-    if strict and notes:
-        first = notes[0]
-        raise ScenarioError(first.key, f"{first.message} (an error under --strict)", source=first.source,
-                            line=first.line)
+    if strict and notes:  # every one said at once: fixed one at a time, a file would take as many tries
+        first, *others = [ScenarioError(note.key, f"{note.message} (an error under --strict)", source=note.source,
+                                        line=note.line) for note in notes]
+        first.also = tuple(others)
+        raise first
     scenario = scenario.with_provenance(Provenance(text=text, source=source, raw=raw, overridden=overridden,
                                                    warnings=tuple(map(str, notes)), swept=swept))
     if len(scenario.sweep or ()) > 1:

@@ -4,6 +4,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from .units import Dimension, to_si
@@ -22,6 +23,16 @@ class Plausible:
     def holds(self, x: float, dimension: Dimension) -> bool:
         """Whether the SI value ``x`` lies in the range (zero, where a key allows it, means "none": it does)."""
         return x == 0 or to_si(self.low, dimension) <= abs(x) <= to_si(self.high, dimension)
+
+    def example(self, dimension: Dimension) -> str:
+        """How a value of the key is written (in messages, in the reference): the dimension's example where
+        this range holds it ('20 cm' for a drum's diameter), else a typical value, the range's geometric
+        middle to one figure in the unit of its low end ('4 mm' for a gear's module, never '20 cm')."""
+        if self.holds(to_si(dimension.example.strip("'"), dimension), dimension):
+            return dimension.example
+        unit = self.low.split(maxsplit=1)[1]
+        middle = math.sqrt(to_si(self.low, dimension) * to_si(self.high, dimension)) / to_si(f"1 {unit}", dimension)
+        return f"'{float(f'{middle:.1g}'):g} {unit}'"
 
 
 GEAR_MODULE = Plausible("0.3 mm", "50 mm", "a gear's module")

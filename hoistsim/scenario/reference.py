@@ -64,8 +64,11 @@ def _section_of(field) -> tuple[str, type[Section]] | None:
     return None
 
 
-def _units(dimension: u.Dimension) -> str:
-    return f"{dimension.name}, e.g. `{dimension.example.strip(chr(39))}`"
+def _units(dimension: u.Dimension, plausible: Plausible | None = None) -> str:
+    """What a key measures and a value of it: the dimension's example, or the key's own where the dimension's
+    is no plausible value of it (a gear's module: `4 mm`, not `20 cm`)."""
+    example = plausible.example(dimension) if plausible is not None else dimension.example
+    return f"{dimension.name}, e.g. `{example.strip(chr(39))}`"
 
 
 def _columns(field) -> str:
@@ -83,13 +86,14 @@ def _plain_value(annotation, metadata: tuple = ()) -> str:
     meta = (*getattr(annotation, "__metadata__", ()), *metadata)
     count = next((m for m in meta if isinstance(m, u.Count)), None)
     dimension = next((m for m in meta if isinstance(m, u.Dimension)), None)
+    plausible = next((m for m in meta if isinstance(m, Plausible)), None)
     base = typing.get_args(annotation)[0] if hasattr(annotation, "__metadata__") else annotation
     if count is not None:
         return f"whole number ({count.what})"
     if dimension is not None and base is TimeSignal:
         return f"[signal](#time-signals) of {dimension.name}"
     if dimension is not None and base is float:
-        return _units(dimension)
+        return _units(dimension, plausible)
     if typing.get_origin(base) is tuple and typing.get_args(base)[-1] is not Ellipsis:
         return "[" + ", ".join(_plain_value(a) for a in typing.get_args(base)) + "]"
     if base is str:
@@ -227,13 +231,14 @@ _VALUES = """\
 ## Values
 
 A value is an SI number or text with a unit, read by pint: `500 N*m`, `300 rpm`, `20 cm`, `200 daN`, `25 deg`,
-`40 kg*m^2`, `2.4 kJ/K`, `25 degC`. A bare number is SI (lengths in metres, angles in radians, speeds in rad/s,
-temperatures in kelvin): it is accepted on a key with a unit with a warning naming the key, its line and how the
-number was read (`drum: diameter: 40` is a 40 m drum). A value far outside what its part measures (the range
-column's "plausible": a 40 m drum, a wire rope of 0.04 mm^2) is accepted with a warning too. `--strict` (on
-`run`, `watch`, `check`, `statics`, `flywheel`) makes each of those warnings an error, exit status 2. Zero is
-zero in any unit: it is never warned of. The value column names what a key measures and an example; any unit
-of that kind is accepted.
+`40 kg*m^2`, `2.4 kJ/K`, `25 degC`. Decimals take a point (`0.3`, never `0,3`); a product of units a `*` or a
+space (`N*m` or `N m`: pint reads `Nm` as another unit), a power a `^` (`mm^2`). A bare number is SI (lengths in
+metres, angles in radians, speeds in rad/s, temperatures in kelvin): it is accepted on a key with a unit with a
+warning naming the key, its line and how the number was read (`drum: diameter: 40` is a 40 m drum). A value far
+outside what its part measures (the range column's "plausible": a 40 m drum, a wire rope of 0.04 mm^2) is
+accepted with a warning too. `--strict` (on `run`, `watch`, `check`, `statics`, `flywheel`) makes each of those
+warnings an error, every one said at once, exit status 2. Zero is zero in any unit: it is never warned of. The
+value column names what a key measures and an example; any unit of that kind is accepted.
 
 | measures | SI unit (a bare number) | e.g. |
 |---|---|---|

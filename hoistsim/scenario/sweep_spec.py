@@ -213,6 +213,9 @@ def parse_sweep(assignment: str) -> tuple[str, Any]:
         raise ScenarioError(key, f"needs values, like {key}=V1,V2 or {key}=FROM:TO:COUNT", source="--sweep")
     if text.startswith("["):
         values = parse_override(f"{key}={text}")[1]
+    elif text.count(":") == 1 and "," not in text:  # read as one value, pint would multiply the ends
+        raise ScenarioError(key, f"a range is FROM:TO:COUNT, and {text!r} has no count: give how many values, "
+                            f"like {key}={text.strip()}:9", source="--sweep")
     elif text.count(":") == 2:
         start, stop, count = (part.strip() for part in text.split(":"))
         if not count.isdigit():

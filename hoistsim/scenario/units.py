@@ -4,7 +4,8 @@ A bare number is already SI (angles in radians, speeds in rad/s, temperatures in
 kelvin).  Strings are
 parsed by pint and converted once, at load time, to the SI unit of the quantity
 the key expects; a string of the wrong dimension is an error that says what was
-expected and what was given.  NaN and infinities are never accepted.
+expected and what was given, in an engineer's words (:mod:`.unit_words`: "500 Nm"
+is no newton metre to pint, "0,3" is 0).  NaN and infinities are never accepted.
 
 pint treats the radian as dimensionless, so "25 deg" would pass for a friction
 coefficient and "5 Hz" for an angular speed.  Here the radian counts as a
@@ -23,12 +24,13 @@ import math
 import re
 import sys
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import lru_cache, partial
 from typing import TYPE_CHECKING, Annotated, Any, get_args
 
 from pydantic import BeforeValidator
 
 from ..cache_folders import cache_folder
+from . import unit_words as words
 from .unit_factors import known_factors
 
 if TYPE_CHECKING:
@@ -101,39 +103,9 @@ POWER = Dimension("power", "W", "'15 kW'")
 TORSIONAL_STIFFNESS = Dimension("torsional stiffness", "N*m/rad", "'1e4 N*m/rad'", radians=-1)
 TORSIONAL_DAMPING = Dimension("torsional damping", "N*m*s/rad", "'10 N*m*s/rad'", radians=-1)
 
-# dimensionality (as pint prints it, radian power) -> what an engineer calls it
-_KNOWN = {
-    ("[mass] * [length] ** 2 / [time] ** 2", 0): "torque (or energy)",
-    ("[mass] * [length] / [time] ** 2", 0): "force",
-    ("[mass] * [length] ** 2", 0): "moment of inertia",
-    ("[mass]", 0): "mass",
-    ("[length]", 0): "length",
-    ("[length] ** 2", 0): "area",
-    ("[length] ** 3", 0): "volume",
-    ("[time]", 0): "time",
-    ("1 / [time]", 0): "frequency",
-    ("1 / [time]", 1): "angular speed",
-    ("[length] / [time]", 0): "speed",
-    ("[length] / [time] ** 2", 0): "acceleration",
-    ("[mass] / [length] / [time] ** 2", 0): "pressure",
-    ("[mass] / [time] ** 2", 0): "stiffness",
-    ("[mass] * [length] ** 2 / [time] ** 2", -1): "torsional stiffness",
-    ("[mass] * [length] ** 2 / [time]", -1): "torsional damping",
-    ("[mass] * [length] ** 2 / [time] ** 3", 0): "power",
-    ("[temperature]", 0): "temperature",
-    ("[mass] * [length] ** 2 / [temperature] / [time] ** 2", 0): "heat capacity",
-    ("[mass] * [length] ** 2 / [temperature] / [time] ** 3", 0): "thermal conductance",
-    ("dimensionless", 0): "pure number",
-    ("dimensionless", 1): "angle",
-}
-
 
 class UnitError(ValueError):
     """A value that is not a quantity of the expected kind, or not an allowed one."""
-
-
-def _a(noun: str) -> str:
-    return f"an {noun}" if noun[:1] in "aeiou" else f"a {noun}"
 
 
 def _shown(value: object) -> str:
@@ -194,7 +166,7 @@ def _unit_factor(unit: str, dimension: Dimension) -> float | None:
 
 
 def _to_si(value: object, dimension: Dimension) -> float:
-    expected = f"expected {_a(dimension.name)} (like {dimension.example})"
+    expected = f"expected {words.a(dimension.name)} (like {dimension.example})"
     if value is None:
         raise UnitError(f"no value given; {expected}")
     if isinstance(value, bool):
@@ -210,35 +182,54 @@ def _to_si(value: object, dimension: Dimension) -> float:
         raise UnitError(f"{expected}, got {value!r} (no number in it)")
     if re.search(r"[\d)]\s*(\*\*|\^)", text):  # pint would compute 10**10**10 in full
         raise UnitError(f"{expected}, got {value!r}: write powers of ten as 1e6, not with ^ or **")
+    comma = words.decimal_comma(text)  # pint reads "1,5" as 15
+    if comma:
+        raise UnitError(f"{expected}, got {value!r}: {comma}")
+    if ":" in text:  # pint reads "100 kg:900 kg" as a product
+        raise UnitError(f"{expected}, got {value!r}: one value, without ':' (a range of values is a sweep's: "
+                        "KEY=FROM:TO:COUNT on the command line, {from: ..., to: ..., count: ...} in a file's sweep:)")
     ureg = registry()
+    fits = partial(_fits, dimension=dimension)
     try:
         quantity = ureg.Quantity(text)
     except _pint().UndefinedUnitError as exc:
         names = ", ".join(repr(n) for n in exc.args) or "a name"
-        raise UnitError(f"{expected}, got {value!r}: unknown unit {names}") from None
+        raise UnitError(words.unknown_unit(value, names, expected, fits)) from None
     except Exception:  # pint raises several unrelated types for bad text
         raise UnitError(f"{expected}, cannot read {value!r}") from None
     if str(quantity.units) == "dimensionless":  # a plain number in a string: SI
         return _finite(float(quantity.magnitude), value)
-    radians = int(ureg.get_root_units(quantity.units)[1]._units.get("radian", 0))
-    target = ureg.Unit(dimension.si_unit) if dimension.si_unit else ureg.dimensionless
+    radians, target = _radians(quantity), _target(dimension)
     if quantity.dimensionality != target.dimensionality or radians != dimension.radians:
-        hint = ""
-        if quantity.dimensionality == target.dimensionality and dimension.radians:
-            hint = f"; write it with an angle unit, like {dimension.example}"
-        raise UnitError(f"{expected}, got {value!r} which is {_a(_describe(quantity.dimensionality, radians))}{hint}")
+        angle_missing = bool(dimension.radians) and quantity.dimensionality == target.dimensionality
+        raise UnitError(words.wrong_kind(value, quantity, radians, dimension, expected, fits, angle_missing))
     return _finite(float(quantity.to(target).magnitude), value)
+
+
+def _radians(quantity) -> int:
+    """The power of the angle in a quantity's unit (pint counts the radian as no dimension)."""
+    return int(registry().get_root_units(quantity.units)[1]._units.get("radian", 0))
+
+
+def _target(dimension: Dimension):
+    """The SI unit of a dimension, as pint's."""
+    ureg = registry()
+    return ureg.Unit(dimension.si_unit) if dimension.si_unit else ureg.dimensionless
+
+
+def _fits(text: str, dimension: Dimension) -> bool:
+    """Whether pint reads ``text`` as a quantity of the kind ``dimension`` is (a spelling to suggest)."""
+    try:
+        quantity = registry().Quantity(text)
+    except Exception:  # pint's errors: it does not
+        return False
+    return quantity.dimensionality == _target(dimension).dimensionality and _radians(quantity) == dimension.radians
 
 
 def _finite(x: float, value: object) -> float:
     if not math.isfinite(x):
         raise UnitError(f"must be a finite number, got {_shown(value)}")
     return x
-
-
-def _describe(dimensionality, radians: int) -> str:
-    text = str(dimensionality) or "dimensionless"
-    return _KNOWN.get((text, radians), text + (" * [angle]" if radians else ""))
 
 
 def show(x: float, dimension: Dimension) -> str:
@@ -375,12 +366,24 @@ def range_ends(start: object, stop: object) -> tuple[float, float, str]:
     ureg = registry()
     try:
         first, last = ureg.Quantity(str(start)), ureg.Quantity(str(stop))
-        last = last.to(first.units)
-    except Exception as exc:  # pint's parse and dimensionality errors
+    except Exception as exc:  # pint's parse errors
         raise UnitError(f"cannot make a range from {start!r} to {stop!r} ({str(exc).splitlines()[0]})") from None
+    if first.dimensionality != last.dimensionality:  # a bare end with an end in units, or two kinds
+        kinds = [words.kind_of(q.dimensionality, _radians(q)) or f"quantity in {q.units}" for q in (first, last)]
+        raise UnitError(f"cannot make a range from {str(start)!r} to {str(stop)!r}: the ends are {words.a(kinds[0])} "
+                        f"and {words.a(kinds[1])}; {_both_in_units(first, last)}")
+    last = last.to(first.units)
     if not (math.isfinite(first.magnitude) and math.isfinite(last.magnitude)):
         raise UnitError(f"the range ends must be finite, got {start!r} and {stop!r}")
     return float(first.magnitude), float(last.magnitude), f"{first.units:~}"
+
+
+def _both_in_units(first, last) -> str:
+    """How to write a range whose ends differ in kind: the bare end given the other's unit, where one is bare."""
+    if first.unitless == last.unitless:
+        return "write both in units of the key's kind"
+    unit = f"{(last if first.unitless else first).units:~}"
+    return f"write both with their unit, like {first.magnitude:g} {unit}:{last.magnitude:g} {unit}"
 
 
 def si_line(unit: str) -> tuple[float, float]:

@@ -4,7 +4,7 @@ outside what its part measures.
 A bare number is SI (the rule), so ``drum: diameter: 40`` is a 40 m drum: accepted, and said, one line per key
 with its file and line, how the number was read and how to write its unit.  A value outside its key's
 :class:`~.units.Plausible` range (a 40 m drum, a 0.04 mm^2 rope), with its unit or without, is said too.
-``strict`` loading makes the first of them an error (``--strict`` on the command line).
+``strict`` loading makes them errors, every one raised at once (``--strict`` on the command line).
 """
 
 from __future__ import annotations
@@ -104,7 +104,7 @@ def _value_note(value: Any, field) -> str | None:
             for entry, column in zip(row if isinstance(row, list) else (), columns):
                 read = u.bare_number_read_as(entry, column)
                 if read:
-                    return f"row {i + 1}: {_bare(entry, read, column)}"
+                    return f"row {i + 1}: {_bare(entry, read, column.example)}"
         return None
     if dimension is None:
         return None
@@ -116,7 +116,7 @@ def _value_note(value: Any, field) -> str | None:
         for name, entry, of in entries:
             read = u.bare_number_read_as(entry, of)
             if read:
-                return f"{name}: {_bare(entry, read, of)}"
+                return f"{name}: {_bare(entry, read, of.example)}"
         return None
     if isinstance(value, bool) or not isinstance(value, (int, float, str)) or not dimension.si_unit:
         return None
@@ -133,15 +133,16 @@ def _scalar_note(value: Any, x: float, dimension: u.Dimension, plausible: Plausi
     if plausible is not None and not plausible.holds(x, dimension):
         far = f"far outside {plausible.what} ({plausible.low} to {plausible.high})"
     if read:
-        return _bare(value, read + (f", {far}" if far else ""), dimension)
+        example = plausible.example(dimension) if plausible is not None else dimension.example
+        return _bare(value, read + (f", {far}" if far else ""), example)
     if far:
         return f"{u.show(x, dimension) if not isinstance(value, str) else value} is {far}: check it and its unit"
     return None
 
 
-def _bare(value: Any, read: str, dimension: u.Dimension) -> str:
-    return f"the bare number {value:g} is read as {read}; write the unit, like {dimension.example}, to say which " \
-           "you mean"
+def _bare(value: Any, read: str, example: str) -> str:
+    """A bare number's note: how it was read, and how to write its unit (``example``: a value of its key's)."""
+    return f"the bare number {value:g} is read as {read}; write the unit, like {example}, to say which you mean"
 
 
 def _columns_of(field, dimension: u.Dimension | None) -> list[u.Dimension]:

@@ -66,6 +66,28 @@ CASES = [
     Case("unknown unit", "module: 4 mm", "module: 4 mmm", "gears.module", "module:", "unknown unit 'mmm'"),
     Case("text without a number", "mass: 500 kg", "mass: heavy", "load.mass", "  mass:", "no number"),
     Case("a list for a scalar", "mass: 500 kg", "mass: [500 kg]", "load.mass", "  mass:", "got a list"),
+    # what pint reads otherwise than meant: said in the writer's terms, never as pint's dimensions
+    Case("decimal comma", "static_friction: 0.3", "static_friction: 0,3", "clutch.static_friction",
+         "static_friction", "got '0,3': write decimals with a point, 0.3"),
+    Case("decimal comma with a unit", "mass: 500 kg", "mass: 1,5 kg", "load.mass", "  mass:",
+         "got '1,5 kg': write decimals with a point, 1.5 kg"),
+    Case("comma of thousands", "mass: 500 kg", "mass: 1,500 kg", "load.mass", "  mass:",
+         "write decimals with a point, 1.500 kg, and thousands without a separator, 1500 kg"),
+    Case("torque in Nm", "stall_torque: 500 N*m", "stall_torque: 500 Nm", "motor.stall_torque", "stall_torque",
+         "got '500 Nm': 'Nm' is read as number_meter, not N*m; write N*m (or N m), like '500 N*m'"),
+    Case("torque in kNm", "stall_torque: 500 N*m", "stall_torque: 0.5 kNm", "motor.stall_torque", "stall_torque",
+         "write kN*m (or kN m), like '0.5 kN*m'"),
+    Case("temperature in degrees of angle", None, HEATING.replace("25 degC", "25 deg"),
+         "clutch_heating.ambient_temperature", "ambient_temperature", "'deg' is read as degree, not degC; write "
+         "degC, like '25 degC'"),
+    Case("inertia in kgm2", "inertia: 40 kg*m^2", "inertia: 40 kgm2", "drum.inertia", "inertia: 40",
+         "unknown unit 'kgm2': write kg*m^2, like '40 kg*m^2'"),
+    Case("inertia of another dimension", "inertia: 40 kg*m^2", "inertia: 40 kg*m", "drum.inertia", "inertia: 40",
+         "got '40 kg*m', read as 40 kilogram * meter, which is no moment of inertia: write it in kg*m^2, like "
+         "'40 kg*m^2'"),
+    Case("a range for one value", "mass: 500 kg", "mass: 100 kg:900 kg", "load.mass", "  mass:",
+         "got '100 kg:900 kg': one value, without ':' (a range of values is a sweep's: "
+         "KEY=FROM:TO:COUNT on the command line, {from: ..., to: ..., count: ...} in a file's sweep:)"),
     # non-physical values
     Case("negative mass", "mass: 500 kg", "mass: -5 kg", "load.mass", "  mass:", "must not be negative"),
     Case("zero duration", "duration: 3 s", "duration: 0 s", "simulation.duration", "duration", "must be positive"),
@@ -79,6 +101,8 @@ CASES = [
     Case("negative gravity", "gravity: 9.81 m/s^2", "gravity: -9.81 m/s^2", "gravity", "gravity", "negative"),
     Case("rtol of one or more", "rtol: 1e-8", "rtol: 2", "simulation.rtol", "rtol", "must be less than 1"),
     Case("zero atol", "atol: 1e-10", "atol: 0", "simulation.atol", "atol", "must be positive"),
+    Case("rtol finer than float64 resolves", "rtol: 1e-8", "rtol: 1e-20", "simulation.rtol", "rtol",
+         "must be at least 1e-14, got 1e-20"),
     Case("NaN in YAML", "mass: 500 kg", "mass: .nan", "load.mass", "  mass:", "finite"),
     Case("NaN in YAML, capitals", "stall_torque: 500 N*m", "stall_torque: .NaN", "motor.stall_torque",
          "stall_torque", "finite"),
@@ -384,6 +408,7 @@ SET_CASES = [
     ("table going back", ["clutch.engagement_force=[[1 s, 0 N], [0 s, 5 N]]"], "clutch.engagement_force",
      "time goes backwards"),
     ("no value", ["load.mass="], "load.mass", "needs a value"),
+    ("decimal comma", ["clutch.static_friction=0,3"], "clutch.static_friction", "write decimals with a point, 0.3"),
     ("no equals sign", ["load.mass"], "", "expected KEY=VALUE"),
     ("the second of two", ["load.mass=600 kg", "load.mass=-1 kg"], "load.mass", "must not be negative"),
 ]
@@ -559,4 +584,20 @@ def test_an_empty_item_of_a_swept_list_is_named_as_the_sweeps(tmp_path):
     said = result.output.strip()
     assert result.exit_code == 2 and len(said.splitlines()) == 1, said
     assert said.startswith("hoistsim: error: --sweep: clutch.engagement_force: value 2 of 3 is empty"), said
+    assert not output.exists()
+
+
+@pytest.mark.parametrize("spec, words", [
+    ("100 kg:900 kg", "load.mass: a range is FROM:TO:COUNT, and '100 kg:900 kg' has no count: give how many values, "
+                      "like load.mass=100 kg:900 kg:9"),
+    ("100:900 kg:5", "load.mass: range: cannot make a range from '100' to '900 kg': the ends are a pure number and "
+                     "a mass; write both with their unit, like 100 kg:900 kg"),
+])
+def test_a_range_written_amiss_is_said_in_the_ranges_syntax(spec, words, tmp_path):
+    """`--sweep "load.mass=100 kg:900 kg"` (no count) was read as one value, the product of the two ends ("a
+    [mass] ** 2"); a range whose ends differ in kind was said in pint's words.  Both name the range's syntax."""
+    output = tmp_path / "x.h5"
+    result, lines = _run_cli(["run", str(EXERCISE6_FILE), "-o", str(output), "--sweep", f"load.mass={spec}"])
+    _check_one_line_error(result, lines, "", None, words, "--sweep")
+    assert "**" not in lines[0] and "[mass]" not in lines[0], lines[0]
     assert not output.exists()

@@ -118,3 +118,43 @@ def test_strict_makes_a_warning_an_error_and_writes_nothing(tmp_path, command):
     result, lines = _cli([command[0], str(_write(tmp_path, BASE)), "--strict"] if command == ["check"] else
                          ["check", str(_write(tmp_path, BASE)), "--strict"])
     assert result.exit_code == 0 and lines == []
+
+
+def test_a_bare_numbers_example_is_in_the_keys_own_unit(tmp_path):
+    """A gear's module is written in mm: its bare number's example is a module ('4 mm', the middle of a module's
+    plausible range), not a length of another part that would itself be warned of ('20 cm')."""
+    said = _warned(tmp_path, BASE.replace("module: 4 mm", "module: 4"))
+    assert len(said) == 1 and said[0].endswith(
+        "gears.module: the bare number 4 is read as 4 m, far outside a gear's module (0.3 mm to 50 mm); write the "
+        "unit, like '4 mm', to say which you mean"), said
+
+
+def test_strict_says_every_bare_number_then_fails_once(tmp_path):
+    """Four bare numbers under --strict: each said, as an error with its file, line and key, then exit 2 once
+    (it stopped at the first: a user fixed one and ran again, three times), nothing written."""
+    text = (BASE.replace("  mass: 500 kg", "  mass: 500").replace("module: 4 mm", "module: 0.004")
+            .replace(DRUM, "  diameter: 0.4").replace("stall_torque: 500 N*m", "stall_torque: 500"))
+    path = _write(tmp_path, text)
+    out = tmp_path / "out.h5"
+    result, lines = _cli(["run", str(path), "-o", str(out), "--strict"])
+    assert result.exit_code == 2, result.output
+    assert "Traceback" not in result.output and result.stdout == "" and not out.exists()
+    assert [line.split(": ")[:3] for line in lines] == [
+        ["hoistsim", "error", f"{path}:{line_of(text, fragment)}"] for fragment in
+        ("stall_torque: 500", "module: 0.004", "diameter: 0.4", "  mass: 500")], lines
+    assert [line.split(": ")[3] for line in lines] == ["motor.stall_torque", "gears.module", "drum.diameter",
+                                                       "load.mass"], lines
+    assert all(line.endswith("(an error under --strict)") for line in lines), lines
+
+
+def test_watch_under_strict_says_every_bare_number(tmp_path):
+    """`watch --strict` says each value as `run --strict` does, one line each, the last saying the results stay."""
+    from hoistsim.cli.watching import Watch
+
+    text = BASE.replace("  mass: 500 kg", "  mass: 500").replace(DRUM, "  diameter: 0.4")
+    said: list[str] = []
+    watched = Watch(_write(tmp_path, text), output=tmp_path / "out.h5", strict=True, echo=said.append)
+    assert not watched.run()
+    assert [line.split(": ")[3] for line in said] == ["drum.diameter", "load.mass"], said
+    assert all(line.startswith("hoistsim: error: ") for line in said), said
+    assert not (tmp_path / "out.h5").exists()

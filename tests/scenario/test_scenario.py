@@ -7,6 +7,7 @@ import copy
 import dataclasses
 import math
 import pickle
+import re
 
 import pytest
 from helpers import BASE, EXERCISE6_FILE, SCENARIOS, SHIPPED, line_of
@@ -87,11 +88,23 @@ def test_bare_numbers_are_si(number, dimension):
     ("nan kg", u.MASS, "finite"),
     ("-inf N*m", u.TORQUE, "finite"),
     ("1e400 kg", u.MASS, "finite"),
+    # read by pint as something else, or as nothing: said in the writer's terms
+    ("0,3", u.DIMENSIONLESS, "got '0,3': write decimals with a point, 0.3"),
+    ("1,500 kg", u.MASS, "write decimals with a point, 1.500 kg, and thousands without a separator, 1500 kg"),
+    ("500 Nm", u.TORQUE, "got '500 Nm': 'Nm' is read as number_meter, not N*m; write N*m (or N m), like '500 N*m'"),
+    ("10 Nms/rad", u.TORSIONAL_DAMPING, "not N*m*s/rad; write N*m*s/rad, like '10 N*m*s/rad'"),
+    ("1e4 Nm/rad", u.TORSIONAL_STIFFNESS, "write N*m/rad, like '1e4 N*m/rad'"),
+    ("40 kgm^2", u.INERTIA, "unknown unit 'kgm': write kg*m^2, like '40 kg*m^2'"),
+    ("95 mm2", u.AREA, "unknown unit 'mm2': write mm^2, like '95 mm^2'"),
+    ("25 deg", u.TEMPERATURE, "'deg' is read as degree, not degC; write degC, like '25 degC'"),
+    ("0.3 kg*m", u.DIMENSIONLESS, "read as 0.3 kilogram * meter, which is no pure number: write it as a plain number"),
+    ("100 kg:900 kg", u.MASS, "got '100 kg:900 kg': one value, without ':'"),
 ])
 def test_bad_quantities_say_what_was_expected(value, dimension, words):
     with pytest.raises(u.UnitError, match=None) as info:
         u.to_si(value, dimension)
     assert words in str(info.value)
+    assert not re.search(r"\[(mass|length|time|temperature)\]", str(info.value)), info.value  # never pint's words
 
 
 def test_limits_are_stated_in_the_users_terms():
@@ -153,6 +166,18 @@ def test_inertia_given_directly_or_by_rotor_mass_and_radius_of_gyration():
     direct = edit("  rotor_mass: 40 kg\n  radius_of_gyration: 15 cm\n", "  inertia: 0.9 kg*m^2\n")
     assert scenario_from_text(direct).motor.moment_of_inertia == 0.9
     assert scenario_from_text(BASE).motor.moment_of_inertia == pytest.approx(0.9)
+
+
+def test_strict_raises_every_bare_number_at_once():
+    """Under strict loading the error raised is the first value's, each other one in its ``also``, in the
+    file's order: a caller says them all."""
+    text = edit("  mass: 500 kg", "  mass: 500", edit("no_load_speed: 300 rpm", "no_load_speed: 31.4"))
+    with pytest.raises(ScenarioError) as info:
+        scenario_from_text(text, source="s.yaml", strict=True)
+    said = info.value.each()
+    assert [(e.key, e.line) for e in said] == [("motor.no_load_speed", line_of(text, "no_load_speed")),
+                                               ("load.mass", line_of(text, "  mass: 500"))]
+    assert all(e.source == "s.yaml" and e.message.endswith("(an error under --strict)") for e in said)
 
 
 def test_bare_numbers_in_a_scenario_are_si():
