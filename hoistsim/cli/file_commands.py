@@ -23,8 +23,9 @@ def compare(results, as_csv, columns, wide):
     """Compare the runs of RESULTS (an HDF5 file): one row per run, the summary as columns.
 
     By default as many columns as fit the terminal (COLUMNS, or 100 characters when not a terminal),
-    the questions first (lock-up, heat, where the load went, torque); units under the names; each column
-    in one number format. A sweep's runs are named by their swept values (by their labels with --wide).
+    the questions first (lock-up, heat, where the load went, torque); each summary headed, in the unit and
+    number format `run` prints it in (heat in kJ, speeds in rpm; --csv keeps the file's SI and names), units
+    under the names. A sweep's runs are named by their swept values (by their labels with --wide).
     """
     from ..results.reading import read_summary, read_summary_units
     from ..results.report import compare_table, csv_text

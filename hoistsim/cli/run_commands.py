@@ -193,5 +193,5 @@ def check(scenario, overrides, as_drivetrain):
         click.echo(hoist_as_drivetrain_text(scenario), nl=False)
         return
     count = len(SweepRuns(scenario))  # every value was validated as the file was read
-    click.echo(machine_table(scenario))
+    click.echo(machine_table(scenario, table_width()))
     click.echo(f"{scenario_path}: valid ({count} run{'s' if count != 1 else ''})")

@@ -9,7 +9,7 @@ import click
 
 from ..errors import ScenarioError
 from .group import debug_option, fail, main, one_line_errors, read_scenario, strict_option
-from .terminal import compiling
+from .terminal import compiling, table_width
 
 
 @main.command()
@@ -23,7 +23,7 @@ def statics(scenario, as_json, overrides):
     """The exercise's static answers for SCENARIO's machine: clutch force, heaviest load, bearing loads."""
     import json
 
-    from ..results.report import fmt, table
+    from ..results.report import fmt, note, table
     from ..scenario.schema_drivetrain import hoist_only
     from ..studies.statics import answers, warnings
 
@@ -35,9 +35,11 @@ def statics(scenario, as_json, overrides):
     if as_json:
         click.echo(json.dumps({a.key: a.value for a in rows}, indent=2))
         return
-    click.echo(f"{scenario.name}: static answers (uniform-wear clutch radius unless the scenario says otherwise)")
+    width = table_width()
+    click.echo(note(f"{scenario.name}: static answers (uniform-wear clutch radius unless the scenario says "
+                    "otherwise)", width))
     click.echo(table(["symbol", "quantity", "value", "unit"],
-                     [[a.symbol, a.quantity, fmt(a.value, 5), a.unit] for a in rows], align="llrl"))
+                     [[a.symbol, a.quantity, fmt(a.value, 5), a.unit] for a in rows], align="llrl", width=width))
     if scenario.bearings is None:
         click.echo("(add a bearings: section for the bearing reactions)")
 
@@ -109,7 +111,7 @@ def flywheel(scenario, irregularity, as_json, overrides, density, width, outer_d
     else:
         from ..results.report import flywheel_table
 
-        click.echo(flywheel_table(scenario.name, sizing, elapsed))
+        click.echo(flywheel_table(scenario.name, sizing, elapsed, table_width()))
     if figure is not None:
         click.echo(f"wrote {figure}", err=as_json)
 

@@ -31,6 +31,7 @@ import numpy as np
 
 from .atomic import atomic_path
 from .records import INSTANT_COLUMNS, TEXT, TEXT_COLUMNS, Record, make_record, store_record, write_periodic
+from .summary_meanings import extra_meaning, summary_meaning
 
 
 def provenance() -> dict[str, str]:
@@ -182,8 +183,9 @@ class Assembly:
         group.attrs["solver"], group.attrs["rtol"], group.attrs["atol"] = sim.solver, sim.rtol, sim.atol
         _write_scenario(f, layout.scenario, layout.command)
 
-    def _put(self, group, name, values, rows, units, text="", time_axis=False) -> None:
-        """A record's values of one column into its rows of the file, the column made at its first record."""
+    def _put(self, group, name, values, rows, units, text="", time_axis=False, comment="") -> None:
+        """A record's values of one column into its rows of the file, the column made at its first record;
+        ``comment``: what its 0 or NaN stand for, where they stand for something."""
         if name in self.columns:
             self.columns[name][rows] = values
             return
@@ -198,6 +200,8 @@ class Assembly:
         data.attrs["units"] = units
         if text:
             data.attrs["long_name"] = text
+        if comment:
+            data.attrs["comment"] = comment
         data.dims[0].attach_scale(self.scales["run"])
         if time_axis:
             data.dims[1].attach_scale(self.scales["time"])
@@ -209,11 +213,12 @@ class Assembly:
         indices = record.indices
         contiguous = indices[-1] - indices[0] + 1 == len(indices)
         rows = slice(int(indices[0]), int(indices[-1]) + 1) if contiguous else indices
-        for key, values in record.values.items():
-            self._put(group, key, values, rows, units.get(key, ""))
+        for key, values in record.values.items():  # the summary, each in words
+            text, comment = summary_meaning(key)
+            self._put(group, key, values, rows, units.get(key, ""), text, comment=comment)
         for key, (unit, values) in record.extras.items():
             if key not in record.values:  # the residuals are summary values already
-                self._put(group, key, values, rows, unit)
+                self._put(group, key, values, rows, unit, extra_meaning(key))
         for name, (unit, text, block) in record.series.items():
             self._put(group, name, block, rows, unit, text, time_axis=True)
         if record.counts is not None:

@@ -4,89 +4,12 @@ columns, or the columns that fit), and the same summaries as CSV."""
 from __future__ import annotations
 
 import math
-import re
 from numbers import Real as numbers_Real
 
 import numpy as np
 
-
-def table(headers: list[str], rows: list[list[str]], align: str | None = None) -> str:
-    """A plain-text table; ``align`` has one 'l' or 'r' per column (default: first left, rest right)."""
-    align = align or "l" + "r" * (len(headers) - 1)
-    widths = [max(len(str(x)) for x in col) for col in zip(headers, *rows)]
-
-    def line(cells):
-        return "  ".join(str(c).ljust(w) if a == "l" else str(c).rjust(w)
-                         for c, w, a in zip(cells, widths, align)).rstrip()
-
-    rule = "  ".join("-" * w for w in widths)
-    return "\n".join([line(headers), rule, *(line(r) for r in rows)])
-
-
-def fitted_table(headers: list[str], rows: list[list[str]], width: int | None = None, align: str | None = None,
-                 keep: int = 1) -> str:
-    """A table within ``width`` characters: each header "name [unit]" with its unit on a line of its own under the
-    name, the name wrapped (:func:`_wrap`) where its column's values are narrower than it; the columns in blocks
-    stacked one under the other, each block repeating the first ``keep`` columns (the row's label) and as many
-    of the others as fit.  ``width`` None: one block however wide, the names unwrapped.  ``align`` as for
-    :func:`table` (default: the kept columns left, the rest right)."""
-    align = align or "l" * keep + "r" * (len(headers) - keep)
-    name_lines, units, widths = _columns(headers, rows, wrap=width is not None)
-    blocks = _blocks(widths, keep, width)
-    if len(blocks) > 1:  # as few blocks, evened out: the narrowest width that needs no more of them
-        blocks = next((b for limit in range(sum(widths[:keep]), width + 1)
-                       if len(b := _blocks(widths, keep, limit)) == len(blocks)), blocks)
-
-    def line(cells, shown):
-        return "  ".join(str(cells[i]).ljust(widths[i]) if align[i] == "l" else str(cells[i]).rjust(widths[i])
-                         for i in shown).rstrip()
-
-    texts = []
-    for block in blocks:
-        shown = [*range(keep), *block]
-        tall = max(len(name_lines[i]) for i in shown)
-        # the names' lines sit on the unit's line: a shorter name is padded above
-        head = [line([([""] * (tall - len(lines)) + lines)[k] for lines in name_lines], shown) for k in range(tall)]
-        head += [line(units, shown)] if any(units[i] for i in shown) else []
-        texts.append("\n".join([*head, "  ".join("-" * widths[i] for i in shown), *(line(r, shown) for r in rows)]))
-    return "\n\n".join(texts)
-
-
-def _columns(headers: list[str], rows: list[list[str]], wrap: bool = True):
-    """Each column's name as lines (wrapped to its values' width unless not ``wrap``), its unit, its width."""
-    names, units = zip(*(_name_and_unit(h) for h in headers))
-    widths = [max(len(str(x)) for x in col) for col in zip(units, *rows)]
-    name_lines = [_wrap(name, w) if wrap else [name] for name, w in zip(names, widths)]
-    return name_lines, units, [max(w, *(len(line) for line in lines)) for w, lines in zip(widths, name_lines)]
-
-
-def _wrap(name: str, width: int) -> list[str]:
-    """A column's name on lines of at most ``width`` where it can be: broken after a space, an underscore or a dot
-    (a summary's key, ``peak_clutch_`` over ``torque``), never inside a word."""
-    lines = [""]
-    for piece in re.split(r"(?<=[ _.])", name):
-        if lines[-1] and len((lines[-1] + piece).rstrip()) > width:
-            lines.append("")
-        lines[-1] += piece
-    return [line.rstrip() for line in lines]
-
-
-def _blocks(widths: list[int], keep: int, width: int | None) -> list[list[int]]:
-    """The columns after the first ``keep``, in order, as many to a block as fit ``width`` beside those."""
-    blocks, block, used = [], [], sum(widths[:keep]) + 2 * (keep - 1)
-    for i in range(keep, len(widths)):
-        if block and width is not None and used + 2 + widths[i] > width:
-            blocks.append(block)
-            block, used = [], sum(widths[:keep]) + 2 * (keep - 1)
-        block.append(i)
-        used += 2 + widths[i]
-    return [*blocks, block]
-
-
-def _name_and_unit(header: str) -> tuple[str, str]:
-    """"peak torque [N*m]" -> ("peak torque", "[N*m]"); a header without a unit keeps an empty one."""
-    name, bracket, unit = header.partition(" [")
-    return (name, f"[{unit}") if bracket and unit.endswith("]") else (header, "")
+from .summary_display import OPTIONAL_COLUMNS, PERIODIC_COLUMNS, SUMMARY_COLUMNS, scaled, summary_header
+from .text_tables import column_layout, fitted_table, note, table
 
 
 def csv_text(rows: list[dict], units: dict[str, str]) -> str:
@@ -146,64 +69,32 @@ def column_cells(values: list, digits: int = 4) -> list[str]:
     return [cell(v) for v in values]
 
 
-SUMMARY_COLUMNS = [  # (summary key, header, scale)
-    ("lockup_time", "lock-up [s]", 1.0),
-    ("slip_duration", "slipping [s]", 1.0),
-    ("slip_energy", "clutch heat [kJ]", 1e-3),
-    ("peak_clutch_torque", "peak torque [N*m]", 1.0),
-    ("peak_slip_speed", "peak slip [rpm]", 30 / math.pi),
-    ("lowest_load_position", "lowest load [m]", 1.0),
-    ("final_load_position", "final load [m]", 1.0),
-    ("final_motor_speed", "final motor [rpm]", 30 / math.pi),
-    ("lock_events", "locks", 1),
-    ("unlock_events", "unlocks", 1),
-    ("energy_relative_residual", "energy residual", None),
-]
-# shown where the runs have them (a part the scene names): after the clutch's heat
-OPTIONAL_COLUMNS = {"slip_energy": [("peak_clutch_temperature", "peak clutch [degC]", lambda kelvin: kelvin - 273.15),
-                                    ("overheat_time", "overheats [s]", 1.0)],
-                    "final_load_position": [("lift_off_time", "lift-off [s]", 1.0),
-                                            ("peak_rope_force", "peak rope [kN]", 1e-3),
-                                            ("dynamic_factor", "phi", 1.0),
-                                            ("dynamic_factor_standard", "phi2 EN 13001", 1.0)]}
-
-
 def summary_table(summaries: list[dict], head: int = 12, tail: int = 6, width: int | None = None) -> str:
     """Runs as rows, the summary as columns, in blocks within ``width`` (None: one block); long sweeps show their
     first and last runs."""
     first = summaries[0]
-    columns = [(key, f"{key[:-len('_lockup_time')]} lock-up [s]", 1.0) for key in first
-               if key.endswith("_lockup_time")]  # a drawn drivetrain's clutches, by name
-    columns += [(key, f"{key[:-len('_slip_energy')]} heat [J]", 1.0) for key in first if key.endswith("_slip_energy")]
-    for column in SUMMARY_COLUMNS:
-        if column[0] in first:
-            columns += [column] + [extra for extra in OPTIONAL_COLUMNS.get(column[0], ()) if extra[0] in first]
-
-    def scaled(value, scale):
-        return scale(value) if callable(scale) else value * scale if scale not in (1, None) else value
-
+    keys = [key for key in first if key.endswith("_lockup_time")]  # a drawn drivetrain's clutches, by name
+    keys += [key for key in first if key.endswith("_slip_energy")]
+    for key, _, _ in SUMMARY_COLUMNS:
+        if key in first:
+            keys += [key] + [extra for extra, _, _ in OPTIONAL_COLUMNS.get(key, ()) if extra in first]
     shown = summaries if len(summaries) <= head + tail else summaries[:head] + [None] + summaries[-tail:]
     kept = [s for s in shown if s is not None]
-    cells = [column_cells([scaled(s[key], scale) for s in kept], digits=2 if scale is None else 4)
-             for key, _, scale in columns]
+    headers, cells = zip(*(summary_cells(key, [s[key] for s in kept]) for key in keys)) if keys else ((), ())
     by_run = iter(zip(*cells)) if cells else iter([[]] * len(kept))
-    rows = [[s["label"], *next(by_run)] if s is not None else ["..."] + [""] * len(columns) for s in shown]
-    text = fitted_table(["run"] + [header for _, header, _ in columns], rows, width)
+    rows = [[s["label"], *next(by_run)] if s is not None else ["..."] + [""] * len(keys) for s in shown]
+    text = fitted_table(["run", *headers], rows, width)
     if len(summaries) > head + tail:
         text += f"\n({len(summaries)} runs; all of them: hoistsim compare OUT.h5 [--csv])"
     return text
 
 
-PERIODIC_COLUMNS = [  # (summary key, header, scale)
-    ("mean_speed", "mean [rpm]", 30 / math.pi),
-    ("max_speed", "max [rpm]", 30 / math.pi),
-    ("min_speed", "min [rpm]", 30 / math.pi),
-    ("irregularity", "delta", 1.0),
-    ("irregularity_tredgold", "delta Tredgold", 1.0),
-    ("energy_fluctuation", "dE_max [J]", 1.0),
-    ("energy_fluctuation_tredgold", "dE_max Tredgold [J]", 1.0),
-    ("settling_periods", "settled after [periods]", 1),
-]
+def summary_cells(key: str, values: list, unit: str = "") -> tuple[str, list[str]]:
+    """The summary ``key``'s header and its values (SI, in ``unit``) as every table of summaries shows them: the
+    words, unit and scale of :func:`hoistsim.results.summary_display.summary_header`, one number format down the
+    column."""
+    header, scale = summary_header(key, unit)
+    return header, column_cells([scaled(value, scale) for value in values], digits=2 if scale is None else 4)
 
 
 def periodic_table(summaries: list[dict], head: int = 12, tail: int = 6, width: int | None = None) -> str:
@@ -215,8 +106,8 @@ def periodic_table(summaries: list[dict], head: int = 12, tail: int = 6, width: 
     return fitted_table(["run"] + [header for _, header, _ in PERIODIC_COLUMNS], rows, width)
 
 
-def flywheel_table(name: str, sizing, elapsed: float) -> str:
-    """The flywheel command's answers, one per line."""
+def flywheel_table(name: str, sizing, elapsed: float, width: int | None = None) -> str:
+    """The flywheel command's answers, one per line, within ``width`` characters (None: however wide)."""
     motor = "at the motor shaft"
     on = f"on the {sizing.shaft} shaft"
     rows = [
@@ -242,8 +133,8 @@ def flywheel_table(name: str, sizing, elapsed: float) -> str:
                  ["s", "rim width", fmt(r["width"] * 1e3), "mm"],
                  ["m", f"rim mass at {fmt(r['density'])} kg/m^3", fmt(r["mass"]), "kg"]]
     runs = len(sizing.candidates)
-    return (f"{name}: flywheel for delta = {fmt(sizing.irregularity)} ({runs} runs simulated, {elapsed:.2f} s)\n"
-            + table(["symbol", "quantity", "value", "unit"], rows, align="llrl"))
+    return (note(f"{name}: flywheel for delta = {fmt(sizing.irregularity)} ({runs} runs simulated, {elapsed:.2f} s)",
+                 width) + "\n" + table(["symbol", "quantity", "value", "unit"], rows, align="llrl", width=width))
 
 
 # What `compare` shows first: the questions a designer compares runs by (when the clutch locks, its heat, where
@@ -255,7 +146,8 @@ COMPARE_FIRST = ["lockup_time", "slip_energy", "lowest_load_position", "final_lo
 
 def compare_table(rows: list[dict], units: dict[str, str], columns: list[str] | None = None,
                   width: int | None = 120) -> str:
-    """The runs of a file as rows, chosen columns (names, then units, as headers), within ``width``.
+    """The runs of a file as rows, chosen columns (each summary headed, scaled and formatted as the run's table
+    shows it, :func:`summary_cells`; units under the names), within ``width``.
 
     Without ``columns``: the run (its label, or within a ``width`` the swept keys' values where the labels only
     say them), then
@@ -274,11 +166,11 @@ def compare_table(rows: list[dict], units: dict[str, str], columns: list[str] | 
     if unknown:
         raise ValueError(f"no column {unknown[0]!r} in this file (columns: {', '.join(names)})")
 
-    headers = [f"{n} [{units[n]}]" if units.get(n) else n for n in chosen]
-    cells = [list(run) for run in zip(*(column_cells([r[n] for r in rows]) for n in chosen))]
+    headers, columns_shown = zip(*(_compare_cells(n, [r[n] for r in rows], units.get(n, "")) for n in chosen))
+    cells = [list(run) for run in zip(*columns_shown)]
     count = len(chosen)
     if columns is None and width is not None:  # as many as fit beside the label, as fitted_table lays them out
-        widths = _columns(headers, cells)[2]
+        widths = column_layout(headers, cells)[2]
         count = max(1, sum(1 for i in range(len(chosen)) if sum(widths[:i + 1]) + 2 * i <= width))
     shown = chosen[:count]
     keep = min(len(run) if columns is None else 1, count)  # what names the run, repeated in each block
@@ -286,9 +178,19 @@ def compare_table(rows: list[dict], units: dict[str, str], columns: list[str] | 
                         align="".join("l" if name == "label" else "r" for name in shown), keep=keep)
     left = len(chosen) - len(shown)
     if left:
-        text += (f"\n({left} more column{'s' if left != 1 else ''}: --wide or --csv for all, "
-                 "--columns A,B,... to choose)")
+        text += "\n" + note(f"({left} more column{'s' if left != 1 else ''}: --wide or --csv for all, "
+                            "--columns A,B,... to choose)", width)
     return text
+
+
+def _compare_cells(name: str, values: list, unit: str) -> tuple[str, list[str]]:
+    """A file's column as ``compare`` shows it: a summary as the run's table does (:func:`summary_cells`), the
+    label as "run", a swept key by its dotted name in SI."""
+    if name == "label":
+        return "run", column_cells(values)
+    if "." in name:
+        return (f"{name} [{unit}]" if unit and unit != "1" else name), column_cells(values)
+    return summary_cells(name, values, unit)
 
 
 def sensitivity_table(result, width: int | None = None) -> str:
@@ -306,13 +208,14 @@ def sensitivity_table(result, width: int | None = None) -> str:
         derivatives.append([name, fmt(value, 6) + units, *cells])
         elasticities.append([name, *(fmt(result.elasticity(name, key), 3) for key in keys)])
     return "\n".join([
-        f"{result.name}: how each summary moves with each key,",
+        note(f"{result.name}: how each summary moves with each key,", width),
         *lines,
-        *(f"({key} is a table: its number is its largest force, every force scaled with it)"
+        *(note(f"({key} is a table: its number is its largest force, every force scaled with it)", width)
           for key in result.tables),
-        "(derivatives exact through every switch; '-': none, the summary itself is none)", "",
+        note("(derivatives exact through every switch; '-': none, the summary itself is none)", width), "",
         fitted_table(headers, derivatives, width), "",
-        "elasticity = key / summary x derivative: the summary's relative change per relative change of the key",
+        note("elasticity = key / summary x derivative: the summary's relative change per relative change of the "
+             "key", width),
         "", fitted_table(["summary", *keys], elasticities, width)])
 
 
@@ -336,12 +239,13 @@ def sweep_sensitivity_table(result, width: int | None = None, head: int = 12, ta
     rows = list(range(count)) if count <= head + tail else [*range(head), None, *range(count - tail, count)]
     shown = [i for i in rows if i is not None]
     held = {key: float(v[0]) for key, v in result.wrt.items() if key not in result.keys and np.all(v == v[0])}
-    texts = [f"{result.scenario.name}, {count} runs: how each summary moves with each key" + ("," if held else ""),
+    texts = [note(f"{result.scenario.name}, {count} runs: how each summary moves with each key"
+                  + ("," if held else ""), width),
              *(_key_values(held, result.key_units, width) if held else []),
-             *(f"({key} is a table: its number is its largest force, every force scaled with it)"
+             *(note(f"({key} is a table: its number is its largest force, every force scaled with it)", width)
                for key in result.tables),
-             "(derivatives exact through every switch; '-': none, the summary itself is none;",
-             " elasticity = key / summary x derivative)"]
+             note("(derivatives exact through every switch; '-': none, the summary itself is none; "
+                  "elasticity = key / summary x derivative)", width)]
     for name, values in result.values.items():
         units = "" if result.units[name] == "1" else f" [{result.units[name]}]"
         headers = ["run", f"{name}{units}",

@@ -32,13 +32,16 @@ class Sensitivity:
         return units_over(self.units[summary], self.key_units[key])
 
     def to_dict(self) -> dict:
-        """``{summary: {key: {"derivative": d, "elasticity": e, "unit": "..."}}}``, SI; None where none exists."""
+        """``{summary: {"value": v, "unit": "s", key: {"derivative": d, "elasticity": e, "unit": "s/kg"}}}``,
+        SI: each summary's value (the table's) and unit beside its derivatives; None where none exists.  (A key
+        is a scenario key, never named "value" or "unit".)"""
         def number(x: float):
             return x if math.isfinite(x) else None
 
-        return {s: {k: {"derivative": number(d), "elasticity": number(self.elasticity(s, k)),
-                        "unit": self.derivative_units(s, k)}
-                    for k, d in self.derivatives[s].items()}
+        return {s: {"value": number(float(self.values[s])), "unit": self.units[s],
+                    **{k: {"derivative": number(d), "elasticity": number(self.elasticity(s, k)),
+                           "unit": self.derivative_units(s, k)}
+                       for k, d in self.derivatives[s].items()}}
                 for s in self.values}
 
 

@@ -11,8 +11,9 @@ import re
 from ..results.report import fmt, table
 
 
-def reduced_model_table(scenario) -> str:
-    """The machine as the simulator sees it: each body, the rope, then the two-shaft numbers of exercise 6."""
+def reduced_model_table(scenario, width: int | None = None) -> str:
+    """The machine as the simulator sees it: each body, the rope, then the two-shaft numbers of exercise 6;
+    within ``width`` characters (None: however wide), as :func:`hoistsim.results.report.table` wraps it."""
     from ..errors import ScenarioError
     from ..machine.assemble import machine_elements
     from ..references.model import Machine
@@ -22,7 +23,7 @@ def reduced_model_table(scenario) -> str:
     try:
         d = Machine.from_scenario(scenario).reduced()
     except ScenarioError:  # not the two-shaft hoist of exercise 6 (a motor that is not linear)
-        return table(["symbol", "quantity", "value", "unit"], rows, align="llrl")
+        return table(["symbol", "quantity", "value", "unit"], rows, align="llrl", width=width)
     force = scenario.clutch.engagement_force
     peak = max(force.forces)
     rows += [
@@ -34,7 +35,7 @@ def reduced_model_table(scenario) -> str:
         ["T_s", f"static capacity at {fmt(peak)} N", fmt(d.static_capacity(peak)), "N*m"],
         ["T_k", f"kinetic torque at {fmt(peak)} N", fmt(d.kinetic_torque(peak)), "N*m"],
     ]
-    return table(["symbol", "quantity", "value", "unit"], rows, align="llrl")
+    return table(["symbol", "quantity", "value", "unit"], rows, align="llrl", width=width)
 
 
 def body_rows(elements) -> list[list[str]]:
@@ -110,23 +111,23 @@ def rope_rows(elements) -> list[list[str]]:
     return rows
 
 
-def machine_table(scenario) -> str:
+def machine_table(scenario, width: int | None = None) -> str:
     """What ``check`` prints of a scenario's machine: the hoist's reduced model, or a drawn drivetrain (and its
-    rope); then the parts it is built from."""
+    rope); then the parts it is built from; each table within ``width`` characters (None: however wide)."""
     if scenario.drivetrain is None:
-        first = reduced_model_table(scenario)
+        first = reduced_model_table(scenario, width)
     else:
         from ..machine.assemble import machine_elements
 
         elements = machine_elements(scenario)
         rope = rope_rows(elements)  # the shafts are in the drivetrain's table; the load on its rope here
         rope = [row for row in body_rows(elements) if row[-1] == "kg"] + rope if rope else []
-        first = drivetrain_table(scenario.drivetrain) + (
-            "\n\n" + table(["symbol", "quantity", "value", "unit"], rope, align="llrl") if rope else "")
-    return first + "\n\n" + parts_table(scenario)
+        first = drivetrain_table(scenario.drivetrain, width) + (
+            "\n\n" + table(["symbol", "quantity", "value", "unit"], rope, align="llrl", width=width) if rope else "")
+    return first + "\n\n" + parts_table(scenario, width)
 
 
-def parts_table(scenario) -> str:
+def parts_table(scenario, width: int | None = None) -> str:
     """Each part of the machine, as built: its name, its kind, where it sits (a shaft's gear train, the shafts a
     coupling joins, the shafts it brings inertia to) and the scenario section it comes from."""
     from ..machine.assemble import machine_elements
@@ -144,7 +145,7 @@ def parts_table(scenario) -> str:
         else:
             where = ", ".join(dict.fromkeys(shaft for shaft, _ in part.inertias())) or "-"
         rows.append([part.section, _words(type(part).__name__), where, section])
-    return table(["part", "kind", "on", "from"], rows, align="llll")
+    return table(["part", "kind", "on", "from"], rows, align="llll", width=width)
 
 
 def _words(name: str) -> str:
@@ -152,11 +153,12 @@ def _words(name: str) -> str:
     return re.sub(r"(?<=[a-z])(?=[A-Z])", " ", name).lower()
 
 
-def drivetrain_table(drivetrain) -> str:
+def drivetrain_table(drivetrain, width: int | None = None) -> str:
     """A drawn drivetrain as ``check`` prints it: its shafts, then its clutches with their capacities at
     the largest force they are given (for a force in harmonics, the offset plus every amplitude)."""
     shafts = table(["shaft", "inertia [kg*m^2]", "speed at t = 0 [rad/s]"],
-                   [[name, fmt(s.inertia), fmt(s.speed)] for name, s in drivetrain.shafts.items()], align="lrr")
+                   [[name, fmt(s.inertia), fmt(s.speed)] for name, s in drivetrain.shafts.items()], align="lrr",
+                   width=width)
     rows = []
     for name, clutch in drivetrain.clutches.items():
         force = clutch.force
@@ -165,5 +167,5 @@ def drivetrain_table(drivetrain) -> str:
         rows.append([name, " - ".join(clutch.between), fmt(largest), fmt(clutch.static_friction * per),
                      fmt(clutch.kinetic_at_rest * per)])
     clutches = table(["clutch", "between", "largest force [N]", "capacity [N*m]", "sliding [N*m]"], rows,
-                     align="llrrr")
+                     align="llrrr", width=width)
     return shafts + ("\n\n" + clutches if rows else "")

@@ -99,6 +99,55 @@ def test_opens_in_xarray_as_one_dataset(written):
         assert "lock" in list(events["kind"].values)
 
 
+def _summary_names(group) -> list[str]:
+    """The summary variables of a file's /runs: its summary columns less the label and the swept keys."""
+    swept = json.loads(group.attrs["swept_keys"])
+    return [name for name in json.loads(group.attrs["summary_columns"]) if name != "label" and name not in swept]
+
+
+def test_every_summary_says_what_it_is_and_what_its_0_and_nan_mean(written, braked_run, tmp_path):
+    """Each summary variable (and every other) carries a long_name beside its units, in h5py and in xarray; a
+    lock-up time says that 0 is a clutch locked from the start and NaN one that never locked.  A summary-only
+    file's too."""
+    import types
+
+    import hoistsim
+    from hoistsim.results.output import write_sweep
+    from hoistsim.results.summaries import Summaries
+
+    only = tmp_path / "summaries.h5"
+    write_sweep(only, types.SimpleNamespace(scenario=braked_run.scenario, labels=["a"], parameters={}, runs=None,
+                                            summaries=Summaries.from_rows([braked_run.summary]),
+                                            summary_units=braked_run.summary_units))
+    for path in (written, only):
+        with h5py.File(path, "r") as f:
+            names = _summary_names(f["runs"])
+            assert len(names) >= 10 and "lockup_time" in names and "energy_relative_residual" in names
+            for name, data in f["runs"].items():  # the summary, and every other variable too
+                if isinstance(data, h5py.Dataset):
+                    assert str(data.attrs.get("long_name", "")).strip(), name
+            comment = f["runs/lockup_time"].attrs["comment"]
+            assert "0: locked from the start" in comment and "NaN: never locked" in comment
+            assert "comment" not in f["runs/peak_clutch_torque"].attrs  # a plain number: nothing to say
+        with hoistsim.open_results(path) as ds:
+            assert all(ds[name].attrs["long_name"] for name in names)
+            assert ds["lockup_time"].attrs["long_name"] == "time the clutch first locks"
+            assert "NaN: never locked" in ds["lockup_time"].attrs["comment"]
+
+
+def test_every_summary_of_every_shipped_scenario_has_a_meaning():
+    """The words come from the summaries' name patterns: a part's new summary without them fails here."""
+    from hoistsim.results.summary_meanings import summary_meaning
+    from hoistsim.running.simulation import scene_summary_units
+
+    for path in sorted(SCENARIOS.glob("*.yaml")):
+        for name in scene_summary_units(load_scenario(path)):
+            assert summary_meaning(name)[0], (path.name, name)
+    assert summary_meaning("clutch2_lockup_time") == ("time clutch2 first locks", summary_meaning("lockup_time")[1])
+    assert summary_meaning("d_lockup_time_d_load.mass")[0] == ("derivative of the time the clutch first locks with "
+                                                               "respect to load.mass")
+
+
 def test_reading_back_gives_the_run_as_simulated(written, braked_run):
     """The grid rows and the instants merge back into the run's own rows, value for value."""
     from hoistsim.results.reading import read_runs

@@ -111,17 +111,23 @@ def test_the_command_prints_the_derivatives_and_their_elasticities():
     from click.testing import CliRunner
 
     from hoistsim.cli import main
+    from hoistsim.results.report import fmt
 
     keys = ["clutch.kinetic_friction", "load.mass", "motor.inertia"]
     args = ["sensitivity", str(ENGAGE), "--wrt", ",".join(keys), "--of", "lockup_time,slip_energy",
             *(option for pair in TIGHT for option in ("--set", pair))]
-    shown = CliRunner().invoke(main, args)
+    shown = CliRunner(env={"COLUMNS": "80"}).invoke(main, args)
     assert shown.exit_code == 0, shown.output
+    assert max(len(line) for line in shown.stdout.splitlines()) <= 80, shown.stdout  # the notes wrapped too
     assert "d/d load.mass" in shown.stdout and "s/kg" in shown.stdout and "J/(kg*m^2)" in shown.stdout
     assert "elasticity" in shown.stdout and "clutch.kinetic_friction = 0.1" in shown.stdout
     printed = json.loads(CliRunner().invoke(main, [*args, "--json"]).stdout)
     result = sensitivity(load_scenario(ENGAGE, overrides=TIGHT), keys, of=["lockup_time", "slip_energy"])
-    assert set(printed) == {"lockup_time", "slip_energy"}  # {summary: {key: {derivative, elasticity, unit}}}
+    # {summary: {"value": v, "unit": u, key: {derivative, elasticity, unit}}}
+    assert set(printed) == {"lockup_time", "slip_energy"}
+    for name, unit in (("lockup_time", " s"), ("slip_energy", " J")):  # the value the table prints, its unit
+        assert printed[name]["value"] == result.values[name] and printed[name]["unit"] == unit.strip()
+        assert f"{fmt(result.values[name], 6)}{unit}" in shown.stdout
     for name in ("lockup_time", "slip_energy"):
         for key in keys:
             entry = printed[name][key]

@@ -105,6 +105,9 @@ def test_the_command_prints_a_table_a_summary_and_writes_the_derivatives_as_summ
     data = xr.open_dataset(out, group="runs", engine="h5netcdf")
     assert data["d_lockup_time_d_load.mass"].attrs["units"] == "s/kg"
     assert data["d_slip_energy_d_motor.inertia"].attrs["units"] == "J/(kg*m^2)"
+    assert data["d_lockup_time_d_load.mass"].attrs["long_name"] == ("derivative of the time the clutch first locks "
+                                                                    "with respect to load.mass")
+    assert "NaN: never locked" in data["lockup_time"].attrs["comment"]  # the summaries in words, as a run's file
     np.testing.assert_array_equal(data["d_slip_energy_d_clutch.kinetic_friction"].values,
                                   result.derivatives["slip_energy"]["clutch.kinetic_friction"])
     np.testing.assert_array_equal(data["load.mass"].values, [300.0, 500.0, 1500.0])

@@ -120,8 +120,8 @@ def test_cli_sweep_summary_only_compare_and_plot(tmp_path):
     assert len(forces) == 64 and (forces[0], forces[-1]) == ("3000", "12000")
     assert lines[rule - 1].split()[:2] == ["[N]", "[s]"] and lines[-1].startswith("(") and "--columns" in lines[-1]
     chosen = CliRunner().invoke(main, ["compare", str(out), "--columns", "label,slip_energy,lockup_time"])
-    assert [line.split() for line in chosen.output.splitlines()[:2]] == [["slip_", "lockup_"],
-                                                                         ["label", "energy", "time"]]
+    assert [line.split() for line in chosen.output.splitlines()[:3]] == [["clutch"], ["run", "heat", "lock-up"],
+                                                                         ["[kJ]", "[s]"]]  # as `run` heads them
     rows = list(csv.DictReader(io.StringIO(CliRunner().invoke(main, ["compare", str(out), "--csv"]).output)))
     units, rows = rows[0], rows[1:]  # a units row under the header
     assert units["clutch.engagement_force"] == "N" and units["slip_energy"] == "J" and units["label"] == ""

@@ -15,8 +15,9 @@ ROPE_FILE = SCENARIOS / "brake_stop_on_an_elastic_rope.yaml"  # 500 kg on 20 m o
 
 
 def _rows(path) -> dict[str, list[str]]:
-    """`check`'s symbol rows: symbol -> [quantity words..., value, unit]."""
-    result = CliRunner().invoke(main, ["check", str(path)])
+    """`check`'s symbol rows: symbol -> [quantity words..., value, unit] (a row a line: on a terminal as wide
+    as its longest)."""
+    result = CliRunner(env={"COLUMNS": "200"}).invoke(main, ["check", str(path)])
     assert result.exit_code == 0, result.output
     rows = {}
     for line in result.output.splitlines():
