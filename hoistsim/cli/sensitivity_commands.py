@@ -93,47 +93,62 @@ def sensitivity(scenario, wrt, of, as_json, series, output, overrides, sweeps):
 @click.option("--match", required=True, metavar="SERIES,...", help="The series to match, e.g. motor_speed,drum_speed.")
 @click.option("--fit", "keys", required=True, metavar="KEY,...",
               help="The scenario keys to fit, each holding a number, e.g. "
-                   "clutch.static_friction,clutch.kinetic_friction; they start at the scenario's values.")
+                   "clutch.static_friction,clutch.kinetic_friction; they start from the best of --starts points swept "
+                   "over their ranges, or the scenario's values where none is better.")
 @click.option("--bounds", multiple=True, metavar="KEY=LO:HI",
               help='Hold a fitted key within LO and HI, e.g. --bounds "clutch.kinetic_friction=0.05:0.2". Repeatable.')
+@click.option("--range", "ranges", multiple=True, metavar="KEY=LO:HI",
+              help='Where to look for a fitted key before the fit starts, e.g. --range "load.mass=50 kg:2 t" '
+                   "(repeatable, or comma separated); default: its --bounds, else what a real part's value lies "
+                   "in, else a third to three times the scenario's value.")
+@click.option("--starts", type=click.IntRange(min=0), default=256, show_default=True, metavar="COUNT",
+              help="Starting points swept over the keys' ranges, all in one compiled call; the fit starts from "
+                   "the one whose run meets the trace best (0: from the scenario's values).")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), metavar="FITTED.yaml",
-              help="Also write the scenario with the fitted values (its comments kept), atomically.")
+              help="Also write the scenario with the fitted values, atomically: only the fitted keys' lines "
+                   "change, each commented with the trace, the fit's RMS and the key's interval.")
 @click.option("--plot", "figure", type=click.Path(dir_okay=False), metavar="FIG.png",
               help="Also draw each matched series measured against fitted, with the residual (.png, .svg, .pdf).")
-@click.option("--json", "as_json", is_flag=True, help="Print the fitted values, errors and intervals as JSON (SI).")
+@click.option("--json", "as_json", is_flag=True,
+              help="Print the fitted values, errors, intervals, residual checks and warnings as JSON (SI).")
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a scenario key.")
 @strict_option
 @debug_option
 @one_line_errors
-def fit(scenario, measured, match, keys, bounds, output, figure, as_json, overrides):
-    """Fit keys of SCENARIO to a trace measured on a rig: least squares of the run's series against the
-    measured columns at the measured times (Levenberg-Marquardt with the exact Jacobian, through every
-    switch), each key with its standard error and 95 % interval; -o writes the fitted scenario."""
+def fit(scenario, measured, match, keys, bounds, ranges, starts, output, figure, as_json, overrides):
+    """Fit keys of SCENARIO to a trace measured on a rig: the keys' ranges swept first, then least squares
+    of the run's series against the measured columns at the measured times (Levenberg-Marquardt with the
+    exact Jacobian, through every switch), each key with its standard error and 95 % interval; a key the
+    trace does not determine, or residuals far from the noise or patterned, are warned of; -o writes the
+    fitted scenario."""
     import json
     from pathlib import Path
 
     from .. import _jax
     from ..results.atomic import atomic_path
-    from ..results.report import fit_table
     from ..running.simulation import SimulationError
     from ..studies.fit import fit as fit_keys
-    from ..studies.fit import fitted_text, parse_bounds
+    from ..studies.fit import parse_ranges
+    from ..studies.fit_report import fit_report
+    from ..studies.fitted_yaml import fitted_text
 
     if figure is not None and Path(figure).suffix.lower() not in (".png", ".svg", ".pdf"):
         fail(f"{figure}: the figure must be .png, .svg or .pdf")
     if output is not None and Path(output).suffix.lower() not in (".yaml", ".yml"):
         fail(f"{output}: the fitted scenario is written as YAML: name it .yaml")
     scenario = read_scenario(scenario, overrides)
-    limits = parse_bounds(list(bounds))
+    limits = parse_ranges(list(bounds), "--bounds")
+    spans = parse_ranges(list(ranges), "--range")
     _jax.enable_compilation_cache()
     _jax.compile_notice = compiling
     try:
-        result = fit_keys(scenario, measured, _names(match), _names(keys), limits)
+        result = fit_keys(scenario, measured, _names(match), _names(keys), limits, spans, starts)
     except SimulationError as exc:
         fail(str(exc), RUN_FAILED)
     if output is not None:
+        text = fitted_text(result)
         with atomic_path(output) as path:
-            path.write_text(fitted_text(result), encoding="utf-8")
+            path.write_text(text, encoding="utf-8")
     if figure is not None:
         from ..figures.fit import fit_figure
 
@@ -142,7 +157,9 @@ def fit(scenario, measured, match, keys, bounds, output, figure, as_json, overri
     if as_json:
         click.echo(json.dumps(result.to_dict(), indent=2))
     else:
-        click.echo(fit_table(scenario.name, result))
+        click.echo(fit_report(scenario.name, result, table_width()))
+    for warning in result.warnings:
+        click.echo(f"hoistsim: warning: {warning}", err=True)
     written = [name for name in (output, figure) if name is not None]
     if written:
         click.echo(f"wrote {' and '.join(written)}", err=as_json)

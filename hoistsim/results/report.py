@@ -259,22 +259,3 @@ def sweep_sensitivity_table(result, width: int | None = None, head: int = 12, ta
                       for i in rows]
         texts += ["", fitted_table(headers, table_rows, width)]
     return "\n".join(texts)
-
-
-def fit_table(name: str, result) -> str:
-    """A :class:`hoistsim.studies.fit.FitResult` as tables: each key's start, fitted value, standard error
-    and 95 % interval in its units; each matched series' residual RMS in the trace's unit."""
-    keys = [[key, fmt(result.start[key], 6), fmt(result.values[key], 6), fmt(result.standard_errors[key], 3),
-             f"{fmt(result.intervals[key][0], 6)} to {fmt(result.intervals[key][1], 6)}",
-             "" if result.key_units[key] == "1" else result.key_units[key]] for key in result.keys]
-    trace = result.trace
-    rms = [[column, fmt(float(trace.shown(column, result.residual_rms[column]) - trace.shown(column, 0.0)), 4),
-            trace.written[column]] for column in result.residual_rms]
-    state = (f"converged in {result.iterations} iterations" if result.converged
-             else f"not converged after {result.iterations} iterations")
-    return "\n".join([
-        f"{name}: fitted to {trace.source} ({trace.time.size} times from {trace.time[0]:g} to {trace.time[-1]:g} s; "
-        f"{state})", "",
-        table(["key", "start", "fitted", "std error", "95 % interval", "unit"], keys, align="lrrrrl"), "",
-        table(["series", "residual RMS", "unit"], rms, align="lrl")])
-

@@ -7,7 +7,7 @@ the input drives, when the output drives]``, read at the size of the input shaft
 
 from __future__ import annotations
 
-from typing import Annotated, Any
+from typing import Annotated
 
 from pydantic import BeforeValidator
 

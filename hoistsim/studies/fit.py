@@ -13,11 +13,18 @@ projection, and a step the scenario refuses (a kinetic friction above the
 static) is a rejected step.  At the optimum: the residual variance
 s^2 = |r|^2 / (m - n), the covariance s^2 (J^T J)^-1, each key's standard error
 and its 95 % interval from Student's t with m - n degrees of freedom.
+
+Before it the keys' ranges are swept (:mod:`.fit_starts`): a start where the
+trace cannot see a key (its Jacobian column zero) would leave that key where it
+is.  After it, a key the trace does not determine gets no interval, and
+residuals far from the noise or patterned are said to be so
+(:mod:`.fit_checks`).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 
 import numpy as np
@@ -30,6 +37,8 @@ from ..running.key_directions import key_value, stacked_directions, value_to_set
 from ..scenario.keys import key_units
 from ..scenario.loading import Scenario
 from ..scenario.sweep_spec import with_swept_value
+from .fit_checks import NOT_SEEN, ResidualCheck, residual_check, residual_warnings, undetermined
+from .fit_starts import STARTS, SweptStart, best_start, key_ranges
 from .measured_trace import Trace, read_trace
 
 MAX_ITERATIONS = 60
@@ -39,13 +48,14 @@ COST_RTOL, STEP_RTOL = 1e-10, 1e-9
 
 @dataclasses.dataclass
 class FitResult:
-    """The fitted keys (SI), their standard errors and 95 % intervals, the residuals, and the fitted run."""
+    """The fitted keys (SI), their standard errors and 95 % intervals (None for a key the trace does not
+    determine), the residuals and what they say, and the fitted run."""
 
     keys: list[str]
-    start: dict[str, float]
+    start: dict[str, float]  # where Levenberg-Marquardt started: the sweep's best, or the scenario's values
     values: dict[str, float]
-    standard_errors: dict[str, float]
-    intervals: dict[str, tuple[float, float]]
+    standard_errors: dict[str, float | None]
+    intervals: dict[str, tuple[float, float] | None]
     key_units: dict[str, str]
     residual_rms: dict[str, float]  # column -> RMS of measured - fitted, in the series' units
     trace: Trace
@@ -53,23 +63,39 @@ class FitResult:
     scenario: Scenario  # the scenario with the fitted values
     iterations: int
     converged: bool
-    correlation: np.ndarray  # between the fitted keys
-    at_start: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)  # the run at the starting values
+    correlation: np.ndarray  # between the fitted keys (NaN for an undetermined one)
+    at_start: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)  # the run at the scenario's values
+    given: dict[str, float] = dataclasses.field(default_factory=dict)  # the scenario's values
+    undetermined: dict[str, str] = dataclasses.field(default_factory=dict)  # key -> why the trace does not
+    checks: dict[str, ResidualCheck] = dataclasses.field(default_factory=dict)  # column -> its residuals' check
+    swept: SweptStart | None = None  # the sweep of starting points, where there was one
+    warnings: list[str] = dataclasses.field(default_factory=list)
+
+    @property
+    def sound(self) -> bool:
+        """Converged, every key determined, and the residuals the noise."""
+        return self.converged and not self.warnings
 
     def to_dict(self) -> dict:
-        """``{key: {"value": v, "standard_error": s, "interval_95": [lo, hi]}, "rms": r}`` in SI: ``r`` the RMS of
-        every matched series' residuals, each in its series' SI unit."""
+        """``{key: {"value": v, "standard_error": s, "interval_95": [lo, hi], "determined": yes}, "rms": r,
+        "residuals": {series: {...}}, "warnings": [...]}`` in SI: ``r`` the RMS of every matched series'
+        residuals, each in its series' SI unit; an undetermined key's error and interval null."""
         pooled = [self.fitted[name] - self.trace.columns[name] for name in self.fitted]
-        return {**{key: {"value": self.values[key], "standard_error": self.standard_errors[key],
-                         "interval_95": list(self.intervals[key])} for key in self.keys},
-                "rms": float(np.sqrt(np.mean(np.concatenate(pooled) ** 2)))}
+        keys = {key: {"value": self.values[key], "standard_error": self.standard_errors[key],
+                      "interval_95": None if self.intervals[key] is None else list(self.intervals[key]),
+                      "determined": key not in self.undetermined} for key in self.keys}
+        return {**keys, "rms": float(np.sqrt(np.mean(np.concatenate(pooled) ** 2))),
+                "residuals": {name: check.to_dict() for name, check in self.checks.items()},
+                "warnings": list(self.warnings)}
 
 
 def fit(scenario: Scenario, measured, match: list[str], keys: list[str],
-        bounds: dict[str, tuple[float, float]] | None = None) -> FitResult:
+        bounds: dict[str, tuple[float, float]] | None = None, ranges: dict[str, tuple[float, float]] | None = None,
+        starts: int = STARTS) -> FitResult:
     """Fit ``keys`` (dotted scenario keys holding numbers) so that the run's series ``match`` meet the trace
     ``measured`` (a CSV path, see :mod:`.measured_trace`, or a :class:`Trace`) at its times; ``bounds``: key
-    -> (low, high) in SI."""
+    -> (low, high) in SI; ``ranges``: key -> (low, high) in SI, where ``starts`` starting points are swept
+    (:mod:`.fit_starts`; 0: from the scenario's values alone)."""
     if scenario.sweep:
         raise ScenarioError("sweep", "a fit is of one run: remove the sweep")
     if not keys:
@@ -83,17 +109,21 @@ def fit(scenario: Scenario, measured, match: list[str], keys: list[str],
             raise ScenarioError("--match", f"no series {name!r} in this scene; it has {', '.join(columns)}")
     trace = measured if isinstance(measured, Trace) else read_trace(
         measured, match, {name: units for name, (units, _) in columns.items()}, float(scenario.simulation.duration))
-    start = np.array([key_value(scenario, key, "--fit") for key in keys])
-    low, high = _bounds(keys, bounds or {})
-    if np.any((start < low) | (start > high)):
-        k = int(np.flatnonzero((start < low) | (start > high))[0])
-        raise ScenarioError(f"--bounds {keys[k]}", f"the scenario's value {start[k]:g} is outside {low[k]:g}:{high[k]:g}")
+    given = np.array([key_value(scenario, key, "--fit") for key in keys])
+    low, high = _bounds(keys, bounds or {}, "--bounds")
+    if np.any((given < low) | (given > high)):
+        k = int(np.flatnonzero((given < low) | (given > high))[0])
+        raise ScenarioError(f"--bounds {keys[k]}",
+                            f"the scenario's value {given[k]:g} is outside {low[k]:g}:{high[k]:g}")
+    _bounds(keys, ranges or {}, "--range")
     if trace.time.size <= len(keys):
         raise ScenarioError("--measured", f"{trace.time.size} measured times cannot fit {len(keys)} keys",
                             source=trace.source)
     model = _Model(scenario, keys, trace, match)
     weights = np.array([1.0 / _spread(trace.columns[name]) for name in match])
-    scale = np.where(start != 0, np.abs(start), 1.0)
+
+    def cost_of(rows) -> float:
+        return float(sum(np.sum(((rows[name] - trace.columns[name]) * w) ** 2) for name, w in zip(match, weights)))
 
     def residuals(values):
         rows, jacobian = model(values)
@@ -103,26 +133,68 @@ def fit(scenario: Scenario, measured, match: list[str], keys: list[str],
         j = np.concatenate([jacobian[name] * w for name, w in zip(match, weights)])
         return r, j
 
-    at_start, _ = model(start)
+    swept = None
+    if starts > 0:
+        spans = key_ranges(given, keys, ranges or {}, low, high)
+        swept = best_start(model, given, spans, starts, cost_of) if spans else None
+    start = swept.values if swept is not None else given
+    at_start, _ = model(given)
+    scale = np.where(start != 0, np.abs(start), 1.0)
     values, r, j, iterations, converged = _levenberg_marquardt(residuals, start, scale, low, high)
+    values, r, j = _unseen_given_back(residuals, values, r, j, given, keys)
+    reasons = undetermined(j, values, keys)
+    seen = np.array([key not in reasons for key in keys])
     m, n = r.size, len(keys)
     variance = float(r @ r) / (m - n)
-    covariance = variance * np.linalg.pinv(j.T @ j)
+    covariance = np.full((n, n), np.nan)
+    if np.any(seen):
+        information = j[:, seen].T @ j[:, seen]
+        covariance[np.ix_(seen, seen)] = variance * np.linalg.pinv(information)
     errors = np.sqrt(np.maximum(np.diag(covariance), 0.0))
     from scipy.stats import t as student
 
     spread = float(student.ppf(0.975, m - n))
     rows, _ = model(values)
-    rms = {name: float(np.sqrt(np.mean((rows[name] - trace.columns[name]) ** 2))) for name in match}
+    checks = {name: residual_check(trace.columns[name] - rows[name]) for name in match}
     with np.errstate(invalid="ignore", divide="ignore"):
         correlation = covariance / np.outer(errors, errors)
+    warnings = [f"{key}: {why}: undetermined" for key, why in reasons.items()]
+    for name, check in checks.items():
+        warnings += residual_warnings(name, check, functools.partial(_amount, trace, name))
+    if not converged:
+        warnings.append(f"not converged after {iterations} iterations: the values are where the fit stopped")
     return FitResult(
         keys=list(keys), start=dict(zip(keys, start.tolist())), values=dict(zip(keys, values.tolist())),
-        standard_errors=dict(zip(keys, errors.tolist())),
-        intervals={key: (v - spread * e, v + spread * e) for key, v, e in zip(keys, values, errors)},
-        key_units={key: key_units(key) or "1" for key in keys}, residual_rms=rms, trace=trace, fitted=rows,
+        standard_errors={key: None if key in reasons else float(e) for key, e in zip(keys, errors)},
+        intervals={key: None if key in reasons else (v - spread * e, v + spread * e)
+                   for key, v, e in zip(keys, values, errors)},
+        key_units={key: key_units(key) or "1" for key in keys},
+        residual_rms={name: check.rms for name, check in checks.items()}, trace=trace, fitted=rows,
         scenario=model.scenario_at(values), iterations=iterations, converged=converged, correlation=correlation,
-        at_start=at_start or {})
+        at_start=at_start or {}, given=dict(zip(keys, given.tolist())), undetermined=reasons, checks=checks,
+        swept=swept, warnings=warnings)
+
+
+def _amount(trace: Trace, name: str, value: float) -> str:
+    """An amount (a difference) of a matched series, in SI, as text in the unit the trace writes it in."""
+    shown = float(trace.shown(name, value) - trace.shown(name, 0.0))
+    return f"{shown:.3g} {trace.written[name]}"
+
+
+def _unseen_given_back(residuals, values, r, j, given, keys):
+    """Keys the trace does not see at the optimum (a zero column) back at the scenario's values where that
+    leaves the residuals as they are: the sweep's start put them anywhere in their ranges, and nothing in
+    the trace says where."""
+    reasons = undetermined(j, values, keys)
+    unseen = [k for k, key in enumerate(keys) if reasons.get(key) == NOT_SEEN and values[k] != given[k]]
+    if not unseen:
+        return values, r, j
+    trial = values.copy()
+    trial[unseen] = given[unseen]
+    r_new, j_new = residuals(trial)
+    if r_new is None or float(r_new @ r_new) > float(r @ r) * (1 + 1e-9) + 1e-300:
+        return values, r, j
+    return trial, r_new, j_new
 
 
 def _spread(values: np.ndarray) -> float:
@@ -131,15 +203,16 @@ def _spread(values: np.ndarray) -> float:
     return spread if spread > 0 else max(float(np.max(np.abs(values))), 1.0)
 
 
-def _bounds(keys: list[str], bounds: dict) -> tuple[np.ndarray, np.ndarray]:
+def _bounds(keys: list[str], bounds: dict, option: str) -> tuple[np.ndarray, np.ndarray]:
+    """Each key's (low, high) of ``bounds`` (or of ``--range``), unbounded where not given."""
     for key in bounds:
         if key not in keys:
-            raise ScenarioError(f"--bounds {key}", f"is not a fitted key ({', '.join(keys)})")
+            raise ScenarioError(f"{option} {key}", f"is not a fitted key ({', '.join(keys)})")
     low = np.array([bounds.get(key, (-math.inf, math.inf))[0] for key in keys], dtype=float)
     high = np.array([bounds.get(key, (-math.inf, math.inf))[1] for key in keys], dtype=float)
     if np.any(low >= high):
         k = int(np.flatnonzero(low >= high)[0])
-        raise ScenarioError(f"--bounds {keys[k]}", f"the low end {low[k]:g} is not below the high {high[k]:g}")
+        raise ScenarioError(f"{option} {keys[k]}", f"the low end {low[k]:g} is not below the high {high[k]:g}")
     return low, high
 
 
@@ -178,6 +251,7 @@ class _Model:
 
     def __init__(self, scenario: Scenario, keys: list[str], trace: Trace, match: list[str]):
         self.base, self.keys, self.trace, self.match = scenario, keys, trace, match
+        self.solver = scenario.simulation.solver
         self.seen: dict[tuple, tuple] = {}
 
     def scenario_at(self, values) -> Scenario:
@@ -203,8 +277,7 @@ class _Model:
             return None, None
         plan, _ = build_plan(scenario, summary_only=True)
         times = self.trace.time
-        grid = np.concatenate([times, np.full(_padded_size(times.size) - times.size, times[-1])])
-        plan = dataclasses.replace(plan, grid=grid)
+        plan = dataclasses.replace(plan, grid=self.trace.grid())
         directions = stacked_directions(scenario, self.keys, dict(zip(self.keys, values)), plan, "--fit")
         readout, _, tangents, _, _ = differentiated(plan, directions, scenario.simulation.solver, columns=True)
         if readout.status != OK:
@@ -217,30 +290,38 @@ class _Model:
         return found, jacobian
 
 
-def _padded_size(count: int) -> int:
-    return max(64, 1 << int(np.ceil(np.log2(count))))
-
-
-def parse_bounds(items: list[str]) -> dict[str, tuple[float, float]]:
-    """``KEY=LO:HI`` (each end a number in the key's SI unit, or with its unit) -> {key: (lo, hi)} in SI."""
+def parse_ranges(items: list[str], option: str = "--bounds") -> dict[str, tuple[float, float]]:
+    """``KEY=LO:HI`` (each end a number in the key's SI unit, or with its unit; several to an item, comma
+    separated) -> {key: (lo, hi)} in SI."""
     from ..scenario.keys import field_at
     from ..scenario.units import UnitError, dimension_of, to_si
 
     out = {}
-    for item in items:
+    for item in (part for given in items for part in _assignments(given)):
         key, sep, text = item.partition("=")
         ends = text.split(":")
         if not sep or len(ends) != 2:
-            raise ScenarioError("--bounds", f"expected KEY=LO:HI, like clutch.kinetic_friction=0.05:0.2, got {item!r}")
+            raise ScenarioError(option, f"expected KEY=LO:HI, like clutch.kinetic_friction=0.05:0.2, got {item!r}")
         field = field_at(key.strip())
         dimension = dimension_of(field) if field is not None else None
         try:
             lo, hi = (to_si(_number_or_text(end), dimension) if dimension is not None else float(end)
                       for end in ends)
         except (UnitError, ValueError) as exc:
-            raise ScenarioError(f"--bounds {key.strip()}", str(exc)) from None
+            raise ScenarioError(f"{option} {key.strip()}", str(exc)) from None
         out[key.strip()] = (lo, hi)
     return out
+
+
+def _assignments(text: str) -> list[str]:
+    """``a=1:2,b=3 kg:4 kg`` -> the assignments; a comma not followed by a new ``KEY=`` stays in its value."""
+    parts: list[str] = []
+    for piece in text.split(","):
+        if parts and "=" not in piece:
+            parts[-1] += "," + piece
+        else:
+            parts.append(piece)
+    return [part.strip() for part in parts if part.strip()]
 
 
 def _number_or_text(text: str):
@@ -248,28 +329,3 @@ def _number_or_text(text: str):
         return float(text)
     except ValueError:
         return text.strip()
-
-
-def fitted_text(result: FitResult) -> str:
-    """The scenario's text with each fitted key set to its fitted value (its unit written), comments kept."""
-    import io
-
-    from ..scenario.yamlsource import yaml_reader
-
-    yaml = yaml_reader()
-    tree = yaml.load(io.StringIO(result.scenario.provenance.text))
-    for key in result.keys:
-        node, *path = [tree, *key.split(".")]
-        for part in path[:-1]:
-            node = node[int(part)] if isinstance(node, list) else node[part]
-        units = result.key_units[key]
-        held = node[path[-1]]
-        value = result.values[key]
-        if isinstance(held, list):  # a force table: every force scaled as the fit scaled its largest
-            node[path[-1]] = [[f"{t:.6g} s", f"{f:.6g} N"] for t, f in value_to_set(result.scenario, key, value)]
-        else:
-            node[path[-1]] = float(f"{value:.6g}") if units == "1" else f"{value:.6g} {units}"
-    out = io.StringIO()
-    yaml.dump(tree, out)
-    return out.getvalue()
-

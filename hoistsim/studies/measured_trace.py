@@ -39,6 +39,12 @@ class Trace:
         """Values of a column in the series' units, back in the unit the file writes it in."""
         return _converted(values, self.units[name], self.written[name])
 
+    def grid(self) -> np.ndarray:
+        """The run's output times: the measured times, padded with the last to a power of two (at least 64), so
+        that traces of like lengths share one compiled program."""
+        padded = max(64, 1 << int(np.ceil(np.log2(self.time.size))))
+        return np.concatenate([self.time, np.full(padded - self.time.size, self.time[-1])])
+
 
 def read_trace(path: str | Path, match: list[str], series_units: dict[str, str], duration: float) -> Trace:
     """The columns ``match`` of a measured CSV trace and its ``time`` column, each in the units of the run's
