@@ -17,7 +17,7 @@ def _headline(summary: dict) -> str | None:
 LOAD = Display(
     panels=(
         Panel("load_position", "load height [m]\n(above its start)", 30,
-              (Trace("load", "load_position", marks=("load_lowest",)),), zero_line=True, height=0.8),
+              (Trace("load", "load_position", lowest="lowest point"),), zero_line=True, height=0.8),
         Panel("load_velocity", "load speed [m/s]\n(+ up)", 31, (Trace("load", "load_velocity"),),
               zero_line=True, height=0.8),
     ),

@@ -26,7 +26,10 @@ class Trace:
     capacity) is drawn thin and dotted, and left out of a family of many runs.
     ``marks`` are observation kinds marked on the curve where they happened
     (a turnaround, a lock); ``marks_of`` keeps those of one element (its
-    section: the locks of this coupling, not another's).
+    section: the locks of this coupling, not another's).  ``lowest`` names the
+    curve's lowest point, marked once where the curve goes below zero (a load
+    that ran back below its start): the run's own minimum, wherever it lies (the
+    end of a run still falling), not each turn of a ringing.
     """
 
     label: str
@@ -37,6 +40,7 @@ class Trace:
     limit: bool = False
     marks: tuple[str, ...] = ()
     marks_of: str | None = None
+    lowest: str | None = None
 
     def columns(self) -> tuple[str, ...]:
         return self.needs or (self.column,)

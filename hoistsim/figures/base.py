@@ -1,4 +1,5 @@
-"""What the figures share: a swept key's display units and label, a run's colour by its swept value."""
+"""What the figures share: a swept key's display units and label, a run's colour by its swept value, an event
+row's text."""
 
 from __future__ import annotations
 
@@ -33,3 +34,9 @@ def colour_scale(values, plt):
     norm = plt.Normalize(low, high)
     cmap = ListedColormap(plt.get_cmap("viridis")(np.linspace(0.0, 0.9, 256)))
     return cmap(norm(values)), cmap, norm
+
+
+def row_text(row, name: str) -> str:
+    """A text field of an event row (its kind, element, category), "" where the file has none."""
+    value = row[name] if name in (row.dtype.names or ()) else ""
+    return value.decode() if isinstance(value, bytes) else str(value)

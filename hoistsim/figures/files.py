@@ -34,36 +34,42 @@ def plot_file(path, output, *, frames=None, png_compression: int = 6) -> list[st
     import matplotlib.pyplot as plt
 
     from .frames import DPI, FreshFrames
-    from .runs import runs_figure
-    from .summary import summary_figure
 
     frames = frames or FreshFrames()
-
     output = Path(output)
-    summaries = read_summary(path)
-    swept = swept_axis(path, summaries)
-    runs = read_runs(path, columns=runs_columns(), attributes=("label", "name", *read_swept_keys(path)))
     written = []
-
-    def save(fig, target):
+    for suffix, fig in draw_figures(path, plt, frames):
+        target = output.with_name(output.stem + suffix + output.suffix)
         with atomic_path(target) as partial:  # a figure open in a viewer is replaced whole, never half-drawn
             form = target.suffix[1:].lower()
             fig.savefig(partial, dpi=DPI, format=form,
                         **({"pil_kwargs": {"compress_level": png_compression}} if form == "png" else {}))
         frames.done(plt, fig)
         written.append(str(target))
+    return written
 
+
+def draw_figures(path, plt, frames):
+    """The figures of a results file, each as it is drawn: (what its file's name adds to OUT's stem, the figure).
+
+    The caller lets each go (``frames.done``) before it takes the next.
+    """
+    from .runs import runs_figure
+    from .summary import summary_figure
+
+    summaries = read_summary(path)
+    swept = swept_axis(path, summaries)
+    runs = read_runs(path, columns=runs_columns(), attributes=("label", "name", *read_swept_keys(path)))
     if runs:
-        save(runs_figure(runs, plt, swept, frames), output)
+        yield "", runs_figure(runs, plt, swept, frames)
     periodic = [run for run in runs if "turning_moment" in run]
     if periodic:  # the first run's periodic regime: its turning-moment diagram and speed over a period
         from .periodic import periodic_figure
 
-        save(periodic_figure(periodic[0], plt), output.with_name(output.stem + "_periodic" + output.suffix))
+        yield "_periodic", periodic_figure(periodic[0], plt)
     if len(summaries) > 1 or not runs:
-        target = output.with_name(output.stem + "_summary" + output.suffix) if runs else output
-        save(summary_figure(summaries, swept, plt, scenario_name(path), scenario_parameters(path)), target)
-    return written
+        yield "_summary" if runs else "", summary_figure(summaries, swept, plt, scenario_name(path),
+                                                          scenario_parameters(path))
 
 
 def draw_runs_figure(runs, output, *, frames=None, png_compression: int = 6) -> "FigureWriting":

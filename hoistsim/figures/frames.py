@@ -22,13 +22,15 @@ DPI = 150
 
 @dataclass(frozen=True)
 class FrameSpec:
-    """What fixes a frame: the panels' height ratios, the figure's size, its layout, and each panel's
-    right-hand scale (its label, or None)."""
+    """What fixes a frame: the panels' height ratios, the figure's size, its layout, each panel's
+    right-hand scale (its label, or None), and whether a column of panels enlarges a burst of events
+    (:mod:`.zoom`)."""
 
     heights: tuple[float, ...]
     figsize: tuple[float, float]
     layout: str | None
     right: tuple[str | None, ...]
+    zoom: bool = False
 
 
 class RightScale:
@@ -50,6 +52,7 @@ class Frame:
     axes: list
     right: list  # a RightScale per panel, or None
     bare: dict  # each panel's and the figure's own artists, before a run drew on them
+    zooms: list  # beside each panel, its enlarged burst of events (same vertical scale); empty without one
 
     def empty(self) -> None:
         """Take away what a run drew, and let the panels scale to the next run's data."""
@@ -57,24 +60,27 @@ class Frame:
             for artist in list(holder.get_children()):
                 if artist not in bare:
                     artist.remove()
-        for ax in self.axes:
+        for ax in self.axes + self.zooms:
             ax.relim()  # the data limits of what is left: none
             ax.set_autoscale_on(True)
 
 
 def new_frame(plt, spec: FrameSpec) -> Frame:
-    fig, axes = plt.subplots(len(spec.heights), 1, sharex=True, squeeze=False, layout=spec.layout,
-                             figsize=spec.figsize, height_ratios=list(spec.heights), dpi=DPI)
-    axes = list(axes[:, 0])
+    columns = 2 if spec.zoom else 1
+    fig, grid = plt.subplots(len(spec.heights), columns, sharex="col", sharey="row", squeeze=False,
+                             layout=spec.layout, figsize=spec.figsize, height_ratios=list(spec.heights), dpi=DPI)
+    axes, zooms = list(grid[:, 0]), list(grid[:, 1]) if spec.zoom else []
+    for zoom in zooms:  # the panel's scale, read off the panel on its left
+        zoom.tick_params(axis="y", labelleft=False)
     right = []
-    for ax, label in zip(axes, spec.right):
+    for ax, label in zip(zooms or axes, spec.right):  # the scale on the right of the row
         if label is None:
             right.append(None)
             continue
         scale = RightScale()
         ax.secondary_yaxis("right", functions=(scale.forward, scale.inverse)).set_ylabel(label)
         right.append(scale)
-    return Frame(fig, axes, right, {holder: set(holder.get_children()) for holder in (fig, *axes)})
+    return Frame(fig, axes, right, {holder: set(holder.get_children()) for holder in (fig, *axes, *zooms)}, zooms)
 
 
 class FreshFrames:
@@ -102,6 +108,7 @@ class KeptFrames(FreshFrames):
             return new_frame(plt, spec)
         if spec == self._spec and self._frame is not None:
             self._frame.empty()
+            self._frame.fig.set_size_inches(spec.figsize)  # the last figure was made taller for its events' names
             return self._frame
         if self._frame is not None:
             plt.close(self._frame.fig)

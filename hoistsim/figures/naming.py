@@ -1,10 +1,13 @@
 """The texts of a run's figure that must not run into each other: its events' names at the top, its title.
 
-An event's name stands upright beside its line at the top of the first panel.  Two events closer than
-a name's width (two clutches switching in the same millisecond, a clutch locking as another engages)
-would write over each other: one is named on the left of its line, or where neither side has room
-their names are merged into one, beside the last of their lines ("clutch3 engage / clutch1 lock").  The title says each part's headline; a drivetrain of several
-clutches says more than a line holds, so it is wrapped between the parts' headlines.
+An event's name stands upright above the first panel, beside where its line meets the panel's top: in a
+band of its own, so that no name is written over a curve or crossed by another event's line.  Two events
+closer than a name's width (two clutches switching in the same millisecond, a clutch locking as another
+engages) would write over each other: one is named on the left of its line, or where neither side has room
+their names are merged into one, beside the last of their lines ("clutch3 engage / clutch1 lock").  Two names
+side by side stand a name's width apart, so that neither reads as touching the other.  The title says each
+part's headline; a drivetrain of several clutches says more than a line holds, so it is wrapped between the
+parts' headlines.
 """
 
 from __future__ import annotations
@@ -13,14 +16,16 @@ import textwrap
 
 FONT = 7.0  # pt: an event's name
 BESIDE = 2.0  # pt: from its line to its name
-APART = 1.5  # pt: between two names
+APART = FONT  # pt: between two names, a name's width: two neighbours read as two, not one touching the other
+ABOVE = 2.0  # pt: from the panel's top to its names
 SHARED_SPAN = 3.0  # a shared name's events lie within this many names' widths
 LONGEST = 44  # characters of a shared name; beyond, its first event's and a count
 TITLE_CHARACTERS = 125  # a title's line at most (11 pt, on a figure 11 in wide)
 
 
-def name_events(fig, ax, labels) -> None:
-    """Name the events ``labels`` ((time, text, colour)) at the top of ``ax``, no two names on each other.
+def name_events(fig, ax, labels) -> float:
+    """Name the events ``labels`` ((time, text, colour)) above ``ax``, no two names on each other; returns the
+    height they take above it (in).
 
     Called once the panels are placed: the spacing follows the panel's width.  Each name stands beside its
     line, on its right where there is room, else on its left; events too close for either share one name
@@ -32,11 +37,11 @@ def name_events(fig, ax, labels) -> None:
     low, high = ax.get_xlim()
     labels = sorted(labels, key=lambda item: item[0])
     if not labels or high <= low:
-        return
+        return 0.0
     scale = ax.get_position().width * fig.get_size_inches()[0] * 72.0 / (high - low)  # pt a second
     span = (high - low) * scale
     xs = [(time - low) * scale for time, _, _ in labels]
-    width = 1.2 * FONT  # an upright name's width: its line's height
+    width = 1.2 * FONT  # an upright name's width: its line's height (its glyphs' 1.0 x FONT, and room)
 
     @lru_cache(maxsize=None)
     def best(i: int, free: float):
@@ -61,6 +66,7 @@ def name_events(fig, ax, labels) -> None:
             options.append((1000.0 + cost, ((i, last, "right"),) + rest))
         return min(options, key=lambda option: option[0])
 
+    names = []
     for first, last, side in best(0, -1e9)[1]:
         group = labels[first:last + 1]
         texts = list(dict.fromkeys(text for _, text, _ in group))  # a switch named twice is named once
@@ -71,10 +77,13 @@ def name_events(fig, ax, labels) -> None:
             text += f" ({len(group)} events)"
         colours = {colour for _, _, colour in group}
         anchor = group[0][0] if side == "left" else group[-1][0]
-        ax.annotate(text, (anchor, 1.0), xycoords=("data", "axes fraction"),
-                    xytext=(-BESIDE if side == "left" else BESIDE, -3), textcoords="offset points", fontsize=FONT,
-                    rotation=90, va="top", ha="right" if side == "left" else "left",
-                    color=colours.pop() if len(colours) == 1 else "0.2", gid="event name")
+        names.append(ax.annotate(
+            text, (anchor, 1.0), xycoords=("data", "axes fraction"), xytext=(-BESIDE if side == "left" else BESIDE,
+                                                                               ABOVE), textcoords="offset points",
+            fontsize=FONT, rotation=90, va="bottom", ha="right" if side == "left" else "left",
+            color=colours.pop() if len(colours) == 1 else "0.2", gid="event name", annotation_clip=False))
+    renderer = fig.canvas.get_renderer()
+    return max(name.get_window_extent(renderer).height for name in names) / fig.dpi + ABOVE / 72.0
 
 
 def wrap_title(name: str, said: list[str]) -> str:

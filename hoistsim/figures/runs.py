@@ -2,7 +2,9 @@
 
 One run: each curve in its own colour, the phases (clutch open, brake holding,
 clutch locked) shaded in every panel, the events drawn in every panel and
-named once at the top.  Two to four runs: a colour per run, events drawn in
+named once above them (:mod:`.naming`), a burst of them in a sliver of the run
+enlarged in a column of panels beside (:mod:`.zoom`), the dots on the curves
+whole inside their panels (:mod:`.marks`).  Two to four runs: a colour per run, events drawn in
 the run's colour with a line style per kind.  More: a colour-mapped family by
 the swept value, with no event lines (the lock instants are dots on the slip
 curves), drawn as one collection per curve and thinned to what the figure can
@@ -16,10 +18,14 @@ from dataclasses import replace
 import numpy as np
 
 from ..display import DISPLAYS, headline
-from .base import colour_scale, swept_label
+from .base import colour_scale, row_text, swept_label
 from .frames import FrameSpec, FreshFrames
+from .marks import draw_marks, time_limits
 from .naming import name_events, wrap_title
 from .placing import align_ylabels, place_panels
+from .zoom import SHARE as ZOOM_SHARE
+from .zoom import burst_window
+from .zoom import time_axis as zoom_time_axis
 
 FEW = 4  # more runs than this are drawn as a colour-mapped family
 MAX_EVENT_LINES = 40  # a run with more events than this (periodic stick-slip) has its events listed, not drawn
@@ -31,10 +37,6 @@ _LIMIT_COLOUR = "0.35"
 _EVENT_STYLE = {"lock": ("#1b7837", "-"), "unlock": ("#b2182b", "--"), "reversal": ("#762a83", ":"),
                 "brake_release": ("#8c510a", "-."), "engage": ("#2166ac", (0, (1, 1))),
                 "disengage": ("#2166ac", (0, (3, 1, 1, 1)))}
-_MARK_NAMES = {"lock": "clutch locks", "load_lowest": "lowest point", "lift_off": "lift-off", "touch_down": "touch-down",
-               "rope_force_peak": "peak"}
-_MARK_SHAPES = {"lift_off": "^", "touch_down": "v", "rope_force_peak": "D"}  # else a circle
-_LIMIT_MARK = "#b2182b"
 _CURVE = "curve"  # the gid of a run's curve (not a zero line, an event line or a legend's sample)
 _LEGEND = dict(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False, borderaxespad=0.0)
 
@@ -51,22 +53,29 @@ def runs_figure(runs, plt, swept, frames=None):
     heights = [panel.height for panel in panels]
     mode = "one" if len(runs) == 1 else "few" if len(runs) <= FEW else "family"
     scales = [_right_scale(panel, runs[0]) for panel in panels]
+    start, end = min(r["time"][0] for r in runs), max(r["time"][-1] for r in runs)
+    # one run's burst of events in a sliver of its time: enlarged in a column of its own
+    window = burst_window(_event_times(runs[0]), start, end) if mode == "one" else None
     # a family's colour bar is placed by matplotlib's layout; a run or a few, from their texts measured once
     frame = (frames or FreshFrames()).frame(plt, FrameSpec(
         heights=tuple(heights), figsize=(11, 0.9 + 1.9 * sum(heights)),
         layout="constrained" if mode == "family" else None,
-        right=tuple(scale[0] if scale else None for scale in scales)))
-    fig, axes = frame.fig, frame.axes
+        right=tuple(scale[0] if scale else None for scale in scales), zoom=window is not None))
+    fig, axes, zooms = frame.fig, frame.axes, frame.zooms
+    share = ZOOM_SHARE if zooms else 1.0  # of the panels' width: the panels the legends stand beside
     for right, scale in zip(frame.right, scales):
         if scale:
             right.factor = scale[1]
     run_colours, cmap, norm = colour_scale(swept[1], plt) if mode != "one" else ([None], None, None)
 
+    marked = []  # the times of the dots on the curves
     for ax, panel in zip(axes, panels):
-        _draw_panel(ax, panel, runs, run_colours, mode, plt)
+        marked += _draw_panel(ax, panel, runs, run_colours, mode, plt)
+    for zoom, panel in zip(zooms, panels):
+        _draw_panel(zoom, panel, runs, run_colours, mode, plt)
     if mode == "one":
-        _shade(axes, runs[0], shading)
-    labels = _draw_events(axes, runs, run_colours, mode) if mode != "family" else []
+        _shade(axes + zooms, runs[0], shading)
+    labels = _draw_events(axes + zooms, runs, run_colours, mode) if mode != "family" else []
 
     for ax, panel in zip(axes, panels):
         ax.set_ylabel(panel.ylabel)
@@ -77,10 +86,18 @@ def runs_figure(runs, plt, swept, frames=None):
         entries = {}  # one entry a label: every clutch's locks are one kind of mark
         for handle, label in zip(*ax.get_legend_handles_labels()):
             entries.setdefault(label, handle)
-        if entries:  # beside the panel, past the right-hand scale where there is one
-            ax.legend(list(entries.values()), list(entries), **{**_LEGEND, "bbox_to_anchor": (_legend_anchor(panel), 1.0)})
+        if entries:  # beside the row (right of an enlarged burst), past the right-hand scale where there is one
+            outer = zooms[axes.index(ax)] if zooms else ax
+            ax.legend(list(entries.values()), list(entries), bbox_transform=outer.transAxes,
+                      **{**_LEGEND, "bbox_to_anchor": (_legend_anchor(panel, share), 1.0)})
+    for zoom, panel in zip(zooms, panels):
+        zoom.grid(True, lw=0.4, alpha=0.6)
+        if panel.zero_line:
+            zoom.axhline(0.0, color="k", lw=0.6)
     axes[-1].set_xlabel("time [s]")
-    axes[-1].set_xlim(min(r["time"][0] for r in runs), max(r["time"][-1] for r in runs))
+    axes[-1].set_xlim(*time_limits(start, end, marked))
+    if zooms:
+        zoom_time_axis(zooms[-1], window)
     title = fig.suptitle(_title(runs, swept), fontsize=11, x=0.01, ha="left")
     if mode == "family":
         align_ylabels(fig, axes)
@@ -88,14 +105,34 @@ def runs_figure(runs, plt, swept, frames=None):
                            shrink=0.45, aspect=45, pad=0.01)
         bar.set_label(swept_label(swept), fontsize=9)
     else:
-        place_panels(fig, axes, heights, [_legend_anchor(panel) for panel in panels], title)
-        name_events(fig, axes[0], labels)
+        place_panels(fig, axes, heights, [_legend_anchor(panel, share) for panel in panels], title,
+                     band=lambda: _name(fig, axes[0], zooms[0] if zooms else None, labels, window),
+                     zooms=zooms, zoom_share=ZOOM_SHARE)
     return fig
 
 
-def _legend_anchor(panel) -> float:
-    """Where a panel's legend starts, in its axes' widths from their left: past a right-hand scale."""
-    return 1.13 if panel.right_axis else 1.01
+def _name(fig, ax, zoom, labels, window) -> float:
+    """Name the events above the first panel, and those of an enlarged burst above its own panel (named once
+    in the run's: how many, and where they are enlarged); returns the height the names take (in)."""
+    if zoom is None:
+        return name_events(fig, ax, labels)
+    inside = [label for label in labels if window[0] <= label[0] <= window[1]]
+    outside = [label for label in labels if not window[0] <= label[0] <= window[1]]
+    burst = (inside[-1][0], f"{len(inside)} events, enlarged \u2192", "0.2")
+    return max(name_events(fig, ax, outside + [burst]), name_events(fig, zoom, inside))
+
+
+def _event_times(run) -> list[float]:
+    """The instants one run's figure draws as lines (none where it has too many to draw)."""
+    times = [float(row["time"]) for row in run["events"] if row_text(row, "category") not in QUIET]
+    return times if len(times) <= MAX_EVENT_LINES else []
+
+
+def _legend_anchor(panel, share=1.0) -> float:
+    """Where a panel's legend starts, in its (outer) axes' widths from their left: past a right-hand scale.
+
+    ``share``: those axes' share of the figure's panels' width (an enlarged burst's column: a third)."""
+    return 1.0 + (0.13 if panel.right_axis else 0.01) / share
 
 
 def _panels(present, run):
@@ -113,7 +150,9 @@ def _panels(present, run):
     return sorted((p for p in merged.values() if p.traces), key=lambda p: p.order)
 
 
-def _draw_panel(ax, panel, runs, run_colours, mode, plt):
+def _draw_panel(ax, panel, runs, run_colours, mode, plt) -> list[float]:
+    """Draw a panel's curves and their dots; returns the dots' times."""
+    marked = []
     curves = [t for t in panel.traces if not t.limit]
     several = len(panel.traces) > 1
     for trace in panel.traces:
@@ -138,10 +177,11 @@ def _draw_panel(ax, panel, runs, run_colours, mode, plt):
                         label=label, gid=_CURVE)
             if mode == "few" and several and drawn:  # the runs' colours are in the top legend; here, which curve is which
                 ax.plot([], [], color="0.3", ls=trace.style, lw=0.9 if trace.limit else 1.5, label=trace.label)
-        _marks(ax, trace, panel.scale, runs, run_colours, mode)
+        marked += draw_marks(ax, trace, panel.scale, runs, run_colours, mode)
     if mode == "family" and several:
         for trace in curves:
             ax.plot([], [], color="0.3", ls=trace.style, lw=1.2, label=trace.label)
+    return marked
 
 
 def _family(ax, trace, scale, runs, run_colours):
@@ -175,32 +215,6 @@ def _thin(t, y):
     return t[index], y[index]
 
 
-def _marks(ax, trace, scale, runs, run_colours, mode):
-    """Observed instants (a lock, the load's lowest point) as dots on the curve where they happened."""
-    for kind in trace.marks:
-        xs, ys, cs = [], [], []
-        for run, colour in zip(runs, run_colours):
-            values = trace.of(run)
-            times = [float(row["time"]) for row in run["events"] if _kind(row) == kind
-                     and (trace.marks_of is None or _text(row, "element") == trace.marks_of)]
-            if values is None or not times:
-                continue
-            xs += times
-            ys += list(np.interp(times, run["time"], values * scale))
-            cs += ["k" if colour is None else colour] * len(times)
-        if not xs:
-            continue
-        name = _MARK_NAMES.get(kind, kind.replace("_", " "))
-        if kind in _limits(runs):  # a limit crossed: a warning, in red
-            ax.scatter(xs, ys, s=40 if mode != "family" else 14, c=_LIMIT_MARK, marker="v", lw=0, zorder=4,
-                       label=name)
-        elif mode == "family":
-            ax.scatter(xs, ys, s=6, c="k", marker=_MARK_SHAPES.get(kind, "o"), lw=0, zorder=3, label=name)
-        else:
-            ax.scatter(xs, ys, s=28, facecolors="white", edgecolors=cs, marker=_MARK_SHAPES.get(kind, "o"), lw=1.3,
-                       zorder=3, label=name)
-
-
 def _shade(axes, run, shading):
     """Each phase of the run (clutch open, brake holding, clutch locked) shaded across every panel."""
     time = np.asarray(run["time"], dtype=float)
@@ -217,16 +231,11 @@ def _shade(axes, run, shading):
                             label=phase.label if ax is axes[0] else None)
 
 
-def _limits(runs) -> set:
-    """The kinds of limit the runs crossed (a temperature limit): their instants are warnings."""
-    return {_kind(row) for run in runs for row in run["events"] if _text(row, "category") == "limit"}
-
-
 def _event_text(row) -> str:
     """What a line's label says: a coupling's switch names the coupling ("mesh unlock"), a scheduled event
     names itself ("brake release")."""
     kind = _kind(row)
-    text = f"{_text(row, 'element')} {kind}" if _text(row, "category") == "switch" else kind
+    text = f"{row_text(row, 'element')} {kind}" if row_text(row, "category") == "switch" else kind
     return text.replace("_", " ")
 
 
@@ -236,7 +245,7 @@ def _draw_events(axes, runs, run_colours, mode):
     seen, labels = set(), []  # labels: (time, text, colour) of one run's events, named once the panels are placed
     for run, colour in zip(runs, run_colours):
         rows = [(float(row["time"]), _kind(row), _event_text(row)) for row in run["events"]
-                if _text(row, "category") not in QUIET]
+                if row_text(row, "category") not in QUIET]
         if len(rows) > MAX_EVENT_LINES:
             axes[0].annotate(f"{len(rows)} switches: listed in the file's events, not drawn",
                              (0.01, 0.02), xycoords="axes fraction", fontsize=8, color="0.3")
@@ -314,6 +323,9 @@ def _title(runs, swept) -> str:
     if len(runs) > 1:
         return f"{name}: {len(runs)} runs, coloured by {swept_label(swept)}"
     said = headline({**attrs, "events": runs[0]["events"]})  # the events: each clutch's story
+    if not said:  # no part has a story to tell (two inertias on springs): what the scene is, as its file says
+        description = " ".join(str(_parameters(runs[0]).get("description") or "").split())
+        said = [description] if description else []
     return wrap_title(name, said)
 
 
@@ -323,9 +335,4 @@ def _run_name(run) -> str:
 
 
 def _kind(row) -> str:
-    return _text(row, "kind")
-
-
-def _text(row, name: str) -> str:
-    value = row[name] if name in (row.dtype.names or ()) else ""
-    return value.decode() if isinstance(value, bytes) else str(value)
+    return row_text(row, "kind")

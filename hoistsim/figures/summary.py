@@ -16,6 +16,7 @@ from ..display import DISPLAYS
 from .base import swept_label
 
 POINTS = 60  # up to this many runs, each is a marked point
+MARKER = 6  # pt: the marker of a kind of run (never locks)
 
 
 def summary_figure(summaries, swept, plt, name: str = "", parameters: dict | None = None):
@@ -25,6 +26,8 @@ def summary_figure(summaries, swept, plt, name: str = "", parameters: dict | Non
                     key=lambda p: p.order)
     outcomes = [(o, _applies(o, summaries)) for o in dict.fromkeys(o for display in DISPLAYS for o in display.outcomes)]
     outcomes = [(o, mask) for o, mask in outcomes if mask is not None and mask.any()]
+    from matplotlib.transforms import offset_copy
+
     x = np.asarray(swept[1], dtype=float)
     order = np.argsort(x, kind="stable")
     columns = 2 if len(panels) > 1 else 1
@@ -46,11 +49,13 @@ def summary_figure(summaries, swept, plt, name: str = "", parameters: dict | Non
                                       f"{panel.partial}")
         for outcome, mask in outcomes:
             _band(ax, x, order, mask, outcome.colour)
-            if few and np.isnan(y[mask]).all():  # where the value is none (no lock-up), marked at the top
-                ax.plot(x[mask], np.ones(mask.sum()), outcome.marker, color=outcome.colour, ms=6, clip_on=False,
-                        transform=ax.get_xaxis_transform(), zorder=4)
+            if few and np.isnan(y[mask]).all():  # where the value is none (no lock-up), marked at the top:
+                # hung from the panel's top edge by its half height and a little, so that none of it is cut off
+                top = offset_copy(ax.get_xaxis_transform(), fig=fig, y=-(0.5 * MARKER + 1.5), units="points")
+                ax.plot(x[mask], np.ones(mask.sum()), outcome.marker, color=outcome.colour, ms=MARKER, transform=top,
+                        zorder=4)
             elif few and panel.order == 0:
-                ax.plot(x[mask], y[mask], outcome.marker, color=outcome.colour, ms=6, zorder=4)
+                ax.plot(x[mask], y[mask], outcome.marker, color=outcome.colour, ms=MARKER, zorder=4)
         if panel.beside is not None and panel.beside[1] in names:  # another answer to the same question
             other = np.asarray([row[panel.beside[1]] for row in summaries], dtype=float) * panel.scale + panel.offset
             ax.plot(x[order], other[order], color="#b35806", lw=1.2, ls="--", marker="s" if few else None, ms=3.5,
@@ -78,7 +83,7 @@ def summary_figure(summaries, swept, plt, name: str = "", parameters: dict | Non
 
     # a kind of run: its band, and where the runs are few enough to be marked one by one, its marker on it
     handles = [(Patch(facecolor=o.colour, alpha=0.18),) + ((Line2D([], [], ls="", marker=o.marker, color=o.colour,
-                                                                   ms=6),) if few else ()) for o, _ in outcomes]
+                                                                   ms=MARKER),) if few else ()) for o, _ in outcomes]
     labels = [f"{o.label} ({int(m.sum())} of {len(m)} runs)" for o, m in outcomes]
     for ax in axes.flat:
         for handle, label in zip(*ax.get_legend_handles_labels()):

@@ -13,6 +13,7 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from click.testing import CliRunner  # noqa: E402
 from helpers import ROOT, SCENARIOS  # noqa: E402
+from legible import event_names_apart, markers_inside  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 
 from hoistsim.cli import main  # noqa: E402
@@ -114,7 +115,7 @@ def test_legends_sit_beside_the_panels_not_on_the_data(results):
 def test_every_text_lies_inside_the_figure_and_the_panels_keep_apart(results):
     """A run's figure and a few runs' are placed from their measured texts: nothing past the figure's
     edges, the title above the panels, no panel or legend on the next one, the y labels in one column, no
-    event's name on another's."""
+    event's name on another's nor on a curve, no marker cut by a panel's edge."""
     one = read_runs(results["engage_at_speed_with_brake"], columns=runs_columns())
     two = read_runs(results["runback"], columns=runs_columns()) + read_runs(results["exercise6_direct_start"],
                                                                              columns=runs_columns())
@@ -134,9 +135,8 @@ def test_every_text_lies_inside_the_figure_and_the_panels_keep_apart(results):
             assert upper.get_window_extent(renderer).y0 > below
             if upper.get_legend() is not None:
                 assert upper.get_legend().get_window_extent(renderer).y0 >= below - 1, upper.get_ylabel()
-        names = [t.get_window_extent(renderer) for t in panels[0].texts if t.get_gid() == "event name"]
-        assert not [(a, b) for i, a in enumerate(names) for b in names[i + 1:] if a.overlaps(b)]  # see also
-        # test_drawn_figures.py: events a few milliseconds apart
+        event_names_apart(fig)  # see also test_drawn_figures.py (events a few milliseconds apart) and
+        markers_inside(fig)  # test_shipped_figures.py (every shipped scenario's figures)
         sides = [ax.yaxis.label.get_window_extent(renderer).x1 for ax in panels]  # the side facing the axes
         assert max(sides) - min(sides) < 1
         plt.close(fig)
@@ -169,7 +169,7 @@ def test_a_kept_frame_draws_the_same_figure_as_a_new_one(results, tmp_path):
     plt.close(frames_seen[-1].fig)
 
 
-def test_the_load_position_panel_marks_where_a_load_that_ran_back_turned(results):
+def test_the_load_position_panel_marks_where_a_load_that_ran_back_was_lowest(results):
     fig, runs = _figure(results["turnaround"])
     load = _panels(fig)[3]
     assert load.get_ylabel().startswith("load height")
@@ -179,7 +179,12 @@ def test_the_load_position_panel_marks_where_a_load_that_ran_back_turned(results
     assert time == pytest.approx(1.1678, abs=1e-4)  # where the rope speed goes through zero
     assert "load dips 0.353 m, ends +0.783 m" in fig._suptitle.get_text()
     plt.close(fig)
-    fig, _ = _figure(results["runback"])  # a load that never turns round has no such mark
+    fig, runs = _figure(results["runback"])  # a load that never turns round is lowest at the end of the run
+    (time, height), = next(c for c in _panels(fig)[3].collections if c.get_label() == "lowest point").get_offsets()
+    assert time == runs[0]["time"][-1] and height == pytest.approx(runs[0]["attrs"]["lowest_load_position"], rel=1e-12)
+    assert _panels(fig)[3].get_xlim()[1] > time  # the time axis widened: the dot is whole
+    plt.close(fig)
+    fig, _ = _figure(results["engage_at_speed_with_brake"])  # a load that never goes below its start: no mark
     assert not [c for c in _panels(fig)[3].collections if c.get_label() == "lowest point"]
     plt.close(fig)
 
