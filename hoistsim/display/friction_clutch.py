@@ -15,10 +15,11 @@ _SAID = {"engage": "engages", "lock": "locks", "unlock": "lets go", "disengage":
 
 
 def _names(summary: dict) -> list[str]:
-    """The couplings a run's summary speaks of: a clutch's lock-up time, a bearing friction's slip duration."""
+    """The couplings a run's summary speaks of: a clutch's lock-up time, a bearing friction's slip duration and
+    heat (``<name>_slip_energy``, a clutch's name for it)."""
     names = [key[: -len("_lockup_time")] for key in summary if key.endswith("_lockup_time")]
     return names + [key[: -len("_slip_duration")] for key in summary if key.endswith("_slip_duration")
-                    and f"{key[: -len('_slip_duration')]}_energy" in summary and key[: -len("_slip_duration")]
+                    and f"{key[: -len('_slip_duration')]}_slip_energy" in summary and key[: -len("_slip_duration")]
                     not in names]
 
 
@@ -34,7 +35,7 @@ def _story(name: str, summary: dict) -> str:
     """What one coupling did: "clutch1 locks 0.791 s, lets go 0.831 s, ..., 29.5 J of heat"; from its switches
     (the run's events, where the summary holds them) or else its first lock."""
     lockup = float(summary.get(f"{name}_lockup_time", np.nan))
-    heat = summary.get(f"{name}_slip_energy", summary.get(f"{name}_energy"))
+    heat = summary.get(f"{name}_slip_energy")
     events = summary.get("events")
     switches = [] if events is None else [(float(row["time"]), _text(row, "kind")) for row in events
                                           if _text(row, "element") == name and _text(row, "kind") in _SAID]

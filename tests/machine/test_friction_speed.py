@@ -71,7 +71,7 @@ def test_bearing_friction_breaks_away_at_its_peak_and_runs_up_as_the_closed_form
     np.testing.assert_allclose(run["rotor_speed"], expected, rtol=0, atol=1e-8)
     assert np.all(run["bearing_locked"][t < breakaway] == 1) and np.all(run["bearing_locked"][t > breakaway] == 0)
     assert run.summary["energy_relative_residual"] < 1e-9
-    assert run.values["bearing_energy"] > 0
+    assert run.values["bearing_slip_energy"] > 0
 
 
 def test_bearing_friction_runs_a_shaft_down_through_its_knot_to_a_stop_and_holds_it():
@@ -87,7 +87,7 @@ def test_bearing_friction_runs_a_shaft_down_through_its_knot_to_a_stop_and_holds
     expected = np.where(t < knee, 16.0 - (A + B * KNEE) / J * t,
                         np.where(t < stop, (KNEE + offset) * np.exp(-rate * (t - knee)) - offset, 0.0))
     np.testing.assert_allclose(run["rotor_speed"], expected, rtol=0, atol=1e-8)
-    assert run.values["bearing_energy"] == pytest.approx(0.5 * J * 16.0**2, rel=1e-9)
+    assert run.values["bearing_slip_energy"] == pytest.approx(0.5 * J * 16.0**2, rel=1e-9)
     assert run.summary["energy_relative_residual"] < 1e-9
 
 

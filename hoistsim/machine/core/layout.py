@@ -29,6 +29,31 @@ class LayoutError(ValueError):
         self.key = key
 
 
+def _outputs(elements: tuple, angle_shafts: list) -> tuple[dict, dict]:
+    """(columns, summaries) of the elements and the angles read: name -> (units, description), name -> units.
+
+    A results file holds every series and every summary side by side, each under its name: a name is made by
+    one element only, and is a series or a summary, never both (else a series of rows would be written where
+    a summary's one value is, or one element's values over another's).  Checked as the names are made, once
+    for a layout, whatever the elements."""
+    columns, summaries = {}, {}
+    made = {}  # name -> (the maker's place in the elements, its section, "series" or "summary")
+    angles = {angle_state(shaft): ("rad", f"angle of the {shaft} shaft (its initial angle at t = 0)")
+              for shaft in angle_shafts}
+    makers = [(e.section, e.columns, e.summaries) for e in elements] + [("the angles read", angles, {})]
+    for place, (section, series, summary) in enumerate(makers):
+        for kind, names, into in (("series", series, columns), ("summary", summary, summaries)):
+            for name, value in names.items():
+                if name in made:
+                    by, by_section, was = made[name]
+                    said = f"both a {was} and a {kind} of {section!r}" if by == place \
+                        else f"a {was} of {by_section!r} and a {kind} of {section!r}"
+                    raise LayoutError(section, f"output {name!r} is {said}: each output needs a name of its own")
+                made[name] = (place, section, kind)
+                into[name] = value
+    return columns, summaries
+
+
 class Layout:
     """Bodies, shafts, couplings, named states and event kinds of a tuple of elements."""
 
@@ -95,10 +120,7 @@ class Layout:
             if watched and self.sections.count(element.section) > 1:
                 raise LayoutError(element.section, f"{element.section!r} names more than one part of the machine, "
                                   "and this one's guards and events are found by its name")
-        self._columns = {name: column for e in elements for name, column in e.columns.items()}
-        self._columns.update({angle_state(shaft): ("rad", f"angle of the {shaft} shaft (its initial angle at t = 0)")
-                              for shaft in self.angle_shafts})
-        self.summaries = {name: units for e in elements for name, units in e.summaries.items()}
+        self._columns, self.summaries = _outputs(elements, self.angle_shafts)
         self.ledger_kinds = {"kinetic_energy": "potential"}
         self.ledger_kinds.update({name: kind for e in elements for name, kind in e.ledger_kinds.items()})
         # The bodies' response to torques for every set of stuck couplings, when a run

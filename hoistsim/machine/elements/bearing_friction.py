@@ -15,7 +15,9 @@ class BearingFriction(AbstractSlipHeat):
     times its friction torque at rest), slipping either way at its friction torque, a constant or a table of
     the slip speed's size (whose knots no step straddles).  Its heat of slip is a state and a loss of the
     ledger; its locks and unlocks are events named after it.  Outputs ``<name>_torque`` (what it passes from
-    shaft a to b, or to the ground), ``<name>_slip``, ``<name>_locked``, ``<name>_energy``.
+    shaft a to b, or to the ground), ``<name>_slip``, ``<name>_locked``, ``<name>_energy`` (its heat so far);
+    summaries ``<name>_slip_energy`` (that heat at the end) and ``<name>_slip_duration``: a clutch's names, each a
+    series or a summary, never both (a results file holds them side by side).
     """
 
     static_torque: object  # N*m, the most it holds stuck
@@ -40,7 +42,7 @@ class BearingFriction(AbstractSlipHeat):
 
     @property
     def summaries(self) -> dict:
-        return {f"{self.section}_energy": "J", f"{self.section}_slip_duration": "s"}
+        return {f"{self.section}_slip_energy": "J", f"{self.section}_slip_duration": "s"}
 
     @property
     def columns(self) -> dict:
@@ -72,7 +74,7 @@ class BearingFriction(AbstractSlipHeat):
         return {f"{self.section}_slip_duration": ("duration", x.mode(self.section) != STUCK)}
 
     def summary(self, x) -> dict:
-        return {f"{self.section}_energy": x.state(self.heat_state)}
+        return {f"{self.section}_slip_energy": x.state(self.heat_state)}
 
     def outputs(self, x) -> dict:
         name = self.section

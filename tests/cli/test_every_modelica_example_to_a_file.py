@@ -1,0 +1,13 @@
+"""Every Modelica example shipped (``scenarios/modelica/*.yaml``) through ``hoistsim run`` to a file that opens
+with rows, and its figures legible: tests/every_scene.py says what each is held to.  All but First are slow."""
+
+from __future__ import annotations
+
+import pytest
+from every_scene import files_in, runs_to_a_legible_file
+from helpers import SCENARIOS
+
+
+@pytest.mark.parametrize("name, path, text", files_in(SCENARIOS / "modelica"))
+def test_the_example_runs_to_a_file_with_rows_and_legible_figures(name, path, text, tmp_path, monkeypatch):
+    runs_to_a_legible_file(name, path, text, tmp_path, monkeypatch)
