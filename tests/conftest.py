@@ -56,10 +56,45 @@ def _compiled_programs_within_the_map_limit():
     yield
     held, limit = _memory_maps()
     if held > 0.7 * limit:
-        import jax
+        _let_compiled_programs_go()
 
-        from hoistsim import _jax
 
-        _jax.programs.clear()
-        jax.clear_caches()
-        gc.collect()
+# What one test process may hold before it lets its compiled programs go: the machine's memory (24 GB on
+# CI's 2 cores) is shared by the two test processes and what they compile (the README's every-part
+# drivetrain peaks at some 7 GB while XLA compiles it); a process that kept every program of the modules it
+# ran grew past 10 GB, and two of them and a compile ran the machine out of memory.
+RESIDENT_BUDGET = 5e9  # bytes
+
+
+def _resident() -> float:
+    """This process's resident memory, bytes (0 where /proc cannot tell)."""
+    try:
+        with open("/proc/self/statm") as statm:
+            return int(statm.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
+    except (OSError, ValueError):
+        return 0.0
+
+
+@pytest.fixture(autouse=True)
+def _compiled_programs_within_the_memory_budget():
+    """After a test, a process over :data:`RESIDENT_BUDGET` lets its compiled programs go (the tests after it
+    load what they need again from the session's compilation cache, a fraction of a compile)."""
+    yield
+    if _resident() > RESIDENT_BUDGET:
+        _let_compiled_programs_go()
+
+
+def _let_compiled_programs_go() -> None:
+    import ctypes
+
+    import jax
+
+    from hoistsim import _jax
+
+    _jax.programs.clear()
+    jax.clear_caches()
+    gc.collect()
+    try:  # hand the freed heap back to the system, so that the next test's budget reads true
+        ctypes.CDLL("libc.so.6").malloc_trim(0)
+    except (OSError, AttributeError):
+        pass
