@@ -10,6 +10,7 @@ import numpy as np
 
 from ..._pytree import static
 from ..core.element import AbstractElement
+from ._knots import interpolate, interval
 from ._names import NamedOutputs, names_of
 
 
@@ -102,14 +103,14 @@ class AbstractRipple(NamedOutputs, AbstractElement):
         """The table's knots counted along the angle: a whole number exactly at each knot."""
         n = self.table_angles.shape[0] - 1  # knots per period, the last one the next period's first
         turns = jnp.floor(angle / self.period)
-        return turns * n + jnp.interp(angle - turns * self.period, self.table_angles, jnp.arange(n + 1.0))
+        return turns * n + interpolate(angle - turns * self.period, self.table_angles, jnp.arange(n + 1.0))
 
     def torque_at(self, angle):
         """The ripple torque (N*m) at a shaft angle (rad)."""
         if self.form == "harmonics":
             rate = self.orders * (2 * math.pi / self.period)
             return jnp.sum(self.amplitudes * jnp.sin(rate * angle + self.phases))
-        return jnp.interp(jnp.mod(angle, self.period), self.table_angles, self.table_torques)
+        return interpolate(jnp.mod(angle, self.period), self.table_angles, self.table_torques)
 
     def work_to(self, angle):
         """Integral of the ripple torque from angle 0 to ``angle`` (J)."""
@@ -120,7 +121,7 @@ class AbstractRipple(NamedOutputs, AbstractElement):
         cumulative = jnp.concatenate([jnp.zeros(1), jnp.cumsum(0.5 * (m[1:] + m[:-1]) * jnp.diff(a))])
         turns = jnp.floor(angle / self.period)
         rest = angle - turns * self.period
-        i = jnp.clip(jnp.searchsorted(a, rest, side="right") - 1, 0, a.shape[0] - 2)
+        i = interval(rest, a)
         into = rest - a[i]
         slope = (m[i + 1] - m[i]) / (a[i + 1] - a[i])
         return turns * cumulative[-1] + cumulative[i] + m[i] * into + 0.5 * slope * into**2

@@ -5,7 +5,7 @@ from __future__ import annotations
 import jax.numpy as jnp
 import numpy as np
 
-from ._knots import knots_passed
+from ._knots import interpolate, knots_passed
 
 
 def slip_columns(table, values: str) -> dict:
@@ -19,7 +19,7 @@ def slip_columns(table, values: str) -> dict:
 
 def along_slip(x, section: str, speeds, values):
     """The table's value at the size of the coupling's slip speed (flat beyond its rows)."""
-    return jnp.interp(jnp.abs(x.relative_speed(section)), speeds, values)
+    return interpolate(jnp.abs(x.relative_speed(section)), speeds, values)
 
 
 def slip_knots(x, section: str, speeds):

@@ -11,7 +11,7 @@ from ..._pytree import static
 from ..core.element import SLIP_BACKWARD, SLIP_FORWARD, STUCK
 from ._signal import signal_at, signal_fields, signal_tables
 from ._names import NamedOutputs, names_of
-from ._knots import knots_passed
+from ._knots import interpolate, knots_passed
 from ._slip_heat import AbstractSlipHeat
 from ._slip_table import along_slip, slip_columns, slip_knots
 
@@ -128,8 +128,8 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
         if not self.fades:
             return self.static_friction, self.kinetic_friction
         temperature = x.state(f"{self.section}_temperature")
-        return (jnp.interp(temperature, self.friction_temperatures, self.static_frictions),
-                jnp.interp(temperature, self.friction_temperatures, self.kinetic_frictions))
+        return (interpolate(temperature, self.friction_temperatures, self.static_frictions),
+                interpolate(temperature, self.friction_temperatures, self.kinetic_frictions))
 
     def capacity(self, x):
         return self.friction(x)[0] * self.torque_per_newton * self.pressing(x)

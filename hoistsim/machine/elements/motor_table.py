@@ -5,6 +5,7 @@ from __future__ import annotations
 import jax.numpy as jnp
 import numpy as np
 
+from ._knots import interval
 from ._motor import AbstractMotor
 
 
@@ -27,7 +28,7 @@ class TableMotor(AbstractMotor):
 
     def characteristic(self, speed):
         s, c = self.table_speeds, self.table_torques
-        k = jnp.clip(jnp.searchsorted(s, speed, side="right") - 1, 0, s.shape[0] - 2)
+        k = interval(speed, s)
         slope = (c[k + 1] - c[k]) / (s[k + 1] - s[k])
         return c[k] + slope * (speed - s[k])
 

@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-import jax.numpy as jnp
 import numpy as np
 
 from ..._pytree import static
-from ._knots import knots_passed
+from ._knots import interpolate, knots_passed
 from ._shaft_work import AbstractShaftWork
 
 class SpeedTableTorque(AbstractShaftWork):
@@ -32,7 +31,7 @@ class SpeedTableTorque(AbstractShaftWork):
         return {self.section: ("N*m", f"torque on shaft {self.shaft}, a table of its speed")}
 
     def torque(self, x):
-        return jnp.interp(x.speed(self.shaft), self.table_speeds, self.table_torques)
+        return interpolate(x.speed(self.shaft), self.table_speeds, self.table_torques)
 
     def kink_names(self) -> tuple:
         return ("speed_knots",)
