@@ -23,7 +23,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from click.testing import CliRunner  # noqa: E402
-from helpers import ROOT, SCENARIOS  # noqa: E402
+from helpers import ROOT  # noqa: E402
 from legible import event_names_apart, legible, panels  # noqa: E402
 
 import hoistsim  # noqa: E402
