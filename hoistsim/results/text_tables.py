@@ -34,7 +34,7 @@ def _narrowed(widths: list[int], lines: list[list], align: str, width: int) -> l
     """Column widths whose sum (with two spaces between) is at most ``width`` where the words allow, the first
     column (the row's name) kept whole and no column narrower than its longest word.  Narrowed a character at a
     time, the widest first, in the order that costs least: a header wider than its cells (wrapped over them),
-    then the prose (the left-aligned columns), then the rest."""
+    then the prose (the left-aligned columns, and values of several words), then the rest."""
     header, cells = lines[0], lines[1:]
 
     def longest_word(texts) -> int:
@@ -44,7 +44,7 @@ def _narrowed(widths: list[int], lines: list[list], align: str, width: int) -> l
     values = [max((len(str(row[i])) for row in cells), default=0) for i in range(len(widths))]
     floors = [longest_word([header[i], *(row[i] for row in cells)]) for i in range(len(widths))]
     stages = [{i: max(values[i], floors[i]) for i in columns},  # the header's words over the values
-              {i: floors[i] for i in columns if align[i] == "l"},  # prose
+              {i: floors[i] for i in columns if align[i] == "l" or _worded(cells, i)},  # prose, and values in words
               {i: floors[i] for i in columns}]
     widths = list(widths)
     for stage in stages:
@@ -54,6 +54,12 @@ def _narrowed(widths: list[int], lines: list[list], align: str, width: int) -> l
                 break
             widths[max(narrower, key=lambda i: widths[i])] -= 1
     return widths
+
+
+def _worded(cells, i: int) -> bool:
+    """Whether column ``i`` holds a value of several words (a table's knots, "375 at 75, 250 at 150"): it wraps
+    as prose does, beside the prose, rather than keeping its width while the prose beside it is squeezed."""
+    return any(" " in str(row[i]) for row in cells)
 
 
 def _words_within(text: str, width: int) -> list[str]:
