@@ -19,17 +19,18 @@ the hub to a block, the block dragged by a clutch to the ground; 20 s), in this 
   after each event; each scene's loop cost per step attempt over it.
 
 ``--hlo`` counts the operations of each scene's compiled program (its post-optimisation HLO): the restart
-loop's body (a pass) and the nested loops in it (the step loop, the bisection, the static check's
+loop's body (a pass) and the nested loops in it (the step loop, the crossing's search, the static check's
 searches), and what a pass runs outside its step loop attributed, through each operation's stack of source
 frames, to the part of ``loop._step`` it comes from (the decision and its static check, the extremes, the kink
 anchors and orientations, the guards read at the start and the end, the crossings found together, ...).
 
 ``--profile`` counts the operations (XLA's thunks) one warm run of each scene executes, from a
 ``jax.profiler`` trace (the scene compiled afresh with every source frame on each operation): per step
-attempt, and per pass outside the step loop by nested loop (the bisection, the static check's searches) and
+attempt, and per pass outside the step loop by nested loop (the crossing's search, the static check's searches) and
 by part of ``loop._step``.  ``--variants`` times each scene as it is against two changes patched in at run
-time in a fresh process (cache off; no file changes): the decision taken only where it is due (a boundary,
-or a switch pending), and the crossing's bisection stopped at 1e-9 s instead of 1e-15.
+time in a fresh process (cache off; no file changes): the crossing's search stopped at a bracket of 1e-9 s
+instead of 1e-15 (what its last tries cost), and a table's knots not taken for bends of the rate (steps
+not stopped short of them: what stopping short saves).
 
 ``--compile`` measures each scene's first run in a fresh process with the cache off (``HOISTSIM_CACHE_DIR``
 empty): the first ``simulate`` less a warm one.  ``--chains 1,2,3,4,6,8`` measures the compile of a family of
@@ -625,22 +626,13 @@ print(json.dumps({"trace_s": t1 - t0, "xla_s": t2 - t1, "stablehlo_ops": stableh
 VARIANT = """
 import json, sys, time
 variant = sys.argv[2]
-import jax
-from hoistsim.machine.core import decisions, loop, private_api
-if variant == "decide-when-due":
-    # the decision (static check, momentum kept, events recorded) only where a pass starts at a boundary or
-    # after a switch: a pass that ended at an observation, a valley or a kink keeps its modes as they are
-    everywhere = decisions.decide
-
-    def decide(plan, segment, c, columns):
-        due = private_api.unvmap_any(c.at_boundary | c.pending)
-        return jax.lax.cond(due, lambda k: everywhere(plan, segment, k, columns), lambda k: k, c)
-    loop.decisions = type("decisions", (), {"decide": staticmethod(decide), "apply_event": decisions.apply_event})
-if variant == "bisection-1e-9":
-    # the crossing's bisection stopped at a bracket of 1e-9 s instead of 1e-15 (some 20 halvings fewer): what
-    # its halvings cost
-    from hoistsim.machine.core import stepping
-    stepping.CROSSING_ATOL = stepping.CROSSING_RTOL = 1e-9
+from hoistsim.machine.core import crossing, loop
+if variant == "crossing-1e-9":
+    # the crossing's search stopped at a bracket of 1e-9 s instead of 1e-15: what its last tries cost
+    crossing.CROSSING_ATOL = crossing.CROSSING_RTOL = 1e-9
+if variant == "no-bends":
+    # a table's knots not taken for bends of the rate: the steps run into them blindly, refused in turn
+    loop._bends = lambda guards: None
 from hoistsim import load_scenario, simulate
 scenario = load_scenario(sys.argv[1])
 result = simulate(scenario)
@@ -663,14 +655,14 @@ def variant_runs(path: Path, variant: str, repeats: int) -> dict | None:
     return json.loads(done.stdout.strip().splitlines()[-1])
 
 
-VARIANTS = ("as is", "decide-when-due", "bisection-1e-9")
+VARIANTS = ("as is", "crossing-1e-9", "no-bends")
 
 
 def variants_report(paths: dict[str, Path], repeats: int, rounds: int = 1) -> None:
-    """Each scene as it is, with the decision taken only when due, and with a shorter bisection (fresh
+    """Each scene as it is, with a shorter crossing search, and with a table's knots not taken for bends (fresh
     processes, alternating)."""
-    print("\nvariants, patched in a fresh process each (cache off): decide-when-due, the decision only where due "
-          "(a boundary, or a switch pending); bisection-1e-9, the crossing's bisection stopped at 1e-9 s; "
+    print("\nvariants, patched in a fresh process each (cache off): crossing-1e-9, the crossing's search stopped "
+          "at 1e-9 s; no-bends, steps not stopped short of a table's knots; "
           f"the loop's best and median of {repeats} warm runs, {rounds} round(s)")
     for name, path in paths.items():
         got = {variant: [] for variant in VARIANTS}

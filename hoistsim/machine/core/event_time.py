@@ -1,7 +1,7 @@
 """The instant a guard crossed zero, with its derivative by the implicit function theorem.
 
-The crossing is located by bisection on the step's interpolant: its value is
-exact to the bisection's tolerance, but a bisection's comparisons carry no
+The crossing is located by a bracketing search on the step's interpolant: its
+value is exact to the bracket's width, but the search's comparisons carry no
 derivative.  The instant t* is where the guard that fired is zero,
 
     g(t*, y(t*; p), p) = 0,

@@ -22,7 +22,7 @@ import jax
 import jax.numpy as jnp
 
 from ..._pytree import pytree_dataclass
-from . import decisions, private_api, switching
+from . import decisions, extremes, private_api, switching
 from .bodies import Response, response, response_table
 from .columns import row_outputs, summary_values
 from .dynamics import Instant, slip_sign
@@ -44,7 +44,6 @@ SOLVERS = {"tsit5": diffrax.Tsit5, "dopri5": diffrax.Dopri5, "dopri8": diffrax.D
 
 MAX_STEPS_PER_SEGMENT = 200_000
 MAX_SHRINKS = 3  # times a pass is solved again with shorter steps for crossings found in one step
-_REDUCTIONS = {"max": -jnp.inf, "min": jnp.inf, "first": jnp.nan, "first_value": jnp.nan, "duration": 0.0}
 
 # Incremented each time the loop is traced (i.e. compiled): tests use it to show
 # that new parameter values do not recompile.
@@ -104,37 +103,19 @@ class _Carry(eqx.Module):
     pending_modes: jax.Array  # the couplings' modes as the guards that fired leave them
     pending_candidates: jax.Array  # which couplings the static check decides
     extremes: dict  # running reductions of the run, for its summary (exact: every extremum is a row)
+    reply: Response | None  # the bodies' response while the modes hold (None where an inertia varies)
+    step_guess: jax.Array  # s: the first step of the next pass, carried over from the last (NaN: guess afresh)
 
 
 def _instant(plan: Plan, segment: Segment, t, y, modes, reply=None) -> Instant:
     return Instant(plan.layout, t, y, modes, segment.table, reply=reply)
 
 
-# the core's own running reduction: the most kinetic energy held at a row or a pass's end (the energy
-# ledger's scale where the works cancel over the run and the machine ends as it started)
-KINETIC_PEAK = "kinetic_energy_peak"
-
-
-def _reductions(plan: Plan, x: Instant) -> dict:
-    out = {KINETIC_PEAK: ("max", x.kinetic_energy())}
-    for element in plan.layout.elements:
-        out.update(element.extremes(x))
-    return out
-
-
 def _note(plan: Plan, segment: Segment, c: _Carry, t, y, modes, reply=None) -> tuple[_Carry, dict]:
     """Fold the state at (t, y, modes) into the run's running extremes; and whether each duration's
     condition holds there (it holds over the pass that starts there)."""
-    folded, holding = {}, {}
-    for name, (kind, value) in _reductions(plan, _instant(plan, segment, t, y, modes, reply)).items():
-        if kind == "duration":
-            holding[name] = value
-        old = c.extremes[name]
-        folded[name] = {"max": lambda: jnp.maximum(old, value), "min": lambda: jnp.minimum(old, value),
-                        "first": lambda: jnp.where(jnp.isnan(old) & value, t, old),
-                        "first_value": lambda: jnp.where(jnp.isnan(old) & value[0], value[1], old),
-                        "duration": lambda: old}[kind]()
-    return eqx.tree_at(lambda k: k.extremes, c, folded), holding
+    out, holding = extremes.folded(c.extremes, plan.layout, _instant(plan, segment, t, y, modes, reply))
+    return eqx.tree_at(lambda k: k.extremes, c, out), holding
 
 
 def _in_cycle(c: _Carry):
@@ -163,21 +144,55 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
                      args.orients, c.switches_from)
     # The guards other than switches where the pass starts (those above zero are armed), and the couplings'
     # slip zeros (one crossed along with the located switch is decided with it: switching.crossed_together).
-    starting = switching.guard_values(c.t, c.y, pass_args)
+    # (the same values as ``unlowered`` where nothing is lowered or held off: read again only where something is)
+    lowered = functools.reduce(jnp.logical_or, c.fired.values(), jnp.isfinite(c.switches_from))
+    starting = jax.lax.cond(private_api.unvmap_any(lowered), lambda: switching.guard_values(c.t, c.y, pass_args),
+                            lambda: unlowered)
     armed = {name: starting[i] for i, (role, name, _) in enumerate(guards) if role != "switch" or name.kind == SLIP}
     return pass_args, armed, integrate_pass(
         solver, pass_args, switching.guard_values, c.t, c.y, end,
         rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap, cap_until=c.cap_until, max_steps=MAX_STEPS_PER_SEGMENT,
-        kept=c.kept, count=c.kept_count, modes=c.modes)
+        kept=c.kept, count=c.kept_count, modes=c.modes, first_step=c.step_guess, bends=_bends(guards),
+        values0=starting)
+
+
+def _bends(guards) -> jax.Array | None:
+    """Which guards are a table's knots, where the rate bends (None: the machine has none)."""
+    kinks = [role == "kink" for role, _, _ in guards]
+    return jnp.asarray(kinks) if any(kinks) else None
+
+
+def _decided(plan: Plan, segment: Segment, c: _Carry, columns: bool) -> _Carry:
+    """The modes for the pass that starts here and the bodies' response to them, worked out where a decision
+    is due (a boundary, or a switch located where the last pass ended) and carried as they are elsewhere: a pass
+    that ended at an observation, a valley or a kink changed nothing a decision reads (decide would leave the
+    modes, the state and the log as they are, at the price of a static check and a response a pass)."""
+    layout = plan.layout
+
+    def decide(k: _Carry) -> _Carry:
+        decided = decisions.decide(plan, segment, k, columns)
+        # one response per mode set; none where an inertia varies (worked out at each use); where the modes
+        # change or speeds jump, the rates jump too: the first step is guessed from the new ones
+        same = jnp.all(decided.modes == k.modes) & jnp.all(decided.y == k.y)
+        return eqx.tree_at(lambda q: (q.reply, q.step_guess), decided,
+                           (_response(layout, decided.modes), jnp.where(same, k.step_guess, jnp.nan)),
+                           is_leaf=lambda x: x is None)
+
+    due = private_api.unvmap_any(c.at_boundary | c.pending)
+    return jax.lax.cond(due, decide, lambda k: k, c)
+
+
+def _response(layout: Layout, modes) -> Response | None:
+    """The bodies' response while ``modes`` hold, or None where an inertia varies (worked out at each use)."""
+    return None if layout.inertia_varies else response(layout, modes)
 
 
 def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     layout = plan.layout
     guards = switching.guards(layout)
     segment = segment_from(plan.elements, plan.boundaries, plan.duration, c.t)
-    c = decisions.decide(plan, segment, c, columns)
-    # one response per pass while the modes hold; none where an inertia varies (worked out at each use)
-    reply = None if layout.inertia_varies else response(layout, c.modes)
+    c = _decided(plan, segment, c, columns)
+    reply = c.reply
     c, durations = _note(plan, segment, c, c.t, c.y, c.modes, reply)
     start_t, start_y = c.t, c.y
     pass_args, armed, sol = _solve_segment(plan, segment, c, solver, guards, reply, columns)
@@ -190,7 +205,7 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     # Likewise a stuck coupling over its capacity at its margin's valley: it broke away within the step.
     end = Instant(layout, t_end, y_end)
     missed = jnp.zeros((), bool)
-    at_end = switching.guard_values(t_end, y_end, pass_args)
+    at_end = sol.values
     by_name = {name: at_end[i] for i, (_, name, _) in enumerate(guards)}
     margin_valley, over = jnp.zeros((), bool), jnp.zeros((), bool)
     for k, coupling in enumerate(layout.coupling_elements):
@@ -231,8 +246,8 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     t_reached = jnp.where(missed, start_t, t_end)
     c, _ = _note(plan, segment, c, t_reached, y_end, c.modes, reply)
     spent = jnp.where(~failed & kept, t_end - start_t, 0.0)
-    extremes = dict(c.extremes, **{name: c.extremes[name] + jnp.where(on, spent, 0.0)
-                                   for name, on in durations.items()})
+    running = dict(c.extremes, **{name: c.extremes[name] + jnp.where(on, spent, 0.0)
+                                  for name, on in durations.items()})
     coinciding = {name: reached & kept for name, reached in coinciding.items()}
     # a limit recorded where another guard was located has ended this pass as if it had fired; a pass thrown
     # away leaves what ended the one before it as it was (its guard starts the pass solved again lowered)
@@ -240,19 +255,25 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     c = eqx.tree_at(
         lambda k: (k.extremes, k.kept, k.kept_count, k.steps, k.rejected, k.segments, k.fired),
         c,
-        (extremes, sol.kept, kept_count, c.steps + sol.steps, c.rejected + sol.rejected, c.segments + 1, fired),
+        (running, sol.kept, kept_count, c.steps + sol.steps, c.rejected + sol.rejected, c.segments + 1, fired),
         is_leaf=lambda x: x is None,
     )
     c = decisions.apply_event(plan, segment, eqx.tree_at(lambda k: k.y, c, y_end), t_end, y_end, masks, hit & kept,
                      coinciding, pass_args.orients)
+    at_knot = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in guards if r == "kink"], jnp.zeros((), bool))
     switches, _, _ = _in_cycle(c)
     status = jnp.where(failed, SOLVER_FAILED, jnp.where(switches > plan.max_switches, CHATTERING, c.status))
     return eqx.tree_at(
-        lambda k: (k.t, k.at_boundary, k.status, k.step_cap, k.shrinks, k.cap_until, k.switches_from),
+        lambda k: (k.t, k.at_boundary, k.status, k.step_cap, k.shrinks, k.cap_until, k.switches_from, k.step_guess),
         c,
         (t_reached, kept & (~hit | (t_end >= segment.end)), status,
          jnp.where(shrink, cap, jnp.inf), jnp.where(shrink, c.shrinks + 1, 0), jnp.where(shrink, t_end, jnp.inf),
-         jnp.where(found_first, t_end, -jnp.inf)),
+         jnp.where(found_first, t_end, -jnp.inf),
+         # a pass that ended at a table's knot (the rate bends there, nothing jumps) hands its steps on; after
+         # anything else the next pass guesses its own (after an observation or a valley too: a machine held at
+         # rest has nothing to bound its steps but that fresh start, and a step grown over a whole swing of a
+         # torque would pass a margin's valley unseen)
+         jnp.where(at_knot, sol.proposed, jnp.nan)),
     )
 
 
@@ -293,7 +314,9 @@ def restart_loop(plan: Plan, solver, log_size: int, step_room: int = 0, columns:
         pending=jnp.array(False),
         pending_modes=jnp.full((couplings,), STUCK),
         pending_candidates=jnp.zeros((couplings,), bool),
-        extremes=_initial_extremes(plan),
+        extremes=extremes.initial_extremes(layout, plan.initial_state),
+        reply=_response(layout, jnp.full((couplings,), STUCK)),
+        step_guess=jnp.full((), jnp.nan),
     )
 
     max_segments = segment_budget(plan)
@@ -316,7 +339,7 @@ def restart_loop(plan: Plan, solver, log_size: int, step_room: int = 0, columns:
     grid_state = jnp.where(ended, jnp.where(status == OK, c.y, nan), stepped_state)
     grid_modes = jnp.where(ended, jnp.where(status == OK, c.modes, -1), stepped_modes)
     scalars = [c.t, *summary_values(plan, c.extremes, c.y, c.modes), *ledger_values(layout, plan.initial_state),
-               *ledger_values(layout, c.y), c.extremes[KINETIC_PEAK]]
+               *ledger_values(layout, c.y), c.extremes[extremes.KINETIC_PEAK]]
     log_time, log_margin, codes, log_state, log_modes = unpack(c.log, c.log_count, couplings, columns)
     # the grid's rows and the events' through one evaluation (one copy of it in the program)
     outputs = row_outputs(plan, jnp.concatenate([plan.grid, log_time]), jnp.concatenate([grid_state, log_state]),
@@ -336,20 +359,6 @@ def restart_loop(plan: Plan, solver, log_size: int, step_room: int = 0, columns:
                             step_room]),
         kind_counts=c.kind_counts,
     )
-
-
-def _initial_extremes(plan: Plan) -> dict:
-    """Each running reduction's starting value (its identity: -inf for a max, NaN for a first time...)."""
-    kinds = {}
-
-    def probe(state):  # traced apart (eval_shape): the kinds are wanted, not the values
-        x = Instant(plan.layout, jnp.zeros(()), state, jnp.full((len(plan.layout.couplings),), STUCK),
-                    lambda name, t: jnp.zeros(()))
-        kinds.update({name: kind for name, (kind, _) in _reductions(plan, x).items()})
-        return jnp.zeros(())
-
-    jax.eval_shape(probe, plan.initial_state)
-    return {name: jnp.asarray(_REDUCTIONS[kind], dtype=jnp.float64) for name, kind in kinds.items()}
 
 
 @functools.lru_cache(maxsize=None)

@@ -10,12 +10,13 @@ crossing is located afterwards on that step's interpolant.  diffrax's
 sweep pays for every step of every run.
 
 The crossing found is the earliest of every guard that changed sign in the
-step, not the first in list order: a bisection on "some guard that crossed in
-this step is at or below zero", stopped on the bracket's width alone (guards
-are in rad/s or N*m, not seconds), returning its upper end, the first time the
-crossing has happened, so that a restart from there never meets it again.
-Where several reach zero at that instant, the first in list order fired (the
-switches, listed first).
+step, not the first in list order: a bracket on "some guard that crossed in
+this step is at or below zero", narrowed by the guards' own secant (regula
+falsi with the Illinois rule, a few tries where halving takes forty) and stopped
+on the bracket's width alone (guards are in rad/s or N*m, not seconds),
+returning its upper end, the first time the crossing has happened, so that a
+restart from there never meets it again.  Where several reach zero at that
+instant, the first in list order fired (the switches, listed first).
 
 The output rows are not written in the loop: each accepted step is kept (its
 span and its dense output, a few numbers per state) and the rows are evaluated
@@ -35,12 +36,17 @@ import jax
 import jax.numpy as jnp
 
 from . import private_api
-from .event_time import event_time
+from .crossing import crossing
 from .dynamics import vector_field
 
-# Bisection stops where the bracket is this narrow (absolute and relative to the time), or holds no float.
-CROSSING_RTOL = 1e-15
-CROSSING_ATOL = 1e-15
+# A bend of the rate ahead (its guard taken as a line over the last step): a step across it errs by the jump of
+# the slope times how far past it the step goes, times the step, and is refused unless that is tiny.  So a step
+# that would cross one stops short of it (by this fraction of the way to it: the line's own error over the way
+# is smaller) ...
+SHORT_OF_BEND = 1.0 - 1e-3
+# ... and once the bend is this near (against the step just taken) the next step ends this little past it.
+NEAR_BEND = 1e-2
+PAST_BEND = 1.0 + 1e-6
 # A step ending this many ulps short of the pass's end is taken to the end (as diffrax does).
 END_ULPS = 100
 
@@ -98,6 +104,8 @@ class Pass(eqx.Module):
     rejected: jax.Array
     kept: Steps | None  # the accepted steps kept for the output rows (None: none are)
     count: jax.Array  # how many are kept, this pass's steps included
+    proposed: jax.Array  # s: the step the controller would take next, had the pass gone on
+    values: jax.Array  # (guards,): every guard where the pass ended
 
 
 @functools.lru_cache(maxsize=None)
@@ -176,13 +184,17 @@ class _Carry(eqx.Module):
     hit: jax.Array
     failed: jax.Array
     crossed: jax.Array  # (guards,): which changed sign in the last step
+    reached: jax.Array  # (guards,): the guards at the last step's end (where they crossed, at a hit)
+    proposed: jax.Array  # s: the controller's next step after the last accepted one
+    cut: jax.Array  # whether the step being tried was cut short to reach a bend (its size is no step's measure)
+    dense: dict  # the last step tried, its dense output (a crossing's step: located on it, not taken again)
     kept: Steps | None
     count: jax.Array
 
 
 def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, dtmax, max_steps: int,
                    kept: Steps | None = None, count=0, modes=None, field: Callable = vector_field,
-                   cap_until=jnp.inf) -> Pass:
+                   cap_until=jnp.inf, first_step=jnp.nan, bends=None, values0=None) -> Pass:
     """Step dy/dt = ``field(t, y, args)`` from (t0, y0) towards ``end`` until a guard (``guards(t, y, args)``:
     an array) falls to zero.  Steps start no longer than ``dtmax`` before ``cap_until`` (a pass solved again
     so that crossings found in one step get a step each: beyond the crossing that sent it back, a pass that
@@ -192,25 +204,55 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
     below at its end.  Each accepted step, and the crossing's step up to the
     crossing, is added to ``kept`` (from place ``count``, with ``modes``) for the
     output rows, when a buffer is given.
+
+    ``first_step`` (s): the first step to try, where the last pass's steps carry over (its ``proposed``: the
+    pass before ended where nothing jumped, at a knot of a table or an observation); NaN: guessed from the
+    rates at (t0, y0), as diffrax guesses it.
+
+    ``bends`` (guards,): the guards where the rate bends (a table's knots): a step across one is refused for the
+    bend's error, so a step that would cross one (as far as the guard's rate at the start, then its last step,
+    foretells) stops just short of it, and the next ends just past it.
+    ``values0``: the guards at (t0, y0), where the caller has read them already.
     """
     controller = diffrax.PIDController(rtol=rtol, atol=atol)
     solver = _with_step_tolerances(solver, controller)
     stepper = _Stepper(solver, args, field)
     error_order = solver.error_order(stepper.term)
     floor = end - END_ULPS * (end - private_api.prevbefore(end))  # one ulp below the end, END_ULPS times over
-    first, control = controller.init(stepper.term, t0, end, y0, None, args, solver.func, error_order)
+    fresh = ~jnp.isfinite(first_step)
+
+    def guessed():  # two rates and their norms: worked out only where some run has no step to carry over
+        return controller.init(stepper.term, t0, end, y0, None, args, solver.func, error_order)[0]
+
+    t0 = jnp.asarray(t0, y0.dtype)
+    guess = jax.lax.cond(private_api.unvmap_any(fresh), guessed, lambda: t0)
+    carried = jnp.where(fresh, 0.0, first_step)
+    # (the controller's state at a start is the same either way: only its first step is carried over)
+    _, control = controller.init(stepper.term, t0, end, y0, carried, args, solver.func, error_order)
+    first = jnp.where(fresh, guess, t0 + carried)
 
     def capped(start, t1):  # the controller's dtmax, up to cap_until (t + min(dt, dtmax): the same float)
         return jnp.where(start < cap_until, jnp.minimum(t1, start + dtmax), t1)
 
     t_next = jnp.minimum(capped(t0, first), end)
-    values = guards(t0, y0, args)
+    values = guards(t0, y0, args) if values0 is None else values0
     nothing = jnp.zeros_like(values, dtype=bool)
     state = stepper.init(t0, t_next, y0)
+    first_cut = jnp.array(False)
+    if bends is not None:  # the first step too stops short of a bend ahead: the guards' rates say where it is
+        rate = state if stepper.explicit and stepper.fsal else stepper.field(t0, y0)
+        _, slopes = jax.jvp(lambda t, y: guards(t, y, args), (t0, y0), (jnp.ones_like(t0), rate))
+        ahead = bends & (values > 0.0) & (slopes < 0.0)
+        due = jnp.min(jnp.where(ahead, values / jnp.where(ahead, -slopes, 1.0), jnp.inf))
+        foretold = t0 + due * jnp.where(due < NEAR_BEND * (t_next - t0), PAST_BEND, SHORT_OF_BEND)
+        first_cut = (foretold > t0) & (foretold < t_next)
+        t_next = jnp.where(first_cut, foretold, t_next)
+    dense_shape = jax.eval_shape(stepper.step, t0, t_next, y0, state)[2]
     carry = _Carry(
         t=jnp.asarray(t0, y0.dtype), y=y0, t_next=t_next, state=state, control=control, values=values,
         steps=jnp.array(0), rejected=jnp.array(0), done=t0 >= end, hit=jnp.array(False),
-        failed=jnp.array(False), crossed=nothing, kept=kept, count=jnp.asarray(count))
+        failed=jnp.array(False), crossed=nothing, reached=values, proposed=first - t0, cut=first_cut,
+        dense=jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), dense_shape), kept=kept, count=jnp.asarray(count))
 
     def going(c: _Carry):
         return ~c.done & ~c.failed
@@ -220,10 +262,33 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
         error = jnp.where(jnp.isnan(error) | ~taken, jnp.inf, error)
         keep, next_t0, next_t1, _, control, _ = controller.adapt_step_size(
             c.t, c.t_next, c.y, y1, args, error, error_order, c.control)
+        # the step the error allows next; a step cut short (at the pass's end, or to reach a bend) proposes less
+        # than the steps before it took, and does not lower what carries over
+        proposal = next_t1 - next_t0
+        shortened = (c.t_next >= end) | c.cut
+        proposed = jnp.where(keep, jnp.where(shortened, jnp.maximum(c.proposed, proposal), proposal), c.proposed)
+        cut = jnp.zeros((), bool)
+        values = guards(c.t_next, y1, args)
+        through = (c.values > 0.0) & (values <= 0.0)
+        if bends is not None:
+            # A bend of the rate (a table's knot) ahead: a step across it is refused for the bend's own error,
+            # again and again as the controller shrinks it blindly towards the bend.  So the guard is taken as a
+            # line, as it went over this step where the step was taken (over the part of it before the crossing
+            # where the step was refused for crossing it), and the next step stops just short of where it reaches
+            # zero; from there the bend is near, and the step after ends just past it: two steps a bend.
+            h = c.t_next - c.t
+            ahead = bends & (values > 0.0) & (values < c.values)
+            due = jnp.min(jnp.where(ahead, values * h / jnp.where(ahead, c.values - values, 1.0), jnp.inf))
+            crossed_bend = bends & through
+            fraction = jnp.min(jnp.where(crossed_bend, c.values / jnp.where(crossed_bend, c.values - values, 1.0),
+                                         jnp.inf))
+            foretold = jnp.where(keep, c.t_next + due * jnp.where(due < NEAR_BEND * h, PAST_BEND, SHORT_OF_BEND),
+                                 c.t + h * jnp.minimum(fraction * SHORT_OF_BEND, 1.0))
+            cut = (foretold > next_t0) & (foretold < next_t1)
+            next_t1 = jnp.where(cut, foretold, next_t1)
         next_t1 = capped(next_t0, next_t1)
         next_t1 = jnp.where(next_t1 > floor, jnp.where(keep, end, next_t0 + 0.5 * (end - next_t0)), next_t1)
-        values = guards(c.t_next, y1, args)
-        crossed = keep & (c.values > 0.0) & (values <= 0.0)
+        crossed = keep & through
         hit = jnp.any(crossed)
         kept, count = c.kept, c.count
         if kept is not None:  # an accepted step, for the rows it covers (an event's: once its crossing is found)
@@ -235,31 +300,30 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
                 keep, c.t_next, next_t1)), state=accept(state, c.state), control=control,
             values=accept(values, c.values), steps=steps, rejected=c.rejected + ~keep,
             done=hit | (keep & (c.t_next >= end)), hit=hit, failed=(steps >= max_steps) & ~hit & ~(keep & (c.t_next >= end)),
-            crossed=crossed, kept=kept, count=count)
+            crossed=crossed, reached=values, proposed=proposed, cut=cut, dense=dense, kept=kept, count=count)
 
     # The kept steps are a buffer: each written in place, never copied whole.  (Under ``vmap`` a loop's
     # carry is otherwise selected lane by lane at every step: the whole buffer, once a step.)
     c = private_api.while_loop(going, body, carry, kind="lax", buffers=lambda k: k.kept)
-    # A crossing's step was not accepted: the carry still holds its start, end and first rate, and the step
-    # is taken again here for its interpolant (once a pass, not kept through every step of the loop).
-    _, _, dense_shape, _, _ = jax.eval_shape(stepper.step, c.t, c.t_next, c.y, c.state)
 
+    # A crossing's step was not accepted: the carry still holds its start and end, and its dense output (the
+    # last step tried), for its interpolant.
     def locate():
-        _, _, dense, _, _ = stepper.step(c.t, c.t_next, c.y, c.state)
-        interpolant = stepper.interpolant(c.t, c.t_next, dense)
-        return dense, *_crossing(guards, args, interpolant, c.t, c.t_next, c.crossed & c.hit)
+        interpolant = stepper.interpolant(c.t, c.t_next, c.dense)
+        return c.dense, *crossing(guards, args, interpolant, c.t, c.t_next, c.crossed & c.hit, c.values,
+                                  c.reached)
 
     def no_crossing():
-        return jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), dense_shape), c.t, c.y, nothing
+        return jax.tree.map(jnp.zeros_like, c.dense), c.t, c.y, nothing, c.values
 
-    dense, t_hit, y_hit, mask = jax.lax.cond(private_api.unvmap_any(c.hit), locate, no_crossing)
+    dense, t_hit, y_hit, mask, at_hit = jax.lax.cond(private_api.unvmap_any(c.hit), locate, no_crossing)
     t_end = jnp.where(c.hit, t_hit, c.t)
     y_end = jnp.where(c.hit, y_hit, c.y)
     kept, count = c.kept, c.count
     if kept is not None:  # the crossing's step, its rows up to the crossing
         kept, count = _kept(kept, count, c.t, c.t_next, t_end, dense, modes, c.hit)
     return Pass(t=t_end, y=y_end, hit=c.hit, mask=mask & c.hit, failed=c.failed, steps=c.steps, rejected=c.rejected,
-                kept=kept, count=count)
+                kept=kept, count=count, proposed=c.proposed, values=jnp.where(c.hit, at_hit, c.values))
 
 
 def _with_step_tolerances(solver, controller):
@@ -271,41 +335,6 @@ def _with_step_tolerances(solver, controller):
              if getattr(solver.root_finder, name) is private_api.use_stepsize_tol]
     return eqx.tree_at(lambda s: tuple(getattr(s.root_finder, name) for name in names), solver,
                        tuple(getattr(controller, name) for name in names))
-
-
-def _crossing(guards, args, interpolant, lower, upper, crossed):
-    """The earliest instant in (lower, upper] where a guard of ``crossed`` is at or below zero, the state
-    there, and which guard fired (the first in list order of those at or below zero there)."""
-
-    def below(t):
-        return crossed & (guards(t, interpolant.evaluate(t), args) <= 0.0)
-
-    def going(bracket):
-        lo, hi, _ = bracket
-        middle = lo + 0.5 * (hi - lo)
-        return (hi - lo > CROSSING_ATOL + CROSSING_RTOL * jnp.abs(hi)) & (middle > lo) & (middle < hi)
-
-    def halve(bracket):
-        lo, hi, fired = bracket
-        middle = lo + 0.5 * (hi - lo)
-        at_middle = below(middle)
-        reached = jnp.any(at_middle)
-        return jnp.where(reached, lo, middle), jnp.where(reached, middle, hi), jnp.where(reached, at_middle, fired)
-
-    # The guards below zero at the bracket's upper end are carried along (at the step's end: those that
-    # crossed), not worked out again where the bisection stops: the guards are most of the program.
-    _, t, fired = jax.lax.while_loop(going, halve, (lower, upper, crossed))
-    fired = jnp.where(jnp.any(fired), fired, crossed)  # round-off: the guard that crossed at the step's end
-    which = jnp.arange(fired.shape[0]) == jnp.argmax(fired)
-    # the instant's derivative, where the run is differentiated: the fired guard's zero (event_time)
-    t = event_time(t, functools.partial(_fired_guard, guards), lower, (interpolant, args, which))
-    return t, interpolant.evaluate(t), which
-
-
-def _fired_guard(guards, t, inputs):
-    """The guard that fired (``which``) at ``t`` on the step's interpolant."""
-    interpolant, args, which = inputs
-    return jnp.sum(jnp.where(which, guards(t, interpolant.evaluate(t), args), 0.0))
 
 
 def rows_from_steps(solver, kept: Steps, count, grid):

@@ -240,7 +240,7 @@ def guard_values(t, y, args):
     """Every guard at (t, y), in the order of :func:`guards`: one array.
 
     A pass reads its guards where it starts, at each step's end, in the
-    bisection and where it stops; traced once as a call of its own (a jitted
+    crossing's search and where it stops; traced once as a call of its own (a jitted
     function), the program is traced and lowered with one copy of them
     instead of one a place.
     """
@@ -301,7 +301,7 @@ def crossed_together(guards, values, armed: dict, masks: dict, events=frozenset(
     overtaken, limit_overtaken, coinciding = jnp.zeros((), bool), jnp.zeros((), bool), {}
     for i, (role, name, _) in enumerate(guards):
         if role == "switch":
-            if name in armed:  # the bisection stopped at the first root in list order: this one shares it
+            if name in armed:  # the search stopped at the first root in list order: this one shares it
                 coinciding[name] = (armed[name] > 0.0) & ~masks[name] & (values[i] <= 0.0)
             continue
         value = values[i]
