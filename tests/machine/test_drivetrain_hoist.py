@@ -38,7 +38,8 @@ def drawn(hoist: dict) -> dict:
         "simulation": hoist["simulation"]}
 
 
-def assert_same(hoist_run, drawn_run, columns=SHARED):
+def assert_same(hoist_run, drawn_run, columns=SHARED, names=None):
+    """``names``: the hoist's part -> the drawn drivetrain's, where an event names one they call otherwise."""
     for column, drawn_column in columns.items():
         expected, got = hoist_run[column], drawn_run[drawn_column]
         scale = max(np.abs(expected).max(), 1e-300)
@@ -46,7 +47,10 @@ def assert_same(hoist_run, drawn_run, columns=SHARED):
     # the hoist's brake_release (a scheduled event) is the drawn brake's disengage, there too
     kept = [run.events["kind"] != "brake_release" for run in (hoist_run, drawn_run)]
     for field in ("time", "kind", "element", "mode_after"):
-        assert np.array_equal(hoist_run.events[field][kept[0]], drawn_run.events[field][kept[1]]), field
+        expected = hoist_run.events[field][kept[0]]
+        if field == "element" and names:
+            expected = np.asarray([names.get(name, name) for name in expected], dtype=object)
+        assert np.array_equal(expected, drawn_run.events[field][kept[1]]), field
     assert drawn_run.summary["energy_relative_residual"] < 1e-9
 
 
@@ -80,9 +84,10 @@ def test_the_brake_start_drawn_as_a_drivetrain_is_the_hoist():
 
 def test_a_lossy_stage_drawn_is_the_hoists_lossy_mesh():
     # the load runs back through the mesh (the wheel drives, eta_b) until the clutch engages and lifts it (the
-    # pinion drives, eta): both laws of the losses, and the switch between them
+    # pinion drives, eta): both laws of the losses, and the switch between them (pressed hard enough to lift it
+    # within the run: before, the pinion drives only where the teeth carry nothing but round-off)
     hoist = copy.deepcopy(EXERCISE6)
-    hoist["clutch"]["engagement_force"] = [["0 s", "0 N"], ["0.3 s", "0 N"], ["0.4 s", "3201 N"]]
+    hoist["clutch"]["engagement_force"] = [["0 s", "0 N"], ["0.3 s", "0 N"], ["0.4 s", "6000 N"]]
     hoist["gears"].update(efficiency=0.9, backdrive_efficiency=0.8)
     hoist["simulation"]["duration"] = "1.5 s"
     data = drawn(hoist)
@@ -90,6 +95,7 @@ def test_a_lossy_stage_drawn_is_the_hoists_lossy_mesh():
     hoist_run, drawn_run = simulate(scenario_from_dict(hoist)), simulate(scenario_from_dict(data))
     assert set(np.unique(hoist_run["mesh_mode"])) >= {1, 2}
     assert_same(hoist_run, drawn_run, SHARED | {"mesh_torque": "stage_mesh_torque", "mesh_mode": "stage_mesh_mode",
-                                                "mesh_heat": "stage_mesh_heat", "mesh_loss_power": "stage_mesh_loss_power"})
+                                                "mesh_heat": "stage_mesh_heat", "mesh_loss_power": "stage_mesh_loss_power"},
+                names={"mesh": "stage"})
     assert drawn_run.summary["stage_mesh_loss_energy"] == pytest.approx(hoist_run.summary["mesh_loss_energy"],
                                                                        rel=1e-12)

@@ -4,16 +4,25 @@ The bodies' equations M a = tau - G^T T are solved for whichever couplings are
 stuck: their torques T_s come from the small system (G_s M^-1 G_s^T) T_s =
 G_s M^-1 f, where f is the bodies' torques less what the slipping couplings
 pass, and the same system on speeds keeps momentum when couplings lock.  M is
-diagonal (one inertia per body) and there are a handful of couplings, so the
-system is a few scalars, solved by elimination written out at trace time: one
-compiled program for every combination of stuck couplings, vmappable, with no
-linear-algebra call.  Couplings that hold the same motion twice (two holds on
-one shaft) share it by order: the first takes the torque, the other carries none.
+diagonal (one inertia per body, an array) and G a small matrix (a row per
+coupling over the bodies).  The system is solved on whole arrays: the rows and
+columns of couplings not stuck masked to the identity, then Gauss-Jordan
+elimination, each pivot one rank-1 update of the matrix and of every right-hand
+side at once.
+The pivots are unrolled at trace time, so the program grows with the couplings
+as their count, not as the system's entries: one compiled program for every
+combination of stuck couplings, vmappable, with no linear-algebra call (whose
+pivoting would not keep the rule below).  Couplings that hold the same motion
+twice (two holds on one shaft) share it by order: the first takes the torque,
+the other carries none.
 
 While the modes hold (a pass of the loop) the solution is a fixed linear map
 from the bodies' torques tau and the slipping couplings' torques sigma to the
-accelerations and the couplings' torques: :class:`Response`, worked out once
-per pass, so that each step of the integrator pays a few multiply-adds.
+accelerations and the couplings' torques: :class:`Response`, four small
+matrices worked out once per pass, so that each step of the integrator pays a
+few matrix-vector products.  Those and the solve's own are written as products
+summed (:func:`product`), which the compiler fuses with their neighbours: a dot
+a few entries long would be a kernel of its own, slower to compile than to run.
 """
 
 from __future__ import annotations
@@ -22,20 +31,38 @@ from functools import cached_property
 
 import jax
 import jax.numpy as jnp
+import numpy as np
 
 from ..._pytree import pytree_dataclass
 from .element import STUCK
 from .layout import Layout, angle_state
 
 
-def _absent(g) -> bool:
-    """A structural zero: a coupling that does not touch a body, a torque nobody declared."""
-    return isinstance(g, float) and g == 0.0
+def _summed(shape, places, values):
+    """An array of ``shape``: zero, but for each of ``values`` added at its place in ``places`` (index tuples).
+
+    Numbers alone make a constant (a NumPy array, worked out as it is traced); a traced value (a swept ratio
+    or inertia) one scatter of them all."""
+    if all(isinstance(v, (int, float)) for v in values):
+        out = np.zeros(shape)
+        for place, value in zip(places, values):
+            out[place] += value
+        return out
+    where = tuple(np.asarray(places, dtype=int).reshape(len(places), len(shape)).T)
+    return jnp.zeros(shape).at[where].add(jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in values]))
 
 
-def dot(weights, values):
-    """Sum of weight times value, leaving out structural zeros (no term is traced for them)."""
-    return sum((w * v for w, v in zip(weights, values) if not (_absent(w) or _absent(v))), 0.0)
+def product(a, b):
+    """The matrix product a b (b a vector or a matrix), as products summed: a few bodies and couplings make
+    dots too small for a matrix kernel of their own, and summed products fuse with what makes and uses them."""
+    return jnp.sum(a * b[None, :] if b.ndim == 1 else a[:, :, None] * b[None, :, :], axis=1)
+
+
+def _vector(values):
+    """A vector of ``values``: a constant if they are numbers, else one stack of them."""
+    if all(isinstance(v, (int, float)) for v in values):
+        return np.asarray(values, dtype=float)
+    return jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in values])
 
 
 # A stuck coupling whose pivot, once the couplings before it are eliminated, is below this fraction of
@@ -45,44 +72,35 @@ def dot(weights, values):
 REDUNDANT_PIVOT = 1e-12
 
 
-def solve_stuck(matrix, columns, stuck, order=None):
+def solve_stuck(matrix, rhs, stuck, order=None):
     """Solve the stuck rows of a small symmetric positive-semidefinite system for several right-hand sides.
 
-    ``matrix`` is a list of lists of scalars, each of ``columns`` a list of
-    scalars, ``stuck`` a list of booleans; rows and columns of couplings that
-    are not stuck become identity rows with a zero right-hand side, so their
-    unknowns are zero.  Gaussian elimination without pivoting, in ``order``
-    (default: as given), is exact enough here: the masked matrix is positive
-    definite unless stuck couplings hold the same motion twice (two holds on
-    one shaft).  Then the torque is statically indeterminate: a
-    coupling that the ones before it in ``order`` already hold is given none
-    (its pivot vanishes but for round-off), and they carry it all.
+    ``matrix``: n x n; ``rhs``: n x m, a right-hand side a column; ``stuck``: n
+    booleans.  Rows and columns of couplings that are not stuck become identity
+    rows with a zero right-hand side, so their unknowns are zero.  Gauss-Jordan
+    elimination without pivoting, in ``order`` (default: as given), is exact
+    enough here: the masked matrix is positive definite unless stuck couplings
+    hold the same motion twice (two holds on one shaft).  Then the torque is
+    statically indeterminate: a coupling that the ones before it in ``order``
+    already hold is given none (its pivot vanishes but for round-off), and they
+    carry it all.  The matrix and its right-hand sides are one array, and each
+    pivot one step on it: its row divided by the pivot (or made an identity row
+    with a zero right-hand side, where it holds nothing new), then taken from
+    every other row; what is left on the right is the solution.
     """
-    n = len(stuck)
-    order = list(range(n)) if order is None else list(order)
-    a = [[jnp.where(stuck[i] & stuck[j], matrix[i][j], 1.0 if i == j else 0.0) for j in order] for i in order]
-    bs = [[jnp.where(stuck[i], column[i], 0.0) for i in order] for column in columns]
-    diagonal = [a[i][i] for i in range(n)]
-    for k in range(n):
-        held = a[k][k] <= REDUNDANT_PIVOT * diagonal[k]
-        a[k] = [jnp.where(held, 1.0 if j == k else 0.0, a[k][j]) for j in range(n)]
-        for b in bs:
-            b[k] = jnp.where(held, 0.0, b[k])
-        for i in range(k + 1, n):
-            factor = a[i][k] / a[k][k]
-            a[i] = [a[i][j] - factor * a[k][j] for j in range(n)]
-            for b in bs:
-                b[i] = b[i] - factor * b[k]
-    out = []
-    for b in bs:
-        x = [None] * n
-        for i in reversed(range(n)):
-            x[i] = (b[i] - sum((a[i][j] * x[j] for j in range(i + 1, n)), 0.0)) / a[i][i]
-        solved = [None] * n
-        for position, i in enumerate(order):
-            solved[i] = x[position]
-        out.append(solved)
-    return out
+    n = matrix.shape[0]
+    order = range(n) if order is None else order
+    stuck = jnp.asarray(stuck, dtype=bool).reshape(n)
+    identity = np.eye(n)
+    diagonal = jnp.where(stuck, jnp.diagonal(matrix), 1.0)
+    m = jnp.concatenate([jnp.where(stuck[:, None] & stuck[None, :], matrix, identity),
+                         jnp.where(stuck[:, None], rhs, 0.0)], axis=1)
+    unit = np.hstack([identity, np.zeros(rhs.shape)])  # an identity row, its right-hand side zero
+    for k in order:
+        pivot = m[k, k]
+        row = jnp.where(pivot <= REDUNDANT_PIVOT * diagonal[k], unit[k], m[k] / pivot)
+        m = jnp.where((np.arange(n) == k)[:, None], row, m - m[:, k:k + 1] * row)
+    return m[:, n:]
 
 
 class Bodies:
@@ -97,13 +115,16 @@ class Bodies:
         count = len(layout.bodies)
         # (body a, ratio a, body b or None, ratio b) of each coupling; None for one that ties more shafts
         self.ends = []
-        self.rows = []  # G, one row per coupling over the bodies; 0.0 where it does not touch a body
+        # each coupling's entries of G where it touches a body, by body: a relative speed sums these terms
+        # alone, so that the relative speed of shafts locked at ratio one is their difference (exactly zero),
+        # whatever the compiler fuses with it
+        self.terms = []
         for coupling in layout.coupling_elements:
-            row = [0.0] * count
+            row = {}
             for shaft, weight in coupling.weights():
                 body, ratio = layout.shaft(shaft, coupling)
-                row[body] = weight * ratio if _absent(row[body]) else row[body] + weight * ratio
-            self.rows.append(row)
+                row[body] = row[body] + weight * ratio if body in row else weight * ratio
+            self.terms.append(sorted(row.items()))
             sides = coupling.joins()
             if len(sides) == 2:
                 a, b = sides
@@ -112,19 +133,24 @@ class Bodies:
                 self.ends.append((body_a, ratio_a, body_b, ratio_b))
             else:
                 self.ends.append(None)
+        self.rows = _summed((len(self.ends), count), [(k, j) for k, row in enumerate(self.terms) for j, _ in row],
+                            [g for row in self.terms for _, g in row])  # G, couplings x bodies
 
     @cached_property
-    def inertia(self) -> list:
-        """Each body's inertia: every element's inertia on a shaft of it, times the shaft's ratio squared."""
-        inertia = [0.0] * len(self.layout.bodies)
+    def inertia(self):
+        """Each body's inertia (an array): every element's inertia on a shaft of it, times the shaft's ratio
+        squared."""
+        places, values = [], []
         for element in self.layout.elements:
             for shaft, value in element.inertias():
                 body, ratio = self.layout.shaft(shaft, element)
-                inertia[body] = inertia[body] + value * ratio**2
+                places.append((body,))
+                values.append(value * ratio**2)
         for element, shaft, value, _ in self.varying():
             body, ratio = self.layout.shaft(shaft, element)
-            inertia[body] = inertia[body] + value * ratio**2
-        return inertia
+            places.append((body,))
+            values.append(value * ratio**2)
+        return _summed((len(self.layout.bodies),), places, values)
 
     def varying(self) -> list:
         """(element, shaft, I, dI/dangle) of every inertia that varies with an angle, at the state y
@@ -145,71 +171,88 @@ class Bodies:
         return sorted(range(len(couplings)), key=lambda k: couplings[k].yields)
 
     def relative(self, k, values):
-        """Coupling k's relative speed (or acceleration) for body speeds (or accelerations)."""
-        return dot(self.rows[k], values)
+        """Coupling k's relative speed (or acceleration) for the bodies' speeds (or accelerations)."""
+        return sum((g * values[j] for j, g in self.terms[k]), 0.0)
 
     def schur(self):
-        """G M^-1 G^T, one entry per pair of couplings."""
-        n = len(self.rows)
-        return [[sum((gi * gj / m for gi, gj, m in zip(self.rows[i], self.rows[j], self.inertia)
-                      if not (_absent(gi) or _absent(gj))), 0.0) for j in range(n)] for i in range(n)]
+        """G M^-1 G^T, couplings x couplings."""
+        g = self.rows
+        return jnp.sum(g[:, None, :] * g[None, :, :] / self.inertia, axis=-1)
 
     def push(self, passed):
-        """-G^T T: what the couplings' torques T take from side a and give to side b, per body."""
-        out = [0.0] * len(self.inertia)
-        for row, p in zip(self.rows, passed):
-            out = [f if _absent(g) or _absent(p) else f - g * p for f, g in zip(out, row)]
-        return out
+        """-G^T T: what the couplings' torques T take from side a and give to side b, per body (T a vector,
+        or a matrix of them a column each)."""
+        return -product(self.rows.T, passed)
 
     def align(self, values, stuck):
         """Make the values of bodies joined by stuck couplings agree to the last bit.
 
+        ``values``: one per body, a vector or a matrix (a row per body, every column aligned alike).
         Solved in floating point the constraints hold to round-off only; left so,
         two locked shafts would drift apart by ulps a step, and a held shaft would
-        creep.  Ground couplings fix their body at zero first; then each stuck
-        coupling carries a settled body's value to the other (once per coupling,
-        enough for any chain).  A stuck coupling that ties three shafts, after them,
-        gives one of its bodies not yet settled the value its relation leaves it:
-        the one its row weighs most against its inertia (g^2 / m), whose value the
-        solve finds as a small difference of large terms (a light shaft's, drifting
-        off the relation and its torque doing work on round-off, else); its bodies
-        are settled then.
+        creep.  Bodies joined by stuck couplings between two shafts are groups,
+        found on the whole arrays: each body takes the lowest body of its group as
+        its root (the ground, below them all, where a stuck ground coupling holds
+        one of them), carried a coupling further each round, with the speed
+        ratios met on the way; each body's value is then its root's times that
+        ratio (zero at the ground), picked by a mask, not computed, so a shaft
+        locked at ratio one has its root's value to the last bit.  A stuck
+        coupling that ties three shafts, after them, gives one of its bodies not
+        yet settled the value its relation leaves it: the one its row weighs most
+        against its inertia (g^2 / m), whose value the solve finds as a small
+        difference of large terms (a light shaft's, drifting off the relation and
+        its torque doing work on round-off, else); its bodies are settled then.
         """
-        values = list(values)
-        settled = [jnp.zeros((), bool) for _ in values]
-        for end, s in zip(self.ends, stuck):
-            if end is not None and end[2] is None:
-                body_a = end[0]
-                values[body_a] = jnp.where(s, 0.0, values[body_a])
-                settled[body_a] = settled[body_a] | s
-        for _ in self.ends:
-            for end, s in zip(self.ends, stuck):
-                if end is None:
-                    continue
-                body_a, ratio_a, body_b, ratio_b = end
-                if body_b is None or body_a == body_b:
-                    continue
-                to_a = s & settled[body_b] & ~settled[body_a]
-                to_b = s & ~to_a & ~settled[body_b]
-                values[body_a] = jnp.where(to_a, values[body_b] * (ratio_b / ratio_a), values[body_a])
-                values[body_b] = jnp.where(to_b, values[body_a] * (ratio_a / ratio_b), values[body_b])
-                settled[body_a] = settled[body_a] | to_a | (s & to_b)
-                settled[body_b] = settled[body_b] | to_b | to_a
-        for end, row, s in zip(self.ends, self.rows, stuck):
+        count, nc = len(self.layout.bodies), len(self.ends)
+        stuck = jnp.asarray(stuck, dtype=bool).reshape(nc)
+        vector = values.ndim == 1
+        values = values.reshape(count, -1)
+        bodies = np.arange(count)
+        root = jnp.asarray(bodies)
+        ratio = jnp.ones(count)  # each body's value over its root's
+        # which body each ground coupling holds (couplings x bodies), and which it holds now
+        holds = np.asarray([[end is not None and end[2] is None and end[0] == j for j in bodies] for end in self.ends],
+                           dtype=bool).reshape(nc, count)
+        settled = jnp.any(holds & stuck[:, None], axis=0)
+        root = jnp.where(settled, -1, root)
+        pairs = [(k, *end) for k, end in enumerate(self.ends)
+                 if end is not None and end[2] is not None and end[0] != end[2]]
+        if pairs:
+            # each pair twice, as an edge into either end: its coupling, the body it sets, the body it reads
+            # from, and the ratio of their values
+            edges = ([(k, a, b, (rb, ra)) for k, a, ra, b, rb in pairs]
+                     + [(k, b, a, (ra, rb)) for k, a, ra, b, rb in pairs])
+            of = np.asarray([[k == i for i in range(nc)] for k, *_ in edges])  # edges x couplings
+            into = np.asarray([[a == j for _, a, _, _ in edges] for j in bodies])  # bodies x edges
+            source = np.asarray([[b == j for j in bodies] for _, _, b, _ in edges])  # edges x bodies
+            over = _vector([top / bottom for *_, (top, bottom) in edges])
+            into = into & jnp.any(of & stuck, axis=1)  # the stuck edges into each body
+            settled = settled | jnp.any(into, axis=1)
+            for _ in range(min(count - 1, len(pairs))):  # a round carries the roots one coupling further
+                offered = jnp.where(into, jnp.sum(jnp.where(source, root, 0), axis=1), count)
+                lowest = jnp.min(offered, axis=1)
+                chosen = jnp.argmin(offered, axis=1)[:, None] == np.arange(len(edges))  # the first of them
+                carried = jnp.sum(jnp.where(source, ratio, 0.0), axis=1) * over
+                lower = lowest < root
+                root = jnp.where(lower, lowest, root)
+                ratio = jnp.where(lower, jnp.sum(jnp.where(chosen, carried, 0.0), axis=1), ratio)
+        if pairs or holds.any():
+            # each body's root's value by a mask: one term of the sum is not zero (none at the ground)
+            picked = (root[:, None] == bodies)[:, :, None]
+            values = jnp.sum(jnp.where(picked, values, 0.0), axis=1) * ratio[:, None]
+        for k, end in enumerate(self.ends):
             if end is not None:
                 continue
-            touched = [j for j, g in enumerate(row) if not _absent(g)]
-            given = [dot(row, [0.0 if i == j else v for i, v in enumerate(values)]) for j in touched]
-            best, chosen = -1.0, -1
-            for j in touched:  # the unsettled body of the largest g^2 / m
-                score = row[j] ** 2 / self.inertia[j]
-                better = ~settled[j] & (score > best)
-                best, chosen = jnp.where(better, score, best), jnp.where(better, j, chosen)
-            for j, rest in zip(touched, given):
-                values[j] = jnp.where(s & (chosen == j), -rest / row[j], values[j])
-            for j in touched:
-                settled[j] = settled[j] | s
-        return values
+            row, touched = self.rows[k], np.isin(bodies, [j for j, _ in self.terms[k]])
+            # the unsettled body of the largest g^2 / m, the first of equals
+            score = jnp.where(touched & ~settled, row**2 / self.inertia, -1.0)
+            chosen = (bodies == jnp.argmax(score)) & (jnp.max(score) >= 0.0) & stuck[k]
+            rest = jnp.sum(jnp.where(chosen[:, None], 0.0, row[:, None] * values), axis=0)  # the relation's others
+            weight = jnp.where(jnp.any(chosen), jnp.sum(jnp.where(chosen, row, 0.0)), 1.0)  # none chosen: unused
+            given = -rest / weight
+            values = jnp.where(chosen[:, None], given, values)
+            settled = settled | (touched & stuck[k])
+        return values[:, 0] if vector else values
 
 
 @pytree_dataclass
@@ -218,105 +261,43 @@ class Response:
 
     tau: torques on the bodies; sigma: each coupling's sliding torque with the
     sign of its slip (zero unless slipping); a: accelerations; T: the torque
-    each coupling passes.  Lists of lists of scalars (a handful of bodies and
-    couplings), so that a step evaluates them as plain multiply-adds.  The rows
-    of P and Q of bodies joined by stuck couplings are made equal (zero for a
-    body held to the ground), so their accelerations agree to the last bit.
+    each coupling passes.  Four small arrays, so that a step evaluates them as a
+    few matrix-vector products.  The rows of P and Q of bodies joined by stuck
+    couplings at ratio one are equal to the last bit (zero for a body held to
+    the ground), so their accelerations agree to the last bit.
     """
 
-    accel_from_torque: list  # P, bodies x bodies
-    accel_from_sliding: list  # Q, bodies x couplings
-    torque_from_torque: list  # R, couplings x bodies
-    torque_from_sliding: list  # U, couplings x couplings
-
-
-def _divided(values, inertia):
-    return [0.0 if _absent(f) else f / m for f, m in zip(values, inertia)]
+    accel_from_torque: jax.Array  # P, bodies x bodies
+    accel_from_sliding: jax.Array  # Q, bodies x couplings
+    torque_from_torque: jax.Array  # R, couplings x bodies
+    torque_from_sliding: jax.Array  # U, couplings x couplings
 
 
 def solve_response(layout: Layout, stuck, y=None) -> Response:
-    """The linear map of :class:`Response` for a set of stuck couplings (one masked solve per unit torque).
+    """The linear map of :class:`Response` for a set of stuck couplings: one masked solve whose right-hand
+    sides are a unit torque on each body and a unit sliding torque of each coupling, side by side.
 
     ``y``: the state, where an inertia varies with an angle.
     """
     bodies = Bodies(layout, y)
-    nb, nc = len(bodies.inertia), len(bodies.rows)
-    never_slips = [not e.can_slip for e in layout.coupling_elements]  # their sigma is always zero
-
-    def unknowns(tau, sigma):
-        # right-hand side of the stuck couplings' system for body torques tau and slipping torques sigma
-        free = [f if _absent(p) else f + p for f, p in zip(tau, bodies.push(sigma))]
-        return [bodies.relative(k, _divided(free, bodies.inertia)) for k in range(nc)]
-
-    inputs = [([1.0 if i == j else 0.0 for i in range(nb)], [0.0] * nc) for j in range(nb)]
-    inputs += [([0.0] * nb, [1.0 if i == k and not never_slips[k] else 0.0 for i in range(nc)]) for k in range(nc)]
-    held = solve_stuck(bodies.schur(), [unknowns(tau, sigma) for tau, sigma in inputs], stuck, bodies.order)
-    accel, torque = [], []
-    for (tau, sigma), h in zip(inputs, held):
-        passed = [jnp.where(stuck[k], h[k], sigma[k]) for k in range(nc)]
-        net = [f if _absent(p) else f + p for f, p in zip(tau, bodies.push(passed))]
-        accel.append(bodies.align(_divided(net, bodies.inertia), stuck))
-        torque.append(passed)
-
-    def by_rows(values, first, last):
-        return [[values[j][i] for j in range(first, last)] for i in range(len(values[0]))] if values else []
-
-    return Response(
-        accel_from_torque=by_rows(accel, 0, nb),
-        accel_from_sliding=by_rows(accel, nb, nb + nc),
-        torque_from_torque=by_rows(torque, 0, nb),
-        torque_from_sliding=by_rows(torque, nb, nb + nc),
-    )
-
-
-# Up to this many couplings, the response of every combination of stuck ones is
-# solved once per run and looked up during it; beyond, it is solved at each use.
-TABULATED_COUPLINGS = 4
-
-
-class ResponseTable:
-    """The response for every stuck set: a matrix, a row per set (row index bit k: coupling k stuck), a
-    column per entry of :class:`Response` that is not a structural zero."""
-
-    def __init__(self, matrix, treedef, absent):
-        self.matrix, self.treedef, self.absent = matrix, treedef, absent
-
-
-def response_table(layout: Layout) -> ResponseTable | None:
-    """The response for every stuck set, or None if too many couplings.
-
-    One solve, vmapped over the sets (one copy of it in the program).  None too
-    where an inertia varies: the response then changes with the state.
-    """
-    nc = len(layout.couplings)
-    if nc > TABULATED_COUPLINGS or layout.inertia_varies:
-        return None
-    shape = {}
-
-    def solve(bits):
-        leaves, shape["treedef"] = jax.tree.flatten(solve_response(layout, [bits[k] for k in range(nc)]))
-        shape["absent"] = [_absent(v) for v in leaves]
-        return jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in leaves if not _absent(v)] or [jnp.zeros(())])
-
-    sets = jnp.asarray([[bool(index >> k & 1) for k in range(nc)] for index in range(2**nc)]).reshape(2**nc, nc)
-    return ResponseTable(jax.vmap(solve)(sets), shape["treedef"], shape["absent"])
+    nb, nc = len(layout.bodies), len(bodies.ends)
+    stuck = jnp.asarray(stuck, dtype=bool).reshape(nc)
+    slips = np.diag([1.0 if e.can_slip else 0.0 for e in layout.coupling_elements])  # others' sigma is zero
+    # the inputs a column each: a unit torque on each body, then a unit sliding torque of each coupling
+    tau = np.hstack([np.eye(nb), np.zeros((nb, nc))])
+    sigma = np.hstack([np.zeros((nc, nb)), slips])
+    # the stuck couplings' system, its right-hand side the relative accelerations the free bodies would take
+    free = tau + bodies.push(sigma)
+    held = solve_stuck(bodies.schur(), product(bodies.rows, free / bodies.inertia[:, None]), stuck, bodies.order)
+    passed = jnp.where(stuck[:, None], held, sigma)
+    accel = bodies.align((tau + bodies.push(passed)) / bodies.inertia[:, None], stuck)
+    return Response(accel_from_torque=accel[:, :nb], accel_from_sliding=accel[:, nb:],
+                    torque_from_torque=passed[:, :nb], torque_from_sliding=passed[:, nb:])
 
 
 def response(layout: Layout, modes, y=None) -> Response:
-    """The bodies' response for these modes: picked from ``layout.responses`` when the run tabulated it.
-
-    The pick halves the table on each coupling's stuck bit (a select over whole rows, not a gather:
-    under vmap a gather with a per-lane index costs far more).
-    """
-    stuck = [modes[k] == STUCK for k in range(len(layout.couplings))]
-    table = layout.responses
-    if table is None:
-        return solve_response(layout, stuck, y)
-    rows = table.matrix
-    for bit in stuck:  # bit k of the table index is coupling k's
-        rows = jnp.where(bit, rows[1::2], rows[0::2])
-    picked = iter(rows[0][i] for i in range(rows.shape[1]))
-    return jax.tree.unflatten(table.treedef, [0.0 if absent else next(picked) for absent in table.absent])
+    """The bodies' response for these modes (``y``: the state, where an inertia varies with an angle)."""
+    return solve_response(layout, jnp.asarray(modes)[: len(layout.couplings)] == STUCK, y)
 
 
 def keep_momentum(layout: Layout, y, stuck):
@@ -326,11 +307,9 @@ def keep_momentum(layout: Layout, y, stuck):
     locking couplings, and nothing else, change the speeds.
     """
     bodies = Bodies(layout, y)
-    if not bodies.rows:
+    if not bodies.ends:
         return y
-    speeds = [y[i] for i in range(len(bodies.inertia))]
-    rel = [bodies.relative(k, speeds) for k in range(len(bodies.rows))]
-    (impulse,) = solve_stuck(bodies.schur(), [rel], stuck, bodies.order)
-    speeds = [v + dv / m for v, dv, m in zip(speeds, bodies.push(impulse), bodies.inertia)]
-    speeds = bodies.align(speeds, stuck)
-    return y.at[: len(speeds)].set(jnp.stack(speeds))
+    speeds = y[: len(layout.bodies)]
+    impulse = solve_stuck(bodies.schur(), product(bodies.rows, speeds)[:, None], stuck, bodies.order)[:, 0]
+    speeds = bodies.align(speeds + bodies.push(impulse) / bodies.inertia, stuck)
+    return y.at[: len(layout.bodies)].set(speeds)

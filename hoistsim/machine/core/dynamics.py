@@ -11,7 +11,7 @@ from functools import cached_property
 
 import jax.numpy as jnp
 
-from .bodies import Bodies, Response, dot, response
+from .bodies import Bodies, Response, product, response
 from .element import SLIP_BACKWARD, SLIP_FORWARD
 from .layout import Layout, angle_state
 
@@ -40,9 +40,8 @@ class Instant:
         self._table = table
         self._reply = reply
         self._solved = None
-        self.body_speeds = [y[i] for i in range(len(layout.bodies))]
+        self.body_speeds = y[: len(layout.bodies)]
         self.bodies = Bodies(layout, y)
-        self.rows = self.bodies.rows
 
     # ------------------------------------------------------------------ reading by name
 
@@ -68,14 +67,14 @@ class Instant:
         return self.modes[self.layout.coupling_index(coupling)]
 
     def relative_speed(self, coupling):
-        return dot(self.rows[self.layout.coupling_index(coupling)], self.body_speeds)
+        return self.bodies.relative(self.layout.coupling_index(coupling), self.body_speeds)
 
     def coupling_torque(self, coupling):
         """Torque the coupling passes from its side a to side b (N*m at its shafts)."""
         return self.coupling_torques[self.layout.coupling_index(coupling)]
 
     def relative_acceleration(self, coupling):
-        return dot(self.rows[self.layout.coupling_index(coupling)], self.accelerations)
+        return self.bodies.relative(self.layout.coupling_index(coupling), self.accelerations)
 
     # ------------------------------------------------------------------ the bodies' equations
 
@@ -96,12 +95,12 @@ class Instant:
         return torques
 
     def body_torques(self):
-        """External torques on the bodies (couplings aside), by equal power."""
+        """External torques on the bodies (couplings aside), by equal power: an array."""
         torque = [0.0] * len(self.layout.bodies)
         for shaft, value in self.shaft_torques.items():
             body, ratio = self.layout.shaft(shaft)
             torque[body] = torque[body] + value * ratio
-        return torque
+        return jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in torque])
 
     def _solve(self):
         r = self.reply
@@ -110,15 +109,16 @@ class Instant:
         sigma = [0.0 if not e.can_slip else slip_sign(self.modes[k]) * (e.sliding_torque(self) if given[k] is None
                                                                          else given[k])
                  for k, e in enumerate(self.layout.coupling_elements)]
-        accel = [dot(p, tau) + dot(q, sigma) for p, q in zip(r.accel_from_torque, r.accel_from_sliding)]
-        torque = [dot(p, tau) + dot(q, sigma) for p, q in zip(r.torque_from_torque, r.torque_from_sliding)]
+        sigma = jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in sigma]) if sigma else jnp.zeros(0)
+        accel = product(r.accel_from_torque, tau) + product(r.accel_from_sliding, sigma)
+        torque = product(r.torque_from_torque, tau) + product(r.torque_from_sliding, sigma)
         pressed = [k for k, e in enumerate(self.layout.coupling_elements) if e.can_slip and e.pressed_by is not None]
         if pressed:
             # what each passes besides moves everything along its column of the response
-            columns = [([q[k] for q in r.accel_from_sliding], [u[k] for u in r.torque_from_sliding]) for k in pressed]
+            columns = [(r.accel_from_sliding[:, k], r.torque_from_sliding[:, k]) for k in pressed]
             for added, column in zip(self._pressed(pressed, (accel, torque), columns), columns):
-                accel = [v + added * c for v, c in zip(accel, column[0])]
-                torque = [v + added * c for v, c in zip(torque, column[1])]
+                accel = accel + added * column[0]
+                torque = torque + added * column[1]
         self._solved = (accel, torque)
 
     def _pressed(self, pressed, solved, columns):
@@ -184,11 +184,11 @@ class Instant:
         return self._solved[1]
 
     def kinetic_energy(self):
-        return sum((0.5 * m * v**2 for m, v in zip(self.bodies.inertia, self.body_speeds)), 0.0)
+        return jnp.sum(0.5 * self.bodies.inertia * self.body_speeds**2)
 
     def kinetic_power(self):
         """d/dt of the kinetic energy (W): I w w' for each body, and 1/2 I' w^3 where an inertia varies."""
-        power = sum((m * v * a for m, v, a in zip(self.bodies.inertia, self.body_speeds, self.accelerations)), 0.0)
+        power = jnp.sum(self.bodies.inertia * self.body_speeds * self.accelerations)
         for _, shaft, _, slope in self.bodies.varying():
             power = power + 0.5 * slope * self.speed(shaft) ** 3
         return power

@@ -123,9 +123,6 @@ class Layout:
         self._columns, self.summaries = _outputs(elements, self.angle_shafts)
         self.ledger_kinds = {"kinetic_energy": "potential"}
         self.ledger_kinds.update({name: kind for e in elements for name, kind in e.ledger_kinds.items()})
-        # The bodies' response to torques for every set of stuck couplings, when a run
-        # has worked it out once (dynamics.response_table); None: solved where needed.
-        self.responses = None
 
     def _new_shaft(self, element, name, where):
         if name in self.shafts:

@@ -23,7 +23,7 @@ import jax.numpy as jnp
 
 from ..._pytree import pytree_dataclass
 from . import decisions, extremes, private_api, switching
-from .bodies import Response, response, response_table
+from .bodies import Response, response
 from .columns import row_outputs, summary_values
 from .dynamics import Instant, slip_sign
 from .element import STUCK
@@ -285,7 +285,6 @@ def restart_loop(plan: Plan, solver, log_size: int, step_room: int = 0, columns:
     global trace_count
     trace_count += 1
     layout = plan.layout
-    layout.responses = response_table(layout)  # once per run, outside the loop
     rows, size, couplings = plan.grid.shape[0], layout.size, len(layout.couplings)
     nan = jnp.nan
     c = _Carry(

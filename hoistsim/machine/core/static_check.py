@@ -16,7 +16,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from .bodies import dot, keep_momentum
+from .bodies import keep_momentum
 from .dynamics import Instant, slip_sign
 from .element import OPEN, SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STUCK
 from .layout import Layout
@@ -123,12 +123,12 @@ def _check(layout: Layout, segment, t, met, modes, candidate):
                     return signs[j] * at_capacity.relative_acceleration(couplings[j].section)
             else:
                 # how each coupling's relative acceleration answers this one's signed sliding torque
-                response = [q[k] for q in reply.accel_from_sliding]
+                response = reply.accel_from_sliding[:, k]
                 extra = jnp.where(jnp.isfinite(limit), limit, 0.0) - coupling.sliding_torque(x)
 
                 def parting_then(j):  # its own parting moves with its own torque: no sign to apply
                     scale = extra if j == k else signs[j] * sign * extra
-                    return partings[j] + scale * dot(x.rows[j], response)
+                    return partings[j] + scale * x.bodies.relative(j, response)
             # own answer negative: friction holds the sides
             cannot = parting_then(k) >= 0.0
             # Carrying its whole capacity, it would stop another let go from sliding the way it does (a
@@ -245,7 +245,7 @@ def margins(layout: Layout, segment, t, y, modes):
 
     def one(k):
         x = Instant(layout, t, y, modes.at[k].set(STUCK), segment.table)
-        torque = jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in x.coupling_torques])[k]
+        torque = x.coupling_torques[k]
         capacity = jnp.stack([jnp.asarray(c.capacity_toward(x, jnp.sign(torque)), dtype=jnp.float64)
                               for c in couplings])[k]
         return capacity - jnp.abs(torque)
