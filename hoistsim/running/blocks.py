@@ -384,7 +384,7 @@ def compiled_batch(solver_name: str, log_size: int, step_room: int, columns: boo
     """
     solver = SOLVERS[solver_name]()
     return over_devices(jax.vmap(functools.partial(restart_loop, solver=solver, log_size=log_size,
-                                                   step_room=step_room, columns=columns)), devices)
+                                                   step_room=step_room, columns=columns, lanes=True)), devices)
 
 
 def over_devices(batch, devices: int):

@@ -162,11 +162,15 @@ def _bends(guards) -> jax.Array | None:
     return jnp.asarray(kinks) if any(kinks) else None
 
 
-def _decided(plan: Plan, segment: Segment, c: _Carry, columns: bool) -> _Carry:
+def _decided(plan: Plan, segment: Segment, c: _Carry, columns: bool, lanes: bool) -> _Carry:
     """The modes for the pass that starts here and the bodies' response to them, worked out where a decision
     is due (a boundary, or a switch located where the last pass ended) and carried as they are elsewhere: a pass
     that ended at an observation, a valley or a kink changed nothing a decision reads (decide would leave the
-    modes, the state and the log as they are, at the price of a static check and a response a pass)."""
+    modes, the state and the log as they are, at the price of a static check and a response a pass).
+
+    ``lanes``: the run is one lane of a vectorised sweep, where some lane is due at almost every pass and the
+    conditional would only carry the whole loop's state (its event log) through a branch: decided at every
+    pass, as a decision that is not due changes nothing."""
     layout = plan.layout
 
     def decide(k: _Carry) -> _Carry:
@@ -178,6 +182,8 @@ def _decided(plan: Plan, segment: Segment, c: _Carry, columns: bool) -> _Carry:
                            (_response(layout, decided.modes), jnp.where(same, k.step_guess, jnp.nan)),
                            is_leaf=lambda x: x is None)
 
+    if lanes:
+        return decide(c)
     due = private_api.unvmap_any(c.at_boundary | c.pending)
     return jax.lax.cond(due, decide, lambda k: k, c)
 
@@ -187,11 +193,11 @@ def _response(layout: Layout, modes) -> Response | None:
     return None if layout.inertia_varies else response(layout, modes)
 
 
-def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
+def _step(plan: Plan, solver, columns: bool, lanes: bool, c: _Carry) -> _Carry:
     layout = plan.layout
     guards = switching.guards(layout)
     segment = segment_from(plan.elements, plan.boundaries, plan.duration, c.t)
-    c = _decided(plan, segment, c, columns)
+    c = _decided(plan, segment, c, columns, lanes)
     reply = c.reply
     c, durations = _note(plan, segment, c, c.t, c.y, c.modes, reply)
     start_t, start_y = c.t, c.y
@@ -277,11 +283,13 @@ def _step(plan: Plan, solver, columns: bool, c: _Carry) -> _Carry:
     )
 
 
-def restart_loop(plan: Plan, solver, log_size: int, step_room: int = 0, columns: bool = True) -> RawRun:
+def restart_loop(plan: Plan, solver, log_size: int, step_room: int = 0, columns: bool = True,
+                 lanes: bool = False) -> RawRun:
     """One run of ``plan``, traced: jitted by :func:`compiled_run`, vectorised over a sweep's runs by
     :func:`hoistsim.running.blocks.compiled_batch`; ``columns`` False leaves out the output rows and columns (a
-    summary-only sweep needs none).  The rows are written after the loop from the accepted steps it kept (room
-    for ``step_room``; a run that takes more is taken again with room for them all: counters say)."""
+    summary-only sweep needs none); ``lanes`` True, one lane of that vectorised sweep (see ``_decided``).  The
+    rows are written after the loop from the accepted steps it kept (room for ``step_room``; a run that takes
+    more is taken again with room for them all: counters say)."""
     global trace_count
     trace_count += 1
     layout = plan.layout
@@ -325,7 +333,7 @@ def restart_loop(plan: Plan, solver, log_size: int, step_room: int = 0, columns:
         return ((c.t < plan.duration) | c.pending) & (c.status == OK) & (c.segments < max_segments)
 
     # The kept steps and the event log are buffers of the run's loop too: written in place (see stepping).
-    c = private_api.while_loop(going, functools.partial(_step, plan, solver, columns), c, kind="lax",
+    c = private_api.while_loop(going, functools.partial(_step, plan, solver, columns, lanes), c, kind="lax",
                                buffers=lambda k: (k.kept, k.log))
     status = jnp.where((c.status == OK) & (c.t < plan.duration), TOO_MANY_SEGMENTS, c.status)
     # The rows: before where the run ended, on the steps that cover them; from there on (the duration, the
