@@ -64,26 +64,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 SCENARIOS = ROOT / "scenarios"
 
-STICK_SLIP = """\
-name: stick-slip-chain
-description: >
-  A drive turning at 1 rad/s (a heavy shaft) pulls a hub through a clutch, the hub a block through a spring;
-  the block is dragged by a clutch to the ground (static 0.6, kinetic 0.4): it sticks and slips again and again.
-drivetrain:
-  shafts:
-    drive: {inertia: 1000 kg*m^2, speed: 1 rad/s}
-    hub: {inertia: 0.1 kg*m^2, speed: 1 rad/s}
-    block: {inertia: 1 kg*m^2}
-  clutches:
-    clutch: {between: [drive, hub], static_friction: 0.6, kinetic_friction: 0.5, effective_radius: 1 m, force: 200 N}
-    drag: {between: [block, ground], static_friction: 0.6, kinetic_friction: 0.4, effective_radius: 1 m,
-           force: 100 N}
-  springs:
-    spring: {between: [hub, block], stiffness: 600 N*m/rad, damping: 0.5 N*m*s/rad}
-simulation:
-  duration: 20 s
-  output_interval: 10 ms
-"""
+# a drive pulling a block through a clutch and a spring, the block dragged by a clutch to the ground: it sticks
+# and slips again and again (the scene a test of a run's room uses too)
+STICK_SLIP = (ROOT / "tests" / "data" / "stick_slip_chain.yaml").read_text()
 
 
 def chain_yaml(n: int) -> str:

@@ -128,6 +128,12 @@ def stores_programs() -> bool:
     return _executables is not None
 
 
+def structure_of(*args) -> str:
+    """What a compiled program depends on of its arguments: their tree, shapes and dtypes (not their values)."""
+    leaves, treedef = jax.tree.flatten(args)
+    return repr((str(treedef), [(getattr(x, "shape", ()), str(getattr(x, "dtype", type(x)))) for x in leaves]))
+
+
 def executable(program, *args, name: str, devices: int = 1):
     """``program()`` (a jitted function) compiled for ``args``: held by the process's pool of programs, or
     loaded from disk when a run of the same shape compiled it before, or compiled.
@@ -150,10 +156,8 @@ def executable(program, *args, name: str, devices: int = 1):
     other flags is another program), the function's name and the arguments'
     structure, shapes and dtypes.
     """
-    leaves, treedef = jax.tree.flatten(args)
     signature = repr((name, program_origin(), jax.default_backend(), os.environ.get("XLA_FLAGS", ""), devices,
-                      str(treedef),
-                      [(getattr(x, "shape", ()), str(getattr(x, "dtype", type(x)))) for x in leaves]))
+                      structure_of(*args)))
     key = hashlib.sha256(signature.encode()).hexdigest()
     if _served is not None and (key, devices) not in _served:
         _served.append((key, devices))

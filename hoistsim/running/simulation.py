@@ -25,18 +25,17 @@ class SimulationError(RuntimeError):
     """A run that could not be completed (chattering, solver failure)."""
 
 
-# The event rows and steps a run of each structure (its solver, its plan's tree and shapes) last needed, where
+# The event rows and steps a run of each structure (its solver, its plan's tree, shapes and dtypes) needed, where
 # that was more than its first estimate: the next run of it (a `watch` redraw, a fit's iteration) starts with
 # room for them, instead of overflowing again and being run twice each time.
-_ROOM_NEEDED: dict[tuple, tuple[int, int]] = {}
+_ROOM_NEEDED: dict[tuple[str, str], tuple[int, int]] = {}
 
 
 def simulate(scenario: Scenario, label: str = "") -> RunResult:
     """Run one scenario (its sweep, if any, is ignored here: see :func:`hoistsim.sweep`)."""
     plan, grid = build_plan(scenario)
     sim = scenario.simulation
-    leaves, treedef = jax.tree.flatten(plan)
-    structure = (sim.solver, treedef, tuple(np.shape(leaf) for leaf in leaves))
+    structure = (sim.solver, _jax.structure_of(plan))
     rows, room = _ROOM_NEEDED.get(structure, (log_rows(plan), step_room(plan)))
     while True:
         run = _jax.executable(functools.partial(_loop, sim.solver, rows, room), plan,
@@ -48,8 +47,8 @@ def simulate(scenario: Scenario, label: str = "") -> RunResult:
             break
         # room for every event row and every step
         rows, room = log_rows(plan, log_size=raw.event_count + 1), step_room(plan, raw.kept_steps)
-        _ROOM_NEEDED[structure] = (max(rows, _ROOM_NEEDED.get(structure, (0, 0))[0]),
-                                   max(room, _ROOM_NEEDED.get(structure, (0, 0))[1]))
+        before = _ROOM_NEEDED.get(structure, (0, 0))
+        _ROOM_NEEDED[structure] = (max(rows, before[0]), max(room, before[1]))
     scenario_errors(scenario, raw)
     if raw.status != OK:
         raise SimulationError(failure_message(scenario, raw))

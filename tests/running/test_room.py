@@ -3,6 +3,8 @@ same structure starts with that room, instead of overflowing again and being run
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
 from hoistsim import simulate
@@ -11,29 +13,11 @@ from hoistsim.scenario.loading import load_scenario
 
 # A block dragged by a clutch to the ground and pulled through a spring: it sticks and slips again and again,
 # some 2 900 steps for 2 001 rows (room for 2 048 at first).
-STICK_SLIP = """\
-name: stick-slip
-drivetrain:
-  shafts:
-    drive: {inertia: 1000 kg*m^2, speed: 1 rad/s}
-    hub: {inertia: 0.1 kg*m^2, speed: 1 rad/s}
-    block: {inertia: 1 kg*m^2}
-  clutches:
-    clutch: {between: [drive, hub], static_friction: 0.6, kinetic_friction: 0.5, effective_radius: 1 m, force: 200 N}
-    drag: {between: [block, ground], static_friction: 0.6, kinetic_friction: 0.4, effective_radius: 1 m,
-           force: 100 N}
-  springs:
-    spring: {between: [hub, block], stiffness: 600 N*m/rad, damping: 0.5 N*m*s/rad}
-simulation:
-  duration: 20 s
-  output_interval: 10 ms
-"""
+STICK_SLIP = Path(__file__).resolve().parents[1] / "data" / "stick_slip_chain.yaml"
 
 
-def test_a_run_that_outgrew_its_room_starts_the_next_time_with_room_for_its_steps(tmp_path, monkeypatch):
-    path = tmp_path / "stick_slip.yaml"
-    path.write_text(STICK_SLIP)
-    scenario = load_scenario(path)
+def test_a_run_that_outgrew_its_room_starts_the_next_time_with_room_for_its_steps(monkeypatch):
+    scenario = load_scenario(STICK_SLIP)
     monkeypatch.setattr(simulation, "_ROOM_NEEDED", {})
     called = []
     executable = simulation._jax.executable

@@ -49,7 +49,7 @@ def crossing(guards, args, interpolant, lower, upper, crossed, at_lower, at_uppe
         return (hi - lo > width_left(hi)) & (middle > lo) & (middle < hi)
 
     def narrow(bracket):
-        lo, hi, g_lo, g_hi, fired, stalls = bracket
+        lo, hi, g_lo, g_hi, at_hi, fired, stalls = bracket
         width = hi - lo
         # each guard that has crossed by the upper end, as a line between the ends: where it reaches zero
         active = crossed & (g_hi <= 0.0)
@@ -66,13 +66,14 @@ def crossing(guards, args, interpolant, lower, upper, crossed, at_lower, at_uppe
         g_lo = jnp.where(reached, jnp.where(stalls >= 2, 0.5 * g_lo, g_lo), values)
         g_hi = jnp.where(reached, values, jnp.where(stalls <= -2, 0.5 * g_hi, g_hi))
         stalls = jnp.where(t == middle, 0, stalls)  # a halving starts the count afresh
-        return (jnp.where(reached, lo, t), jnp.where(reached, t, hi), g_lo, g_hi,
+        return (jnp.where(reached, lo, t), jnp.where(reached, t, hi), g_lo, g_hi, jnp.where(reached, values, at_hi),
                 jnp.where(reached, at_t, fired), stalls)
 
-    # The guards below zero at the bracket's upper end are carried along (at the step's end: those that
-    # crossed), not worked out again where the search stops: the guards are most of the program.
-    _, t, _, at_t, fired, _ = jax.lax.while_loop(going, narrow, (lower, upper, at_lower, at_upper, crossed,
-                                                                 jnp.zeros((), int)))
+    # The guards at the bracket's upper end (as read: ``g_hi`` is halved by the Illinois rule) and those below
+    # zero there are carried along, not worked out again where the search stops: the guards are most of the
+    # program.
+    _, t, _, _, at_t, fired, _ = jax.lax.while_loop(going, narrow, (lower, upper, at_lower, at_upper, at_upper,
+                                                                    crossed, jnp.zeros((), int)))
     fired = jnp.where(jnp.any(fired), fired, crossed)  # round-off: the guard that crossed at the step's end
     which = jnp.arange(fired.shape[0]) == jnp.argmax(fired)
     # the instant's derivative, where the run is differentiated: the fired guard's zero (event_time)

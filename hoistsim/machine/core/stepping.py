@@ -249,7 +249,7 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
         t_next = jnp.where(first_cut, foretold, t_next)
     dense_shape = jax.eval_shape(stepper.step, t0, t_next, y0, state)[2]
     carry = _Carry(
-        t=jnp.asarray(t0, y0.dtype), y=y0, t_next=t_next, state=state, control=control, values=values,
+        t=t0, y=y0, t_next=t_next, state=state, control=control, values=values,
         steps=jnp.array(0), rejected=jnp.array(0), done=t0 >= end, hit=jnp.array(False),
         failed=jnp.array(False), crossed=nothing, reached=values, proposed=first - t0, cut=first_cut,
         dense=jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), dense_shape), kept=kept, count=jnp.asarray(count))
