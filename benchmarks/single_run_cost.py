@@ -51,6 +51,7 @@ from __future__ import annotations
 
 import argparse
 import collections
+import importlib.util
 import json
 import os
 import re
@@ -480,6 +481,16 @@ def contexts(hlo: Hlo, body: str) -> dict[str, str]:
     return out
 
 
+def child(program: str, *args: str, timeout: float | None = None, check: bool = False) -> subprocess.CompletedProcess:
+    """``program`` run in a fresh process with the cache off, importing hoistsim from the tree this process
+    imports it from (``-P``: not from its working directory, so that ``PYTHONPATH`` can pair two trees)."""
+    tree = Path(importlib.util.find_spec("hoistsim").origin).resolve().parents[1]
+    env = dict(os.environ, HOISTSIM_CACHE_DIR="",
+               PYTHONPATH=os.pathsep.join(filter(None, [str(tree), os.environ.get("PYTHONPATH")])))
+    return subprocess.run([sys.executable, "-P", "-c", program, *args], capture_output=True, text=True, env=env,
+                          cwd=ROOT, timeout=timeout, check=check)
+
+
 PROFILE_OVERRIDES = {"engine_hoist_flywheel": ["simulation.duration=1 s"]}
 
 
@@ -493,10 +504,7 @@ def profile_report(paths: dict[str, Path]) -> None:
             shorter = PROFILE_OVERRIDES.get(name, [])
             if shorter:
                 print(f"({name} profiled with {' '.join(shorter)}: a whole run's trace would be millions of events)")
-            done = subprocess.run([sys.executable, "-c", PROFILE, str(path), str(text), str(counted), *shorter],
-                                  cwd=ROOT,
-                                  env=dict(os.environ, HOISTSIM_CACHE_DIR=""), capture_output=True, text=True,
-                                  check=False)
+            done = child(PROFILE, str(path), str(text), str(counted), *shorter)
             if done.returncode != 0:
                 print(f"{name}: failed {done.stderr[-500:]}")
                 continue
@@ -539,8 +547,7 @@ def program_text(path: Path) -> str:
     operation keeps its whole stack of source frames)."""
     with tempfile.TemporaryDirectory() as folder:
         out = Path(folder) / "program.hlo"
-        subprocess.run([sys.executable, "-c", PROGRAM_TEXT, str(path), str(out)], check=True, cwd=ROOT,
-                       env=dict(os.environ, HOISTSIM_CACHE_DIR=""), capture_output=True, text=True)
+        child(PROGRAM_TEXT, str(path), str(out), check=True)
         return out.read_text()
 
 
@@ -630,8 +637,7 @@ print(json.dumps({"loops": loops, **{k: v for k, v in result.stats.items() if k 
 
 def variant_runs(path: Path, variant: str, repeats: int) -> dict | None:
     """The scene's warm loop in a fresh process, the cache off, with ``variant`` patched into the loop."""
-    done = subprocess.run([sys.executable, "-c", VARIANT, str(path), variant, str(repeats)], capture_output=True,
-                          text=True, cwd=ROOT, env=dict(os.environ, HOISTSIM_CACHE_DIR=""), check=False)
+    done = child(VARIANT, str(path), variant, str(repeats))
     if done.returncode != 0:
         print(done.stderr[-1500:])
         return None
@@ -666,9 +672,7 @@ def variants_report(paths: dict[str, Path], repeats: int, rounds: int = 1) -> No
 
 
 def first_run(path: Path) -> tuple[float, float] | None:
-    env = dict(os.environ, HOISTSIM_CACHE_DIR="")
-    done = subprocess.run([sys.executable, "-c", FIRST_RUN, str(path)], capture_output=True, text=True, env=env,
-                          cwd=ROOT, check=False)
+    done = child(FIRST_RUN, str(path))
     if done.returncode != 0:
         return None
     whole, compile_s = (float(v) for v in done.stdout.split()[-2:])
@@ -676,10 +680,8 @@ def first_run(path: Path) -> tuple[float, float] | None:
 
 
 def chain_compile(path: Path, limit: float) -> dict | None:
-    env = dict(os.environ, HOISTSIM_CACHE_DIR="")
     try:
-        done = subprocess.run([sys.executable, "-c", CHAIN_COMPILE, str(path), str(Path(__file__).parent)],
-                              capture_output=True, text=True, env=env, cwd=ROOT, timeout=limit, check=False)
+        done = child(CHAIN_COMPILE, str(path), str(Path(__file__).parent), timeout=limit)
     except subprocess.TimeoutExpired:
         return None
     if done.returncode != 0:

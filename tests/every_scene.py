@@ -120,6 +120,19 @@ NAMED = {
 }
 
 
+def never_twice(events, name) -> None:
+    """No instant found twice: a restart never fires again on the root it stopped at (the same kind of instant of
+    the same element of one run, within 1e-12 s of the last)."""
+    run, time = events["run"][()], events["time"][()]
+    kind, element = events["kind"].asstr()[()], events["element"].asstr()[()]
+    order = np.lexsort((time, element, kind, run))
+    same = ((run[order][1:] == run[order][:-1]) & (kind[order][1:] == kind[order][:-1])
+            & (element[order][1:] == element[order][:-1]))
+    close = np.diff(time[order]) <= 1e-12
+    twice = order[1:][same & close]
+    assert not twice.size, (name, [(kind[i], element[i], float(time[i])) for i in twice[:5]])
+
+
 def runs_to_a_legible_file(name, path, text, tmp_path, monkeypatch) -> None:
     """The scene run through the command line to a file with rows in every series, and its figures legible."""
     monkeypatch.chdir(tmp_path)  # anything a scene writes beside the file stays here
@@ -133,6 +146,8 @@ def runs_to_a_legible_file(name, path, text, tmp_path, monkeypatch) -> None:
     assert f"wrote {out}" in result.output
     with h5py.File(out, "r") as f:
         assert "scenario" in f and f["runs/time"].shape[0] > 1
+        if "events" in f["runs"]:
+            never_twice(f["runs/events"], name)
     with hoistsim.open_results(out) as ds:
         assert ds.sizes["run"] == runs and ds.sizes["time"] > 1
         series = [key for key, values in ds.data_vars.items() if values.dims == ("run", "time")]

@@ -27,6 +27,7 @@ a few entries long would be a kernel of its own, slower to compile than to run.
 
 from __future__ import annotations
 
+import functools
 from functools import cached_property
 
 import jax
@@ -52,10 +53,23 @@ def _summed(shape, places, values):
     return jnp.zeros(shape).at[where].add(jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in values]))
 
 
+# Products over at most this many columns are written out column by column; wider ones are summed over an axis.
+UNROLLED_COLUMNS = 4
+
+
 def product(a, b):
-    """The matrix product a b (b a vector or a matrix), as products summed: a few bodies and couplings make
-    dots too small for a matrix kernel of their own, and summed products fuse with what makes and uses them."""
-    return jnp.sum(a * b[None, :] if b.ndim == 1 else a[:, :, None] * b[None, :, :], axis=1)
+    """The matrix product a b (b a vector or a matrix).  A few bodies and couplings make dots too small for a
+    matrix kernel of their own; a sum over an axis (a reduction) is where XLA ends a fusion, and in a step's
+    vector field it split each stage into fusions of their own (a third more operations a step on a two-body
+    machine).  So a narrow product is a's columns times b's entries (rows), added: elementwise, fused with what
+    makes and uses it.  A wide one is summed over its axis: written out, its operations would grow with the
+    columns in every place a vector field is read, and XLA's compile with them."""
+    if a.shape[1] > UNROLLED_COLUMNS:
+        return jnp.sum(a * b[None, :] if b.ndim == 1 else a[:, :, None] * b[None, :, :], axis=1)
+    if a.shape[1] == 0:
+        return jnp.zeros((a.shape[0],) + b.shape[1:], jnp.result_type(a, b))
+    column = (lambda j: a[:, j] * b[j]) if b.ndim == 1 else (lambda j: a[:, j, None] * b[j][None, :])
+    return functools.reduce(jnp.add, (column(j) for j in range(a.shape[1])))
 
 
 def _vector(values):

@@ -28,7 +28,7 @@ from .columns import row_outputs, summary_values
 from .dynamics import Instant, slip_sign
 from .element import STUCK
 from .eventlog import LOG_FIELDS, unpack
-from .guard_id import (BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, MARGIN_VALLEY, MARGIN_VALLEYS_EACH_WAY, SLIP, SLIP_VALLEY,
+from .guard_id import (BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, MARGIN_VALLEY, MARGIN_VALLEYS_EACH_WAY, SLIP_VALLEY,
                        GuardId)
 from .layout import Layout
 from .ledger import ledger_values
@@ -142,14 +142,18 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
     end = jnp.where(jnp.isneginf(c.switches_from), segment.end, jnp.minimum(segment.end, c.switches_from))
     pass_args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, offsets, kinking, anchors,
                      args.orients, c.switches_from)
-    # The guards other than switches where the pass starts (those above zero are armed), and the couplings'
-    # slip zeros (one crossed along with the located switch is decided with it: switching.crossed_together).
-    # (the same values as ``unlowered`` where nothing is lowered or held off: read again only where something is)
+    # The guards where the pass starts (those above zero are armed: switching.crossed_together); the same values
+    # as ``unlowered`` where nothing is lowered or held off: read again only where something is
     lowered = functools.reduce(jnp.logical_or, c.fired.values(), jnp.isfinite(c.switches_from))
     starting = jax.lax.cond(private_api.unvmap_any(lowered), lambda: switching.guard_values(c.t, c.y, pass_args),
                             lambda: unlowered)
-    armed = {name: starting[i] for i, (role, name, _) in enumerate(guards) if role != "switch" or name.kind == SLIP}
-    return pass_args, armed, integrate_pass(
+    # A lowered guard starts at or below zero, whatever the round-off: its two reads here are two copies of the
+    # guards in the compiled program, and XLA may round them apart (a product fused with a multiply-add in one
+    # and not the other); read a hair above zero it would be armed, and fire again at once on its own root
+    # (an energy minimum of the slider crank found twice, 1.3e-15 s apart).
+    lowered_guards = jnp.stack([c.fired[name] if name in c.fired else jnp.zeros((), bool) for _, name, _ in guards])
+    starting = jnp.where(lowered_guards, jnp.minimum(starting, 0.0), starting)
+    return pass_args, starting, integrate_pass(
         solver, pass_args, switching.guard_values, c.t, c.y, end,
         rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap, cap_until=c.cap_until, max_steps=MAX_STEPS_PER_SEGMENT,
         kept=c.kept, count=c.kept_count, modes=c.modes, first_step=c.step_guess, bends=_bends(guards),
@@ -201,7 +205,7 @@ def _step(plan: Plan, solver, columns: bool, lanes: bool, c: _Carry) -> _Carry:
     reply = c.reply
     c, durations = _note(plan, segment, c, c.t, c.y, c.modes, reply)
     start_t, start_y = c.t, c.y
-    pass_args, armed, sol = _solve_segment(plan, segment, c, solver, guards, reply, columns)
+    pass_args, starting, sol = _solve_segment(plan, segment, c, solver, guards, reply, columns)
 
     t_end, y_end, hit, failed = sol.t, sol.y, sol.hit, sol.failed
     masks = {name: sol.mask[i] for i, (_, name, _) in enumerate(guards)}
@@ -227,7 +231,7 @@ def _step(plan: Plan, solver, columns: bool, lanes: bool, c: _Carry) -> _Carry:
                     | (by_name[GuardId(name, BREAKAWAY_BACKWARD)] < 0.0))
     missed = missed | (margin_valley & over)
     events = {GuardId(e.section, kind) for e in layout.elements for kind in e.crossing_events}
-    overtaken, limit_overtaken, coinciding = switching.crossed_together(guards, at_end, armed, masks, events)
+    overtaken, limit_overtaken, coinciding = switching.crossed_together(guards, at_end, starting, sol.mask, events)
     # An observation or a limit below zero at the switch located, yet not the crossing found (it crossed and
     # came back within the step, so that only part of the step showed it): the pass is solved again once, only
     # up to that switch's instant and with the switches held off, so that its own root is found; the next

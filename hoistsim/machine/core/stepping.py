@@ -187,7 +187,6 @@ class _Carry(eqx.Module):
     reached: jax.Array  # (guards,): the guards at the last step's end (where they crossed, at a hit)
     proposed: jax.Array  # s: the controller's next step after the last accepted one
     cut: jax.Array  # whether the step being tried was cut short to reach a bend (its size is no step's measure)
-    dense: dict  # the last step tried, its dense output (a crossing's step: located on it, not taken again)
     kept: Steps | None
     count: jax.Array
 
@@ -247,12 +246,11 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
         foretold = t0 + due * jnp.where(due < NEAR_BEND * (t_next - t0), PAST_BEND, SHORT_OF_BEND)
         first_cut = (foretold > t0) & (foretold < t_next)
         t_next = jnp.where(first_cut, foretold, t_next)
-    dense_shape = jax.eval_shape(stepper.step, t0, t_next, y0, state)[2]
     carry = _Carry(
         t=t0, y=y0, t_next=t_next, state=state, control=control, values=values,
         steps=jnp.array(0), rejected=jnp.array(0), done=t0 >= end, hit=jnp.array(False),
-        failed=jnp.array(False), crossed=nothing, reached=values, proposed=first - t0, cut=first_cut,
-        dense=jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), dense_shape), kept=kept, count=jnp.asarray(count))
+        failed=jnp.array(False), crossed=nothing, reached=values, proposed=first - t0, cut=first_cut, kept=kept,
+        count=jnp.asarray(count))
 
     def going(c: _Carry):
         return ~c.done & ~c.failed
@@ -300,21 +298,25 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
                 keep, c.t_next, next_t1)), state=accept(state, c.state), control=control,
             values=accept(values, c.values), steps=steps, rejected=c.rejected + ~keep,
             done=hit | (keep & (c.t_next >= end)), hit=hit, failed=(steps >= max_steps) & ~hit & ~(keep & (c.t_next >= end)),
-            crossed=crossed, reached=values, proposed=proposed, cut=cut, dense=dense, kept=kept, count=count)
+            crossed=crossed, reached=values, proposed=proposed, cut=cut, kept=kept, count=count)
 
     # The kept steps are a buffer: each written in place, never copied whole.  (Under ``vmap`` a loop's
     # carry is otherwise selected lane by lane at every step: the whole buffer, once a step.)
     c = private_api.while_loop(going, body, carry, kind="lax", buffers=lambda k: k.kept)
 
-    # A crossing's step was not accepted: the carry still holds its start and end, and its dense output (the
-    # last step tried), for its interpolant.
+    # A crossing's step was not accepted: the carry still holds its start and end, and it is taken again for
+    # its interpolant.  (Not kept from the step loop: its dense output in the loop's carry is written at every
+    # step, and under vmap selected lane by lane at every step, a quarter of a sweep's lane; a step taken
+    # again costs a pass with a crossing its stages alone.)
     def locate():
-        interpolant = stepper.interpolant(c.t, c.t_next, c.dense)
-        return c.dense, *crossing(guards, args, interpolant, c.t, c.t_next, c.crossed & c.hit, c.values,
+        dense = stepper.step(c.t, c.t_next, c.y, c.state)[2]
+        interpolant = stepper.interpolant(c.t, c.t_next, dense)
+        return dense, *crossing(guards, args, interpolant, c.t, c.t_next, c.crossed & c.hit, c.values,
                                   c.reached)
 
     def no_crossing():
-        return jax.tree.map(jnp.zeros_like, c.dense), c.t, c.y, nothing, c.values
+        dense = jax.eval_shape(stepper.step, c.t, c.t_next, c.y, c.state)[2]
+        return jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), dense), c.t, c.y, nothing, c.values
 
     dense, t_hit, y_hit, mask, at_hit = jax.lax.cond(private_api.unvmap_any(c.hit), locate, no_crossing)
     t_end = jnp.where(c.hit, t_hit, c.t)

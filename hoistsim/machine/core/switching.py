@@ -59,6 +59,7 @@ from functools import cached_property
 
 import jax
 import jax.numpy as jnp
+import numpy as np
 
 from .dynamics import Instant, rates_at, slip_sign, vector_field
 from .element import OPEN, SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STICK_TOLERANCE, STUCK, TORQUE_RESOLUTION
@@ -277,7 +278,7 @@ def orients(layout: Layout, t, y, args) -> dict:
     return out
 
 
-def crossed_together(guards, values, armed: dict, masks: dict, events=frozenset()):
+def crossed_together(guards, values, starting, located, events=frozenset()):
     """Which guards crossed zero in the same step as the one located at (t, y).
 
     A pass ends at the earliest crossing of the guards that changed sign over a
@@ -286,36 +287,35 @@ def crossed_together(guards, values, armed: dict, masks: dict, events=frozenset(
     was *overtaken*, and the pass must be solved again.  One only just past zero crossed with the located
     one, as far as a row can tell: a knot coordinate by less than the knot
     resolution; an observation by less than 1e-4 of its value where the pass
-    started (``armed``), a root so close that the row already there misses its
+    started (``starting``), a root so close that the row already there misses its
     extreme by ~1e-8; a limit by less than 1e-9 of it (a threshold's instant is
     an answer, not a row beside one).  Returns (an observation overtaken, a
     limit overtaken, the knots reached and the limits and events crossed at (t, y)
     along with the located guard: a period that ends on a table's knot is reached;
     a limit reached as a coupling locks was crossed, there; a backlash's sides
     parting where the shaft they let go of turns round was an event, there; a
-    coupling's slip zero, where ``armed`` has it, reached with the located one
-    (a shaft stopping against two holds at once), to be decided with it).
-    ``values``: every guard at (t, y) (:func:`guard_values`); ``events``: the
-    observations that are events (their elements' ``crossing_events``).
+    coupling's slip zero reached with the located one (a shaft stopping against
+    two holds at once), to be decided with it).
+    ``values``, ``starting``: every guard at (t, y) and where the pass started (:func:`guard_values`);
+    ``located``: the guard the search located (a mask); ``events``: the observations that are events
+    (their elements' ``crossing_events``).  Array operations over the guard vector, the roles constant
+    masks: a few operations whatever the number of guards.
     """
-    overtaken, limit_overtaken, coinciding = jnp.zeros((), bool), jnp.zeros((), bool), {}
-    for i, (role, name, _) in enumerate(guards):
-        if role == "switch":
-            if name in armed:  # the search stopped at the first root in list order: this one shares it
-                coinciding[name] = (armed[name] > 0.0) & ~masks[name] & (values[i] <= 0.0)
-            continue
-        value = values[i]
-        resolution = {"kink": KNOT_RESOLUTION, "limit": 1e-9 * jnp.abs(armed[name])}.get(
-            role, 1e-4 * jnp.abs(armed[name]))
-        passed = (armed[name] > 0.0) & ~masks[name] & (value < -resolution)
-        if role == "limit":
-            limit_overtaken = limit_overtaken | passed
-        else:
-            overtaken = overtaken | passed
-        if role == "kink":
-            coinciding[name] = (armed[name] > 0.0) & (value <= KNOT_RESOLUTION)
-        if role == "limit" or name in events:
-            coinciding[name] = (armed[name] > 0.0) & ~masks[name] & (value <= 0.0)
+    roles = [role for role, _, _ in guards]
+    switch, kink, limit = (np.array([r == role for r in roles]) for role in ("switch", "kink", "limit"))
+    slip = np.array([name.kind == SLIP for _, name, _ in guards]) & switch
+    event = np.array([name in events for _, name, _ in guards]) & ~switch
+    armed = starting > 0.0
+    beside = armed & ~located  # armed where the pass started, and not the guard located
+    resolution = jnp.where(kink, KNOT_RESOLUTION, jnp.where(limit, 1e-9, 1e-4) * jnp.abs(starting))
+    passed = ~switch & beside & (values < -resolution)
+    overtaken = jnp.any(passed & ~limit)
+    limit_overtaken = jnp.any(passed & limit)
+    # a knot reached within its resolution; a limit, an event or a slip zero (the search stopped at the first
+    # root in list order: this one shares it) at or below zero
+    reached = jnp.where(kink, armed & (values <= KNOT_RESOLUTION), beside & (values <= 0.0))
+    reported = slip | kink | limit | event
+    coinciding = {name: reached[i] for i, (_, name, _) in enumerate(guards) if reported[i]}
     return overtaken, limit_overtaken, coinciding
 
 
