@@ -128,21 +128,28 @@ def log_rows(plan: Plan, log_size: int | None = None) -> int:
 def step_room(plan: Plan, kept: int | None = None, sweep: bool = False) -> int:
     """The accepted steps a run keeps room for, for its output rows (a static size of the loop).  One run
     keeps room for a step a padded row (a hoist's start takes some 60-1 500 steps for 2 000-5 000 rows: a
-    new value seldom outgrows it), and STEPS_PER_CYCLE for each cycle a machine with a period of its own is
-    expected to turn (an engine's cycle is a hundred steps and more, between knots of its tables).  A
-    sweep's chunk keeps room for a quarter of that, at least MIN_STEP_ROOM (room for a step a row in each of
+    new value seldom outgrows it), and STEPS_PER_CYCLE_ONE_RUN for each cycle a machine with a period of its
+    own is expected to turn (an engine's cycle is a hundred steps and more, between knots of its tables).  A
+    sweep's chunk keeps room for a quarter of that with STEPS_PER_CYCLE a cycle, at least MIN_STEP_ROOM (room for a step a row in each of
     256 runs is several times the memory of the rows themselves).  None where no row falls before the end
     (a summary's one row takes the final state).  ``kept`` asks for room for that many (a run that took
     more steps than it could keep is run again with room for them all)."""
     if not np.any(np.asarray(plan.grid) < float(plan.duration)):
         return 0
-    room = max(int(plan.grid.shape[0]), int(expected_cycles(plan)) * STEPS_PER_CYCLE)
-    room = max(MIN_STEP_ROOM, room // 4) if sweep else room
+    cycles = int(expected_cycles(plan))
+    if sweep:
+        room = max(MIN_STEP_ROOM, max(int(plan.grid.shape[0]), cycles * STEPS_PER_CYCLE) // 4)
+    else:
+        room = max(int(plan.grid.shape[0]), cycles * STEPS_PER_CYCLE_ONE_RUN)
     return room if kept is None else max(room, _power_of_two(kept))
 
 
 # Steps kept at first for each cycle a machine with a period of its own is expected to turn.
 STEPS_PER_CYCLE = 128
+# ... and in one run, twice that: one lane's room is cheap, a second compile is not (the engine hoist's knots,
+# each stepped onto in two steps, take it some 160 steps a cycle: its first run outgrew 128 a cycle and was
+# compiled and run again, 21 s of its first 25)
+STEPS_PER_CYCLE_ONE_RUN = 256
 MIN_STEP_ROOM = 256
 
 # The switches the event log has room for at first (the default max_switches); a run that switches more is

@@ -5,9 +5,11 @@ from __future__ import annotations
 
 import jax.numpy as jnp
 import numpy as np
+import pytest
 from helpers import drawn
 
 from hoistsim.machine.assemble import machine_elements
+from hoistsim.machine.core import bodies as bodies_module
 from hoistsim.machine.core.bodies import Bodies, solve_response, solve_stuck
 from hoistsim.machine.core.layout import Layout
 
@@ -29,7 +31,10 @@ def _chain() -> Bodies:
     return _bodies(shafts=shafts, clutches=clutches, gears={"g": {"between": ["J4", "hub"], "ratio": 3}})
 
 
-def test_the_masked_elimination_solves_the_stuck_rows_and_zeroes_the_rest():
+@pytest.mark.parametrize("written_out", [False, True], ids=["looped", "written out"])
+def test_the_masked_elimination_solves_the_stuck_rows_and_zeroes_the_rest(written_out, monkeypatch):
+    # five couplings: their pivots looped, or (as for a few) written out
+    monkeypatch.setattr(bodies_module, "UNROLLED_COLUMNS", 5 if written_out else 4)
     rng = np.random.default_rng(3)
     g = rng.normal(size=(5, 7))
     matrix = g @ np.diag(1 / rng.uniform(0.5, 2, 7)) @ g.T

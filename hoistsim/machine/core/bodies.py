@@ -110,10 +110,19 @@ def solve_stuck(matrix, rhs, stuck, order=None):
     m = jnp.concatenate([jnp.where(stuck[:, None] & stuck[None, :], matrix, identity),
                          jnp.where(stuck[:, None], rhs, 0.0)], axis=1)
     unit = np.hstack([identity, np.zeros(rhs.shape)])  # an identity row, its right-hand side zero
-    for k in order:
+
+    def eliminated(m, k):  # the pivot on row k taken: row k scaled to it, its column cleared from the others
         pivot = m[k, k]
-        row = jnp.where(pivot <= REDUNDANT_PIVOT * diagonal[k], unit[k], m[k] / pivot)
-        m = jnp.where((np.arange(n) == k)[:, None], row, m - m[:, k:k + 1] * row)
+        row = jnp.where(pivot <= REDUNDANT_PIVOT * diagonal[k], jnp.asarray(unit)[k], m[k] / pivot)
+        column = jax.lax.dynamic_slice_in_dim(m, k, 1, axis=1) if isinstance(k, jax.Array) else m[:, k:k + 1]
+        return jnp.where((np.arange(n) == k)[:, None], row, m - column * row)
+
+    if n <= UNROLLED_COLUMNS:  # a few pivots, written out
+        for k in order:
+            m = eliminated(m, k)
+    else:  # one pivot's operations, looped: a program that does not grow with the couplings
+        pivots = jnp.asarray(list(order))
+        m = jax.lax.fori_loop(0, n, lambda i, m: eliminated(m, pivots[i]), m)
     return m[:, n:]
 
 
@@ -242,14 +251,23 @@ class Bodies:
             over = _vector([top / bottom for *_, (top, bottom) in edges])
             into = into & jnp.any(of & stuck, axis=1)  # the stuck edges into each body
             settled = settled | jnp.any(into, axis=1)
-            for _ in range(min(count - 1, len(pairs))):  # a round carries the roots one coupling further
+            def carried_on(_, found):  # a round carries the roots one coupling further
+                root, ratio = found
                 offered = jnp.where(into, jnp.sum(jnp.where(source, root, 0), axis=1), count)
                 lowest = jnp.min(offered, axis=1)
                 chosen = jnp.argmin(offered, axis=1)[:, None] == np.arange(len(edges))  # the first of them
                 carried = jnp.sum(jnp.where(source, ratio, 0.0), axis=1) * over
                 lower = lowest < root
-                root = jnp.where(lower, lowest, root)
-                ratio = jnp.where(lower, jnp.sum(jnp.where(chosen, carried, 0.0), axis=1), ratio)
+                return (jnp.where(lower, lowest, root),
+                        jnp.where(lower, jnp.sum(jnp.where(chosen, carried, 0.0), axis=1), ratio))
+
+            rounds = min(count - 1, len(pairs))
+            # a few rounds written out; more, one round's operations looped (the program does not grow with them)
+            if rounds <= UNROLLED_COLUMNS:
+                for i in range(rounds):
+                    root, ratio = carried_on(i, (root, ratio))
+            else:
+                root, ratio = jax.lax.fori_loop(0, rounds, carried_on, (root, ratio))
         if pairs or holds.any():
             # each body's root's value by a mask: one term of the sum is not zero (none at the ground)
             picked = (root[:, None] == bodies)[:, :, None]

@@ -20,6 +20,7 @@ import diffrax
 import equinox as eqx
 import jax
 import jax.numpy as jnp
+import numpy as np
 
 from ..._pytree import pytree_dataclass
 from . import decisions, extremes, private_api, switching
@@ -29,7 +30,7 @@ from .dynamics import Instant, slip_sign
 from .element import STUCK
 from .eventlog import LOG_FIELDS, unpack
 from .guard_id import (BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, MARGIN_VALLEY, MARGIN_VALLEYS_EACH_WAY, SLIP_VALLEY,
-                       GuardId)
+                       GuardId, knot_guards)
 from .layout import Layout
 from .ledger import ledger_values
 from .plan import CHATTERING, KINK_BUDGET, OK, SOLVER_FAILED, TOO_MANY_SEGMENTS, Plan, segment_budget
@@ -124,7 +125,7 @@ def _in_cycle(c: _Carry):
     return spent[0], spent[1], spent[2]
 
 
-def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, reply, columns: bool):
+def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, reply, lanes: bool):
     _, observations, kinks = _in_cycle(c)
     observing = observations < plan.max_switches
     kinking = kinks < KINK_BUDGET * plan.max_switches
@@ -142,22 +143,36 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
     end = jnp.where(jnp.isneginf(c.switches_from), segment.end, jnp.minimum(segment.end, c.switches_from))
     pass_args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, offsets, kinking, anchors,
                      args.orients, c.switches_from)
-    # The guards where the pass starts (those above zero are armed: switching.crossed_together); the same values
-    # as ``unlowered`` where nothing is lowered or held off: read again only where something is
-    lowered = functools.reduce(jnp.logical_or, c.fired.values(), jnp.isfinite(c.switches_from))
-    starting = jax.lax.cond(private_api.unvmap_any(lowered), lambda: switching.guard_values(c.t, c.y, pass_args),
-                            lambda: unlowered)
-    # A lowered guard starts at or below zero, whatever the round-off: its two reads here are two copies of the
-    # guards in the compiled program, and XLA may round them apart (a product fused with a multiply-add in one
-    # and not the other); read a hair above zero it would be armed, and fire again at once on its own root
-    # (an energy minimum of the slider crank found twice, 1.3e-15 s apart).
-    lowered_guards = jnp.stack([c.fired[name] if name in c.fired else jnp.zeros((), bool) for _, name, _ in guards])
-    starting = jnp.where(lowered_guards, jnp.minimum(starting, 0.0), starting)
+    # The guards where the pass starts (those above zero are armed: switching.crossed_together), worked out from
+    # ``unlowered`` rather than read again: a lowered guard is its value less its offset, max(value, 0), so
+    # min(value, 0), at or below zero (read again, in another copy of the guards that XLA may round apart, it
+    # read a hair above zero, armed, and fired again at once on its own root: an energy minimum of the slider
+    # crank found twice, 1.3e-15 s apart); a switch held off is 1 (the pass starts before the instant it is
+    # held off to).
+    lowered = jnp.stack([c.fired[name] if name in c.fired else jnp.zeros((), bool) for _, name, _ in guards])
+    switch = np.array([role == "switch" for role, _, _ in guards])
+    starting = jnp.where(lowered, jnp.minimum(unlowered, 0.0),
+                         jnp.where(switch & jnp.isfinite(c.switches_from), 1.0, unlowered))
     return pass_args, starting, integrate_pass(
         solver, pass_args, switching.guard_values, c.t, c.y, end,
         rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap, cap_until=c.cap_until, max_steps=MAX_STEPS_PER_SEGMENT,
         kept=c.kept, count=c.kept_count, modes=c.modes, first_step=c.step_guess, bends=_bends(guards),
-        values0=starting)
+        slopes0=_bend_slopes(plan.layout, guards, anchors, kinking),
+        values0=starting, crossing_step_kept=not lanes)
+
+
+def _bend_slopes(layout: Layout, guards, anchors: dict, kinking) -> jax.Array | None:
+    """The knots' guards' rates where the pass starts, from the knot coordinates' own (the anchors): the guard of
+    the knot ahead falls as the coordinate rises, the one behind rises with it (the others: zero, unread)."""
+    rates = {}
+    for element in layout.elements:
+        for kink in element.kink_names():
+            ahead, behind = knot_guards(element.section, kink)
+            rate = anchors[GuardId(element.section, kink)][1]
+            rates[ahead], rates[behind] = -rate, rate
+    if not rates:
+        return None
+    return jnp.stack([jnp.where(kinking, rates[name], 0.0) if name in rates else jnp.zeros(()) for _, name, _ in guards])
 
 
 def _bends(guards) -> jax.Array | None:
@@ -205,7 +220,7 @@ def _step(plan: Plan, solver, columns: bool, lanes: bool, c: _Carry) -> _Carry:
     reply = c.reply
     c, durations = _note(plan, segment, c, c.t, c.y, c.modes, reply)
     start_t, start_y = c.t, c.y
-    pass_args, starting, sol = _solve_segment(plan, segment, c, solver, guards, reply, columns)
+    pass_args, starting, sol = _solve_segment(plan, segment, c, solver, guards, reply, lanes)
 
     t_end, y_end, hit, failed = sol.t, sol.y, sol.hit, sol.failed
     masks = {name: sol.mask[i] for i, (_, name, _) in enumerate(guards)}

@@ -187,13 +187,15 @@ class _Carry(eqx.Module):
     reached: jax.Array  # (guards,): the guards at the last step's end (where they crossed, at a hit)
     proposed: jax.Array  # s: the controller's next step after the last accepted one
     cut: jax.Array  # whether the step being tried was cut short to reach a bend (its size is no step's measure)
+    dense: dict | None  # the last step tried, its dense output, where a crossing's step is kept (else None)
     kept: Steps | None
     count: jax.Array
 
 
 def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, dtmax, max_steps: int,
                    kept: Steps | None = None, count=0, modes=None, field: Callable = vector_field,
-                   cap_until=jnp.inf, first_step=jnp.nan, bends=None, values0=None) -> Pass:
+                   cap_until=jnp.inf, first_step=jnp.nan, bends=None, slopes0=None, values0=None,
+                   crossing_step_kept: bool = True) -> Pass:
     """Step dy/dt = ``field(t, y, args)`` from (t0, y0) towards ``end`` until a guard (``guards(t, y, args)``:
     an array) falls to zero.  Steps start no longer than ``dtmax`` before ``cap_until`` (a pass solved again
     so that crossings found in one step get a step each: beyond the crossing that sent it back, a pass that
@@ -210,8 +212,16 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
 
     ``bends`` (guards,): the guards where the rate bends (a table's knots): a step across one is refused for the
     bend's error, so a step that would cross one (as far as the guard's rate at the start, then its last step,
-    foretells) stops just short of it, and the next ends just past it.
+    foretells) stops just short of it, and the next ends just past it.  ``slopes0`` (guards,): their rates at
+    (t0, y0) along the motion, where the caller knows them (else the guards' ``jvp``: every guard's, a second
+    copy of the guards and their own tangents in the program).
     ``values0``: the guards at (t0, y0), where the caller has read them already.
+
+    ``crossing_step_kept``: the last step tried is carried through the step loop (its dense output), so that a
+    crossing's step is located on as it was taken; False: it is taken again once located.  One lane keeps it: a
+    program with seven vector fields fewer to compile.  A vectorised sweep's lane takes it again: under vmap the
+    carried step is written and selected lane by lane at every step, a quarter of a lane's cost, against a
+    pass's stages taken again where it crosses.
     """
     controller = diffrax.PIDController(rtol=rtol, atol=atol)
     solver = _with_step_tolerances(solver, controller)
@@ -239,8 +249,10 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
     state = stepper.init(t0, t_next, y0)
     first_cut = jnp.array(False)
     if bends is not None:  # the first step too stops short of a bend ahead: the guards' rates say where it is
-        rate = state if stepper.explicit and stepper.fsal else stepper.field(t0, y0)
-        _, slopes = jax.jvp(lambda t, y: guards(t, y, args), (t0, y0), (jnp.ones_like(t0), rate))
+        slopes = slopes0
+        if slopes is None:
+            rate = state if stepper.explicit and stepper.fsal else stepper.field(t0, y0)
+            _, slopes = jax.jvp(lambda t, y: guards(t, y, args), (t0, y0), (jnp.ones_like(t0), rate))
         ahead = bends & (values > 0.0) & (slopes < 0.0)
         due = jnp.min(jnp.where(ahead, values / jnp.where(ahead, -slopes, 1.0), jnp.inf))
         foretold = t0 + due * jnp.where(due < NEAR_BEND * (t_next - t0), PAST_BEND, SHORT_OF_BEND)
@@ -249,8 +261,9 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
     carry = _Carry(
         t=t0, y=y0, t_next=t_next, state=state, control=control, values=values,
         steps=jnp.array(0), rejected=jnp.array(0), done=t0 >= end, hit=jnp.array(False),
-        failed=jnp.array(False), crossed=nothing, reached=values, proposed=first - t0, cut=first_cut, kept=kept,
-        count=jnp.asarray(count))
+        failed=jnp.array(False), crossed=nothing, reached=values, proposed=first - t0, cut=first_cut,
+        dense=jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), jax.eval_shape(stepper.step, t0, t_next, y0, state)[2])
+        if crossing_step_kept else None, kept=kept, count=jnp.asarray(count))
 
     def going(c: _Carry):
         return ~c.done & ~c.failed
@@ -298,18 +311,17 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
                 keep, c.t_next, next_t1)), state=accept(state, c.state), control=control,
             values=accept(values, c.values), steps=steps, rejected=c.rejected + ~keep,
             done=hit | (keep & (c.t_next >= end)), hit=hit, failed=(steps >= max_steps) & ~hit & ~(keep & (c.t_next >= end)),
-            crossed=crossed, reached=values, proposed=proposed, cut=cut, kept=kept, count=count)
+            crossed=crossed, reached=values, proposed=proposed, cut=cut,
+            dense=dense if crossing_step_kept else None, kept=kept, count=count)
 
     # The kept steps are a buffer: each written in place, never copied whole.  (Under ``vmap`` a loop's
     # carry is otherwise selected lane by lane at every step: the whole buffer, once a step.)
     c = private_api.while_loop(going, body, carry, kind="lax", buffers=lambda k: k.kept)
 
-    # A crossing's step was not accepted: the carry still holds its start and end, and it is taken again for
-    # its interpolant.  (Not kept from the step loop: its dense output in the loop's carry is written at every
-    # step, and under vmap selected lane by lane at every step, a quarter of a sweep's lane; a step taken
-    # again costs a pass with a crossing its stages alone.)
+    # A crossing's step was not accepted: the carry still holds its start and end (and its dense output, where
+    # kept), for its interpolant.
     def locate():
-        dense = stepper.step(c.t, c.t_next, c.y, c.state)[2]
+        dense = c.dense if crossing_step_kept else stepper.step(c.t, c.t_next, c.y, c.state)[2]
         interpolant = stepper.interpolant(c.t, c.t_next, dense)
         return dense, *crossing(guards, args, interpolant, c.t, c.t_next, c.crossed & c.hit, c.values,
                                   c.reached)

@@ -91,41 +91,40 @@ class GuardInstant:
         return Instant(args.layout, self.t, self.y, args.modes, args.segment.table, args.reply)
 
     @cached_property
-    def margin_rates(self):
-        """d/dt of each coupling's margin were it stuck (capacity less |torque|) along the motion at (t, y):
-        the margins' derivative in the direction (1, dy/dt)."""
+    def _margins_rates(self):
+        """d/dt of each coupling's margin were it stuck (capacity less |torque|), then of each way's margin
+        (capacity less / plus the torque) of every coupling whose capacity differs with the way it is pushed,
+        along the motion at (t, y): one ``jvp`` for both (one copy of the machine's tangent in the program)."""
         args, layout = self.args, self.args.layout
+        couplings = layout.coupling_elements
+        each = [k for k, c in enumerate(couplings) if c.margin_each_way]
 
         def margins(t, y):
             x = Instant(layout, t, y, args.modes, args.segment.table, args.reply)
-            torques = [jnp.asarray(x.coupling_torque(c.section), dtype=jnp.float64) for c in layout.coupling_elements]
-            return jnp.stack([holding_capacity(c, x, jnp.sign(q)) - jnp.abs(q)
-                              for c, q in zip(layout.coupling_elements, torques)])
-
-        at = jnp.asarray(self.t, dtype=jnp.float64)
-        _, rates = jax.jvp(margins, (at, self.y), (jnp.ones_like(at), rates_at(self.instant, self.y.dtype)))
-        return jnp.where(jnp.isfinite(rates), rates, -1.0)  # a coupling that holds whatever it carries: no valley
-
-    @cached_property
-    def margin_rates_each_way(self) -> dict:
-        """d/dt of each way's margin (capacity less / plus the torque) of every coupling whose capacity
-        differs with the way it is pushed (``margin_each_way``), by coupling index: (forwards, backwards)."""
-        args, layout = self.args, self.args.layout
-        each = [k for k, c in enumerate(layout.coupling_elements) if c.margin_each_way]
-
-        def margins(t, y):
-            x = Instant(layout, t, y, args.modes, args.segment.table, args.reply)
-            out = []
+            torques = [jnp.asarray(x.coupling_torque(c.section), dtype=jnp.float64) for c in couplings]
+            out = [holding_capacity(c, x, jnp.sign(q)) - jnp.abs(q) for c, q in zip(couplings, torques)]
             for k in each:
-                c = layout.coupling_elements[k]
-                q = jnp.asarray(x.coupling_torque(c.section), dtype=jnp.float64)
-                out += [holding_capacity(c, x, 1.0) - q, holding_capacity(c, x, -1.0) + q]
+                out += [holding_capacity(couplings[k], x, 1.0) - torques[k],
+                        holding_capacity(couplings[k], x, -1.0) + torques[k]]
             return jnp.stack(out)
 
         at = jnp.asarray(self.t, dtype=jnp.float64)
         _, rates = jax.jvp(margins, (at, self.y), (jnp.ones_like(at), rates_at(self.instant, self.y.dtype)))
-        rates = jnp.where(jnp.isfinite(rates), rates, -1.0)
-        return {k: (rates[2 * i], rates[2 * i + 1]) for i, k in enumerate(each)}
+        rates = jnp.where(jnp.isfinite(rates), rates, -1.0)  # a coupling that holds whatever it carries: no valley
+        n = len(couplings)
+        return rates[:n], {k: (rates[n + 2 * i], rates[n + 2 * i + 1]) for i, k in enumerate(each)}
+
+    @property
+    def margin_rates(self):
+        """d/dt of each coupling's margin were it stuck (capacity less |torque|) along the motion at (t, y):
+        the margins' derivative in the direction (1, dy/dt)."""
+        return self._margins_rates[0]
+
+    @property
+    def margin_rates_each_way(self) -> dict:
+        """d/dt of each way's margin (capacity less / plus the torque) of every coupling whose capacity
+        differs with the way it is pushed (``margin_each_way``), by coupling index: (forwards, backwards)."""
+        return self._margins_rates[1]
 
 
 def touching(coupling, x):
