@@ -20,17 +20,16 @@ import diffrax
 import equinox as eqx
 import jax
 import jax.numpy as jnp
-import numpy as np
 
 from ..._pytree import pytree_dataclass
-from . import decisions, extremes, private_api, switching
+from . import decisions, extremes, guard_roles, private_api, switching
 from .bodies import Response, response
 from .columns import row_outputs, summary_values
 from .dynamics import Instant, slip_sign
 from .element import STUCK
 from .eventlog import LOG_FIELDS, unpack
 from .guard_id import (BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, MARGIN_VALLEY, MARGIN_VALLEYS_EACH_WAY, SLIP_VALLEY,
-                       GuardId, knot_guards)
+                       GuardId)
 from .layout import Layout
 from .ledger import ledger_values
 from .plan import CHATTERING, KINK_BUDGET, OK, SOLVER_FAILED, TOO_MANY_SEGMENTS, Plan, segment_budget
@@ -98,7 +97,7 @@ class _Carry(eqx.Module):
     shrinks: jax.Array  # times the pass now under way was solved again for crossings found together
     cap_until: jax.Array  # s: up to where the steps are capped (the crossing that sent the pass back; else inf)
     switches_from: jax.Array  # s: switches held off before this time (-inf but while re-solving for a limit)
-    fired: dict  # observation and valley guards -> whether one ended the last pass
+    fired: jax.Array  # (guards,): the observation, limit and valley guards that ended the last pass (see _lowerable)
     # a switch located at the end of the last pass, to be decided at the start of the next (see _decide)
     pending: jax.Array
     pending_modes: jax.Array  # the couplings' modes as the guards that fired leave them
@@ -130,15 +129,16 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
     observing = observations < plan.max_switches
     kinking = kinks < KINK_BUDGET * plan.max_switches
     anchors = switching.kink_anchors(plan.layout, lambda t, y: _instant(plan, segment, t, y, c.modes, reply), c.t, c.y)
-    unset = {name: jnp.zeros(()) for name in c.fired}
+    lowerable = guard_roles.lowerable(guards)
+    unset = {name: jnp.zeros(()) for i, (_, name, _) in enumerate(guards) if lowerable[i]}
     orients = switching.orients(plan.layout, c.t, c.y,
                                 Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, unset,
                                      kinking, anchors, {}))
     args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, unset, kinking, anchors, orients)
     # a guard that ended the last pass starts this one at or below zero (see switching)
     unlowered = switching.guard_values(c.t, c.y, args)
-    offsets = {name: jnp.where(c.fired[name], jnp.maximum(unlowered[i], 0.0), 0.0)
-               for i, (_, name, _) in enumerate(guards) if name in c.fired}
+    lowered_by = jnp.where(c.fired, jnp.maximum(unlowered, 0.0), 0.0)
+    offsets = {name: lowered_by[i] for i, (_, name, _) in enumerate(guards) if lowerable[i]}
     # the pass ends at the segment's end, or where a pass solved again for a limit must stop (see _step)
     end = jnp.where(jnp.isneginf(c.switches_from), segment.end, jnp.minimum(segment.end, c.switches_from))
     pass_args = Args(plan.elements, segment, c.modes, observing, plan.speed_scale, reply, offsets, kinking, anchors,
@@ -149,36 +149,14 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
     # read a hair above zero, armed, and fired again at once on its own root: an energy minimum of the slider
     # crank found twice, 1.3e-15 s apart); a switch held off is 1 (the pass starts before the instant it is
     # held off to).
-    lowered = jnp.stack([c.fired[name] if name in c.fired else jnp.zeros((), bool) for _, name, _ in guards])
-    switch = np.array([role == "switch" for role, _, _ in guards])
-    starting = jnp.where(lowered, jnp.minimum(unlowered, 0.0),
-                         jnp.where(switch & jnp.isfinite(c.switches_from), 1.0, unlowered))
+    held_off = guard_roles.of_role(guards, "switch") & jnp.isfinite(c.switches_from)
+    starting = jnp.where(c.fired, jnp.minimum(unlowered, 0.0), jnp.where(held_off, 1.0, unlowered))
     return pass_args, starting, integrate_pass(
         solver, pass_args, switching.guard_values, c.t, c.y, end,
         rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap, cap_until=c.cap_until, max_steps=MAX_STEPS_PER_SEGMENT,
-        kept=c.kept, count=c.kept_count, modes=c.modes, first_step=c.step_guess, bends=_bends(guards),
-        slopes0=_bend_slopes(plan.layout, guards, anchors, kinking),
+        kept=c.kept, count=c.kept_count, modes=c.modes, first_step=c.step_guess, bends=guard_roles.bends(guards),
+        slopes0=guard_roles.bend_slopes(plan.layout, guards, anchors, kinking),
         values0=starting, crossing_step_kept=not lanes)
-
-
-def _bend_slopes(layout: Layout, guards, anchors: dict, kinking) -> jax.Array | None:
-    """The knots' guards' rates where the pass starts, from the knot coordinates' own (the anchors): the guard of
-    the knot ahead falls as the coordinate rises, the one behind rises with it (the others: zero, unread)."""
-    rates = {}
-    for element in layout.elements:
-        for kink in element.kink_names():
-            ahead, behind = knot_guards(element.section, kink)
-            rate = anchors[GuardId(element.section, kink)][1]
-            rates[ahead], rates[behind] = -rate, rate
-    if not rates:
-        return None
-    return jnp.stack([jnp.where(kinking, rates[name], 0.0) if name in rates else jnp.zeros(()) for _, name, _ in guards])
-
-
-def _bends(guards) -> jax.Array | None:
-    """Which guards are a table's knots, where the rate bends (None: the machine has none)."""
-    kinks = [role == "kink" for role, _, _ in guards]
-    return jnp.asarray(kinks) if any(kinks) else None
 
 
 def _decided(plan: Plan, segment: Segment, c: _Carry, columns: bool, lanes: bool) -> _Carry:
@@ -246,14 +224,13 @@ def _step(plan: Plan, solver, columns: bool, lanes: bool, c: _Carry) -> _Carry:
                     | (by_name[GuardId(name, BREAKAWAY_BACKWARD)] < 0.0))
     missed = missed | (margin_valley & over)
     events = {GuardId(e.section, kind) for e in layout.elements for kind in e.crossing_events}
-    overtaken, limit_overtaken, coinciding = switching.crossed_together(guards, at_end, starting, sol.mask, events)
+    overtaken, limit_overtaken, reached = switching.crossed_together(guards, at_end, starting, sol.mask, events)
     # An observation or a limit below zero at the switch located, yet not the crossing found (it crossed and
     # came back within the step, so that only part of the step showed it): the pass is solved again once, only
     # up to that switch's instant and with the switches held off, so that its own root is found; the next
     # pass meets the switch again.  (Should it
     # not cross on the way after all, the pass ends there as at a boundary, where the modes are decided anew.)
-    located_switch = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in guards if r == "switch"],
-                                      jnp.zeros((), bool))
+    located_switch = jnp.any(sol.mask & guard_roles.of_role(guards, "switch"))
     found_first = hit & located_switch & (overtaken | limit_overtaken) & ~missed & jnp.isneginf(c.switches_from)
     cap = jnp.minimum(c.step_cap, t_end - start_t) / 8.0
     # else the pass is solved again with shorter steps (at most three times), so that each crossing has a step.
@@ -264,7 +241,10 @@ def _step(plan: Plan, solver, columns: bool, lanes: bool, c: _Carry) -> _Carry:
                        & (c.shrinks < MAX_SHRINKS))
     missed = shrink | found_first
     kept = ~missed
-    masks = {name: m & kept for name, m in masks.items()}
+    # (on the guard vector: a scalar made of many, ``kept``, taken into one operation a guard would be copied
+    # into each by XLA, a program that grows as the guards times the couplings)
+    located = sol.mask & kept
+    masks = {name: located[i] for i, (_, name, _) in enumerate(guards)}
     # the pass's steps are kept for the rows, unless it is solved again (they are written over)
     kept_count = jnp.where(kept, sol.count, c.kept_count)
     y_end = jnp.where(missed, start_y, y_end)
@@ -273,10 +253,12 @@ def _step(plan: Plan, solver, columns: bool, lanes: bool, c: _Carry) -> _Carry:
     spent = jnp.where(~failed & kept, t_end - start_t, 0.0)
     running = dict(c.extremes, **{name: c.extremes[name] + jnp.where(on, spent, 0.0)
                                   for name, on in durations.items()})
-    coinciding = {name: reached & kept for name, reached in coinciding.items()}
+    reached = reached & kept
+    told = guard_roles.reported(guards, events)
+    coinciding = {name: reached[i] for i, (_, name, _) in enumerate(guards) if told[i]}
     # a limit recorded where another guard was located has ended this pass as if it had fired; a pass thrown
     # away leaves what ended the one before it as it was (its guard starts the pass solved again lowered)
-    fired = {name: jnp.where(kept, masks[name] | coinciding.get(name, False), c.fired[name]) for name in c.fired}
+    fired = jnp.where(kept, (located | reached) & guard_roles.lowerable(guards), c.fired)
     c = eqx.tree_at(
         lambda k: (k.extremes, k.kept, k.kept_count, k.steps, k.rejected, k.segments, k.fired),
         c,
@@ -285,7 +267,7 @@ def _step(plan: Plan, solver, columns: bool, lanes: bool, c: _Carry) -> _Carry:
     )
     c = decisions.apply_event(plan, segment, eqx.tree_at(lambda k: k.y, c, y_end), t_end, y_end, masks, hit & kept,
                      coinciding, pass_args.orients)
-    at_knot = functools.reduce(jnp.logical_or, [masks[n] for r, n, _ in guards if r == "kink"], jnp.zeros((), bool))
+    at_knot = jnp.any(located & guard_roles.of_role(guards, "kink"))
     switches, _, _ = _in_cycle(c)
     status = jnp.where(failed, SOLVER_FAILED, jnp.where(switches > plan.max_switches, CHATTERING, c.status))
     return eqx.tree_at(
@@ -336,7 +318,7 @@ def restart_loop(plan: Plan, solver, log_size: int, step_room: int = 0, columns:
         shrinks=jnp.array(0),
         cap_until=jnp.full((), jnp.inf),
         switches_from=jnp.full((), -jnp.inf),
-        fired={name: jnp.array(False) for role, name, _ in switching.guards(layout) if role in ("observe", "limit", "valley")},
+        fired=jnp.zeros((len(switching.guards(layout)),), bool),
         pending=jnp.array(False),
         pending_modes=jnp.full((couplings,), STUCK),
         pending_candidates=jnp.zeros((couplings,), bool),

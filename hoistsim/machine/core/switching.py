@@ -61,6 +61,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from . import guard_roles
 from .dynamics import Instant, rates_at, slip_sign, vector_field
 from .element import OPEN, SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STICK_TOLERANCE, STUCK, TORQUE_RESOLUTION
 from .guard_id import (BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, MARGIN_VALLEY, MARGIN_VALLEYS_EACH_WAY, SLIP, SLIP_PEAK,
@@ -289,21 +290,17 @@ def crossed_together(guards, values, starting, located, events=frozenset()):
     started (``starting``), a root so close that the row already there misses its
     extreme by ~1e-8; a limit by less than 1e-9 of it (a threshold's instant is
     an answer, not a row beside one).  Returns (an observation overtaken, a
-    limit overtaken, the knots reached and the limits and events crossed at (t, y)
-    along with the located guard: a period that ends on a table's knot is reached;
-    a limit reached as a coupling locks was crossed, there; a backlash's sides
-    parting where the shaft they let go of turns round was an event, there; a
-    coupling's slip zero reached with the located one (a shaft stopping against
-    two holds at once), to be decided with it).
-    ``values``, ``starting``: every guard at (t, y) and where the pass started (:func:`guard_values`);
-    ``located``: the guard the search located (a mask); ``events``: the observations that are events
-    (their elements' ``crossing_events``).  Array operations over the guard vector, the roles constant
-    masks: a few operations whatever the number of guards.
+    limit overtaken, and on the guard vector (those :func:`.guard_roles.reported`) the knots reached and the
+    limits and events crossed at (t, y) along with the located guard: a period that ends on a table's knot is
+    reached; a limit reached as a coupling locks was crossed, there; a backlash's sides parting where the shaft
+    they let go of turns round was an event, there; a coupling's slip zero reached with the located one (a shaft
+    stopping against two holds at once), to be decided with it). ``values``, ``starting``: every guard at (t, y)
+    and where the pass started (:func:`guard_values`); ``located``: the guard the search located (a mask);
+    ``events``: the observations that are events (their elements' ``crossing_events``).  Array operations over the
+    guard vector, the roles constant masks: a few operations whatever the number of guards.
     """
     roles = [role for role, _, _ in guards]
     switch, kink, limit = (np.array([r == role for r in roles]) for role in ("switch", "kink", "limit"))
-    slip = np.array([name.kind == SLIP for _, name, _ in guards]) & switch
-    event = np.array([name in events for _, name, _ in guards]) & ~switch
     armed = starting > 0.0
     beside = armed & ~located  # armed where the pass started, and not the guard located
     resolution = jnp.where(kink, KNOT_RESOLUTION, jnp.where(limit, 1e-9, 1e-4) * jnp.abs(starting))
@@ -313,9 +310,7 @@ def crossed_together(guards, values, starting, located, events=frozenset()):
     # a knot reached within its resolution; a limit, an event or a slip zero (the search stopped at the first
     # root in list order: this one shares it) at or below zero
     reached = jnp.where(kink, armed & (values <= KNOT_RESOLUTION), beside & (values <= 0.0))
-    reported = slip | kink | limit | event
-    coinciding = {name: reached[i] for i, (_, name, _) in enumerate(guards) if reported[i]}
-    return overtaken, limit_overtaken, coinciding
+    return overtaken, limit_overtaken, reached & guard_roles.reported(guards, events)
 
 
 def on_knot(start):

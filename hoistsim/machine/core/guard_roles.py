@@ -1,0 +1,58 @@
+"""The guards as one vector: the roles its places hold, as constant masks, and the knots' slopes where a pass
+starts.
+
+A pass reads every guard at once (:func:`.switching.guard_values`, in the order of :func:`.switching.guards`);
+what the loop does with them afterwards (which ended the pass, which restart lowered, which crossed along with
+the located one) is a few operations on that vector with these masks, not one a guard: XLA copies a scalar
+that many such operations read into each of them, and the program grew as the guards times the couplings.
+"""
+
+from __future__ import annotations
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from .guard_id import SLIP, GuardId, knot_guards
+from .layout import Layout
+
+
+def of_role(guards, role: str) -> np.ndarray:
+    """Which guards have ``role`` ("switch", "observe", "limit", "valley", "kink")."""
+    return np.array([r == role for r, _, _ in guards])
+
+
+def lowerable(guards) -> np.ndarray:
+    """Which guards restart at their own zero, lowered by their value there when one ended a pass (see
+    switching): the observations, limits and valleys."""
+    return np.array([role in ("observe", "limit", "valley") for role, _, _ in guards])
+
+
+def reported(guards, events=frozenset()) -> np.ndarray:
+    """The guards whose crossing along with the located one :func:`.switching.crossed_together` reports: the
+    couplings' slip zeros, the knots, the limits and the observations that are events."""
+    switch = of_role(guards, "switch")
+    slip = np.array([name.kind == SLIP for _, name, _ in guards]) & switch
+    event = np.array([name in events for _, name, _ in guards]) & ~switch
+    return slip | event | of_role(guards, "kink") | of_role(guards, "limit")
+
+
+def bends(guards) -> jax.Array | None:
+    """Which guards are a table's knots, where the rate bends (None: the machine has none)."""
+    kinks = of_role(guards, "kink")
+    return jnp.asarray(kinks) if kinks.any() else None
+
+
+def bend_slopes(layout: Layout, guards, anchors: dict, kinking) -> jax.Array | None:
+    """The knots' guards' rates where the pass starts, from the knot coordinates' own (the anchors): the guard of
+    the knot ahead falls as the coordinate rises, the one behind rises with it (the others: zero, unread)."""
+    rates = {}
+    for element in layout.elements:
+        for kink in element.kink_names():
+            ahead, behind = knot_guards(element.section, kink)
+            rate = anchors[GuardId(element.section, kink)][1]
+            rates[ahead], rates[behind] = -rate, rate
+    if not rates:
+        return None
+    return jnp.stack([jnp.where(kinking, rates[name], 0.0) if name in rates else jnp.zeros(())
+                      for _, name, _ in guards])
