@@ -130,10 +130,10 @@ def step_room(plan: Plan, kept: int | None = None, sweep: bool = False) -> int:
     keeps room for a step a padded row (a hoist's start takes some 60-1 500 steps for 2 000-5 000 rows: a
     new value seldom outgrows it), and STEPS_PER_CYCLE_ONE_RUN for each cycle a machine with a period of its
     own is expected to turn (an engine's cycle is a hundred steps and more, between knots of its tables).  A
-    sweep's chunk keeps room for a quarter of that with STEPS_PER_CYCLE a cycle, at least MIN_STEP_ROOM (room for a step a row in each of
-    256 runs is several times the memory of the rows themselves).  None where no row falls before the end
-    (a summary's one row takes the final state).  ``kept`` asks for room for that many (a run that took
-    more steps than it could keep is run again with room for them all)."""
+    sweep's chunk keeps room for a quarter of that with STEPS_PER_CYCLE a cycle, at least MIN_STEP_ROOM (room
+    for a step a row in each of 256 runs is several times the memory of the rows themselves).  None where no
+    row falls before the end (a summary's one row takes the final state).  ``kept`` asks for room for that
+    many (a run that took more steps than it could keep is run again with room for them all)."""
     if not np.any(np.asarray(plan.grid) < float(plan.duration)):
         return 0
     cycles = int(expected_cycles(plan))

@@ -34,7 +34,7 @@ def _chain() -> Bodies:
 @pytest.mark.parametrize("written_out", [False, True], ids=["looped", "written out"])
 def test_the_masked_elimination_solves_the_stuck_rows_and_zeroes_the_rest(written_out, monkeypatch):
     # five couplings: their pivots looped, or (as for a few) written out
-    monkeypatch.setattr(bodies_module, "UNROLLED_COLUMNS", 5 if written_out else 4)
+    monkeypatch.setattr(bodies_module, "UNROLLED", 5 if written_out else 4)
     rng = np.random.default_rng(3)
     g = rng.normal(size=(5, 7))
     matrix = g @ np.diag(1 / rng.uniform(0.5, 2, 7)) @ g.T

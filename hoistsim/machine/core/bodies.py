@@ -53,8 +53,10 @@ def _summed(shape, places, values):
     return jnp.zeros(shape).at[where].add(jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in values]))
 
 
-# Products over at most this many columns are written out column by column; wider ones are summed over an axis.
-UNROLLED_COLUMNS = 4
+# A product over at most this many columns, an elimination of at most this many pivots and an alignment of at
+# most this many rounds are written out; larger ones are summed over an axis or looped, one column's, pivot's
+# or round's operations in the program whatever their number.
+UNROLLED = 4
 
 
 def product(a, b):
@@ -64,7 +66,7 @@ def product(a, b):
     machine).  So a narrow product is a's columns times b's entries (rows), added: elementwise, fused with what
     makes and uses it.  A wide one is summed over its axis: written out, its operations would grow with the
     columns in every place a vector field is read, and XLA's compile with them."""
-    if a.shape[1] > UNROLLED_COLUMNS:
+    if a.shape[1] > UNROLLED:
         return jnp.sum(a * b[None, :] if b.ndim == 1 else a[:, :, None] * b[None, :, :], axis=1)
     if a.shape[1] == 0:
         return jnp.zeros((a.shape[0],) + b.shape[1:], jnp.result_type(a, b))
@@ -114,10 +116,9 @@ def solve_stuck(matrix, rhs, stuck, order=None):
     def eliminated(m, k):  # the pivot on row k taken: row k scaled to it, its column cleared from the others
         pivot = m[k, k]
         row = jnp.where(pivot <= REDUNDANT_PIVOT * diagonal[k], jnp.asarray(unit)[k], m[k] / pivot)
-        column = jax.lax.dynamic_slice_in_dim(m, k, 1, axis=1) if isinstance(k, jax.Array) else m[:, k:k + 1]
-        return jnp.where((np.arange(n) == k)[:, None], row, m - column * row)
+        return jnp.where((np.arange(n) == k)[:, None], row, m - m[:, k, None] * row)
 
-    if n <= UNROLLED_COLUMNS:  # a few pivots, written out
+    if n <= UNROLLED:  # a few pivots, written out
         for k in order:
             m = eliminated(m, k)
     else:  # one pivot's operations, looped: a program that does not grow with the couplings
@@ -263,7 +264,7 @@ class Bodies:
 
             rounds = min(count - 1, len(pairs))
             # a few rounds written out; more, one round's operations looped (the program does not grow with them)
-            if rounds <= UNROLLED_COLUMNS:
+            if rounds <= UNROLLED:
                 for i in range(rounds):
                     root, ratio = carried_on(i, (root, ratio))
             else:

@@ -25,7 +25,7 @@ def of_role(guards, role: str) -> np.ndarray:
 def lowerable(guards) -> np.ndarray:
     """Which guards restart at their own zero, lowered by their value there when one ended a pass (see
     switching): the observations, limits and valleys."""
-    return np.array([role in ("observe", "limit", "valley") for role, _, _ in guards])
+    return of_role(guards, "observe") | of_role(guards, "limit") | of_role(guards, "valley")
 
 
 def reported(guards, events=frozenset()) -> np.ndarray:

@@ -97,7 +97,7 @@ class _Carry(eqx.Module):
     shrinks: jax.Array  # times the pass now under way was solved again for crossings found together
     cap_until: jax.Array  # s: up to where the steps are capped (the crossing that sent the pass back; else inf)
     switches_from: jax.Array  # s: switches held off before this time (-inf but while re-solving for a limit)
-    fired: jax.Array  # (guards,): the observation, limit and valley guards that ended the last pass (see _lowerable)
+    fired: jax.Array  # (guards,): the observations, limits and valleys that ended the last pass (guard_roles.lowerable)
     # a switch located at the end of the last pass, to be decided at the start of the next (see _decide)
     pending: jax.Array
     pending_modes: jax.Array  # the couplings' modes as the guards that fired leave them

@@ -207,8 +207,8 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
     output rows, when a buffer is given.
 
     ``first_step`` (s): the first step to try, where the last pass's steps carry over (its ``proposed``: the
-    pass before ended where nothing jumped, at a knot of a table or an observation); NaN: guessed from the
-    rates at (t0, y0), as diffrax guesses it.
+    pass before ended at a table's knot, where nothing jumps); NaN: guessed from the rates at (t0, y0), as
+    diffrax guesses it.
 
     ``bends`` (guards,): the guards where the rate bends (a table's knots): a step across one is refused for the
     bend's error, so a step that would cross one (as far as the guard's rate at the start, then its last step,
@@ -262,8 +262,8 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
         t=t0, y=y0, t_next=t_next, state=state, control=control, values=values,
         steps=jnp.array(0), rejected=jnp.array(0), done=t0 >= end, hit=jnp.array(False),
         failed=jnp.array(False), crossed=nothing, reached=values, proposed=first - t0, cut=first_cut,
-        dense=jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), jax.eval_shape(stepper.step, t0, t_next, y0, state)[2])
-        if crossing_step_kept else None, kept=kept, count=jnp.asarray(count))
+        dense=_zeros_like(jax.eval_shape(stepper.step, t0, t_next, y0, state)[2]) if crossing_step_kept else None,
+        kept=kept, count=jnp.asarray(count))
 
     def going(c: _Carry):
         return ~c.done & ~c.failed
@@ -327,8 +327,7 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
                                   c.reached)
 
     def no_crossing():
-        dense = jax.eval_shape(stepper.step, c.t, c.t_next, c.y, c.state)[2]
-        return jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), dense), c.t, c.y, nothing, c.values
+        return _zeros_like(jax.eval_shape(stepper.step, c.t, c.t_next, c.y, c.state)[2]), c.t, c.y, nothing, c.values
 
     dense, t_hit, y_hit, mask, at_hit = jax.lax.cond(private_api.unvmap_any(c.hit), locate, no_crossing)
     t_end = jnp.where(c.hit, t_hit, c.t)
@@ -338,6 +337,11 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
         kept, count = _kept(kept, count, c.t, c.t_next, t_end, dense, modes, c.hit)
     return Pass(t=t_end, y=y_end, hit=c.hit, mask=mask & c.hit, failed=c.failed, steps=c.steps, rejected=c.rejected,
                 kept=kept, count=count, proposed=c.proposed, values=jnp.where(c.hit, at_hit, c.values))
+
+
+def _zeros_like(shapes):
+    """Zeros shaped as ``shapes`` (a tree of shapes and dtypes, as ``jax.eval_shape`` gives them)."""
+    return jax.tree.map(lambda s: jnp.zeros(s.shape, s.dtype), shapes)
 
 
 def _with_step_tolerances(solver, controller):

@@ -59,7 +59,6 @@ from functools import cached_property
 
 import jax
 import jax.numpy as jnp
-import numpy as np
 
 from . import guard_roles
 from .dynamics import Instant, rates_at, slip_sign, vector_field
@@ -299,8 +298,7 @@ def crossed_together(guards, values, starting, located, events=frozenset()):
     ``events``: the observations that are events (their elements' ``crossing_events``).  Array operations over the
     guard vector, the roles constant masks: a few operations whatever the number of guards.
     """
-    roles = [role for role, _, _ in guards]
-    switch, kink, limit = (np.array([r == role for r in roles]) for role in ("switch", "kink", "limit"))
+    switch, kink, limit = (guard_roles.of_role(guards, role) for role in ("switch", "kink", "limit"))
     armed = starting > 0.0
     beside = armed & ~located  # armed where the pass started, and not the guard located
     resolution = jnp.where(kink, KNOT_RESOLUTION, jnp.where(limit, 1e-9, 1e-4) * jnp.abs(starting))
