@@ -1,8 +1,9 @@
 """What one run costs: a step attempt and a pass of each shipped scene against a fused one-lane Dormand-Prince step.
 
 For every single-run scenario (``scenarios/*.yaml`` without a ``sweep:``), every Modelica example
-(``scenarios/modelica/*.yaml``) and a stick-slip chain (a drive turning a hub through a clutch, a spring from
-the hub to a block, the block dragged by a clutch to the ground; 20 s), in this one process:
+(``scenarios/modelica/*.yaml``), the README's drawn drivetrain with every kind of part, and a stick-slip
+chain (a drive turning a hub through a clutch, a spring from the hub to a block, the block dragged by a
+clutch to the ground; 20 s), in this one process:
 
 - warm run: ``hoistsim.simulate`` once compiled (or loaded from the cache), best and median of ``--repeats``;
   "loop" is the compiled call alone (the run's ``stats["wall_time"]``: the program and reading its output
@@ -86,9 +87,17 @@ def chain_yaml(n: int) -> str:
             "  clutches:\n" + "\n".join(clutches) + "\nsimulation:\n  duration: 1 s\n  output_interval: 0.1 s\n")
 
 
+def every_part_drivetrain() -> str:
+    """The README's drawn drivetrain with every kind of part (its block that starts ``name: every-drawn-part``)."""
+    text = (ROOT / "README.md").read_text()
+    block = re.search(r"```yaml\n(name: every-drawn-part.*?)```", text, re.DOTALL)
+    assert block, "README.md no longer has the every-part drivetrain's block"
+    return block.group(1)
+
+
 def scene_paths(folder: Path) -> dict[str, Path]:
     """Every single-run scene by name: the scenarios without a sweep, the Modelica examples, the stick-slip
-    chain (written to ``folder``)."""
+    chain and the README's every-part drivetrain (written to ``folder``)."""
     out = {}
     for path in sorted(SCENARIOS.glob("*.yaml")):
         if not re.search(r"^sweep:", path.read_text(), re.MULTILINE):
@@ -98,6 +107,9 @@ def scene_paths(folder: Path) -> dict[str, Path]:
     chain = folder / "stick_slip_chain.yaml"
     chain.write_text(STICK_SLIP)
     out["stick-slip chain"] = chain
+    every_part = folder / "every_part_drivetrain.yaml"
+    every_part.write_text(every_part_drivetrain())
+    out["every-part drivetrain"] = every_part
     return out
 
 
