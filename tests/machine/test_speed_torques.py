@@ -251,26 +251,12 @@ def test_a_bad_speed_dependent_part_is_one_line_naming_its_key(parts, key, says)
     assert "\n" not in str(err.value)
 
 
-def test_every_knot_a_speed_crosses_ends_a_pass_even_turning_back_through_it(monkeypatch):
-    """A speed that reaches a knot and turns back through it before anything else stops the pass crosses that
-    knot again: the pass that started on it watches it behind (a hair past it), so each crossing, either way,
-    ends a pass and no step straddles a kink.  Counted where passes start (the knot coordinate there, recorded
-    from inside the compiled loop): the shaft swings about 0 rad/s, crossing that knot back and forth."""
-    import jax
-
-    from hoistsim.machine.core import switching
-
-    starts = []
-    anchors = switching.kink_anchors
-
-    def recorded(*args):
-        out = anchors(*args)
-        for value, _ in out.values():
-            jax.debug.callback(lambda v: starts.append(float(v)), value)
-        return out
-
-    monkeypatch.setattr(switching, "kink_anchors", recorded)
-    # six knots: a structure of its own, compiled here with the recording in it
+def test_every_knot_a_speed_crosses_is_stepped_over_exactly_even_turning_back_through_it():
+    """A speed that reaches a knot and turns back through it crosses that knot again: the pass watches the knot
+    behind as well as the one ahead, moving both on as it passes each, either way, so that no step straddles a
+    kink (each ends just short of a knot, the next just past it) and no knot ends a pass.  Against solve_ivp
+    (DOP853, rtol 1e-12) restarted at every knot crossing: the shaft swings about 0 rad/s, crossing that knot
+    back and forth."""
     speeds, torques = [-4.0, -1.0, 0.0, 2.0, 5.0, 50.0], [9.0, 2.0, 0.0, -3.0, -12.0, -12.0]
     run = simulate(_drawn(duration="3 s", shafts={"rotor": {"inertia": "0.8 kg*m^2", "speed": "3 rad/s"}},
                           torques=[{"shaft": "rotor", "torque_by_speed": [[f"{w} rad/s", f"{tq} N*m"]
@@ -279,5 +265,31 @@ def test_every_knot_a_speed_crosses_ends_a_pass_even_turning_back_through_it(mon
                                                                                 "frequency": "1 Hz"}]}}]))
     knot = np.floor(np.interp(run["rotor_speed"], speeds, np.arange(6.0)))
     crossings = int(np.sum(np.diff(knot) != 0.0))
-    on_knots = np.asarray(starts)[np.abs(np.asarray(starts) - np.round(starts)) < 1e-6]
-    assert crossings >= 6 and len(on_knots) == crossings, (crossings, starts)
+    assert crossings >= 6, crossings
+    assert run.stats["segments"] < crossings, run.stats  # passed over, not passes ended at each
+
+    def rate(t, w):
+        return [(np.interp(w[0], speeds, torques) + 6.0 * np.sin(2.0 * np.pi * t)) / 0.8]
+
+    events = [lambda t, w, knot=k: w[0] - knot for k in speeds]
+    for event in events:
+        event.terminal = True
+    t, w, times, expected = 0.0, [3.0], np.asarray(run.time), []
+    while t < times[-1]:
+        solved = solve_ivp(rate, (t, times[-1]), w, method="DOP853", rtol=1e-12, atol=1e-12, dense_output=True,
+                           events=events)
+        inside = (times >= t) & (times <= solved.t[-1])
+        expected.append((times[inside], solved.sol(times[inside])[0]))
+        # restarted a hair past the knot it stopped on, so that its own event does not stop it again at once
+        t, w = solved.t[-1], [solved.y[0, -1]]
+        if solved.status == 1:
+            t = np.nextafter(t, np.inf) + 1e-12
+            w = [solved.sol(t)[0]]
+    on = np.concatenate([e[0] for e in expected])
+    reference = np.interp(times, on, np.concatenate([e[1] for e in expected]))
+    worst = np.max(np.abs(run["rotor_speed"] - reference)) / np.ptp(reference)
+    assert worst < 1e-8, worst
+    # a step across a knot is refused for the kink's error: stopped short of each, few are (12 % of 410 here,
+    # against 20 % where steps run on past the knots and 28 % where the pair is not moved on past one)
+    assert run.stats["rejected_steps"] < 0.15 * run.stats["steps"], run.stats
+    _closes(run)

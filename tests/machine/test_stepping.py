@@ -11,7 +11,8 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from hoistsim.machine.core.stepping import integrate_pass, no_steps, rows_from_steps
+from hoistsim.machine.core.kept_steps import no_steps, rows_from_steps
+from hoistsim.machine.core.stepping import integrate_pass
 
 
 def oscillator(t, y, args):
@@ -48,9 +49,10 @@ def test_a_crossing_is_found_on_the_interpolant_to_the_last_digits():
 
 
 def test_the_earliest_of_two_guards_crossing_in_one_step_ends_the_pass_whatever_their_order():
-    # x' = 1 is solved exactly: each step is ten times the last, so both guards cross in one step
+    # x' = 1 is solved exactly: each step is up to ten times the last (as the round-off of its error estimate
+    # allows), so both guards cross in one step
     out = solve(moving, lambda t, y, a: jnp.stack([0.6 - y[0], 0.5 - y[0]]), [0.0], 1.0)
-    assert int(out.steps) < 6
+    assert int(out.steps) < 8
     assert float(out.t) == pytest.approx(0.5, abs=1e-14)
     assert list(np.asarray(out.mask)) == [False, True]
 

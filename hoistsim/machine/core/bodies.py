@@ -42,15 +42,20 @@ from .layout import Layout, angle_state
 def _summed(shape, places, values):
     """An array of ``shape``: zero, but for each of ``values`` added at its place in ``places`` (index tuples).
 
-    Numbers alone make a constant (a NumPy array, worked out as it is traced); a traced value (a swept ratio
-    or inertia) one scatter of them all."""
+    Numbers alone make a constant (a NumPy array, worked out as it is traced); traced values (a swept ratio, an
+    inertia that varies with an angle) each place's sum, stacked: elementwise operations that fuse with what
+    makes and uses them (a scatter is an operation of its own, and one a stage where an inertia varies)."""
     if all(isinstance(v, (int, float)) for v in values):
         out = np.zeros(shape)
         for place, value in zip(places, values):
             out[place] += value
         return out
-    where = tuple(np.asarray(places, dtype=int).reshape(len(places), len(shape)).T)
-    return jnp.zeros(shape).at[where].add(jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in values]))
+    sums = {}
+    for place, value in zip(places, values):  # in order, from zero: the scatter's own sums
+        key = tuple(np.atleast_1d(place))
+        sums[key] = sums.get(key, 0.0) + value
+    return jnp.stack([jnp.asarray(sums.get(place, 0.0), dtype=jnp.float64)
+                      for place in np.ndindex(*shape)]).reshape(shape)
 
 
 # A product over at most this many columns, an elimination of at most this many pivots and an alignment of at

@@ -13,7 +13,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from .guard_id import SLIP, GuardId, knot_guards
+from .guard_id import AHEAD, BEHIND, SLIP, GuardId, knot_guards
 from .layout import Layout
 
 
@@ -41,6 +41,29 @@ def bends(guards) -> jax.Array | None:
     """Which guards are a table's knots, where the rate bends (None: the machine has none)."""
     kinks = of_role(guards, "kink")
     return jnp.asarray(kinks) if kinks.any() else None
+
+
+def passed_over(layout: Layout, guards) -> np.ndarray | None:
+    """Which guards are knots that a pass steps over rather than ends at: every table's knot but a cycle's end
+    (the period of a periodic regime, an event of its own).  Nothing jumps at a knot, and nothing is decided
+    there: a pass that ended at each paid the whole restart (the decision's inputs, the anchors, the guards read
+    afresh) for two steps' worth of motion, the engine hoist 14 000 times in a run.  None: the machine has none."""
+    cycle_ends = {name for index, kink, _ in layout.cycles for name in knot_guards(layout.sections[index], kink)}
+    mask = of_role(guards, "kink") & np.array([name not in cycle_ends for _, name, _ in guards])
+    return mask if mask.any() else None
+
+
+def knot_partners(guards) -> np.ndarray:
+    """For each guard, the place of the other guard of its knot coordinate (the knot ahead's partner is the knot
+    behind, and the other way round); any other guard's, its own place."""
+    place = {name: i for i, (_, name, _) in enumerate(guards)}
+    partner = np.arange(len(guards))
+    for i, (role, name, _) in enumerate(guards):
+        if role == "kink":
+            ahead, behind = knot_guards(name.section, name.kind[:-len(AHEAD)] if name.kind.endswith(AHEAD)
+                                        else name.kind[:-len(BEHIND)])
+            partner[i] = place[behind] if name == ahead else place[ahead]
+    return partner
 
 
 def bend_slopes(layout: Layout, guards, anchors: dict, kinking) -> jax.Array | None:

@@ -28,14 +28,29 @@ from .columns import row_outputs, summary_values
 from .dynamics import Instant, slip_sign
 from .element import STUCK
 from .eventlog import LOG_FIELDS, unpack
-from .guard_id import (BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, MARGIN_VALLEY, MARGIN_VALLEYS_EACH_WAY, SLIP_VALLEY,
-                       GuardId)
+from .guard_id import (
+    BREAKAWAY_BACKWARD,
+    BREAKAWAY_FORWARD,
+    MARGIN_VALLEY,
+    MARGIN_VALLEYS_EACH_WAY,
+    SLIP_VALLEY,
+    GuardId,
+)
+from .kept_steps import Steps, no_steps, rows_from_steps
 from .layout import Layout
 from .ledger import ledger_values
-from .plan import CHATTERING, KINK_BUDGET, OK, SOLVER_FAILED, TOO_MANY_SEGMENTS, Plan, segment_budget
+from .plan import (
+    CHATTERING,
+    KINK_BUDGET,
+    OK,
+    SOLVER_FAILED,
+    TOO_MANY_SEGMENTS,
+    Plan,
+    segment_budget,
+)
 from .readout import RawRun
 from .schedule import Segment, segment_from
-from .stepping import Steps, integrate_pass, no_steps, rows_from_steps
+from .stepping import integrate_pass
 
 # The solvers a run may use, by the names a scenario gives them (simulation.solver: the schema's list, which
 # tests/test_layers.py holds equal to this one).
@@ -156,7 +171,8 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
         rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap, cap_until=c.cap_until, max_steps=MAX_STEPS_PER_SEGMENT,
         kept=c.kept, count=c.kept_count, modes=c.modes, first_step=c.step_guess, bends=guard_roles.bends(guards),
         slopes0=guard_roles.bend_slopes(plan.layout, guards, anchors, kinking),
-        values0=starting, crossing_step_kept=not lanes)
+        values0=starting, crossing_step_kept=not lanes, passed_over=guard_roles.passed_over(plan.layout, guards),
+        partners=guard_roles.knot_partners(guards))
 
 
 def _decided(plan: Plan, segment: Segment, c: _Carry, columns: bool, lanes: bool) -> _Carry:
@@ -224,7 +240,8 @@ def _step(plan: Plan, solver, columns: bool, lanes: bool, c: _Carry) -> _Carry:
                     | (by_name[GuardId(name, BREAKAWAY_BACKWARD)] < 0.0))
     missed = missed | (margin_valley & over)
     events = {GuardId(e.section, kind) for e in layout.elements for kind in e.crossing_events}
-    overtaken, limit_overtaken, reached = switching.crossed_together(guards, at_end, starting, sol.mask, events)
+    overtaken, limit_overtaken, reached = switching.crossed_together(
+        guards, at_end, starting, sol.mask, events, guard_roles.passed_over(layout, guards))
     # An observation or a limit below zero at the switch located, yet not the crossing found (it crossed and
     # came back within the step, so that only part of the step showed it): the pass is solved again once, only
     # up to that switch's instant and with the switches held off, so that its own root is found; the next

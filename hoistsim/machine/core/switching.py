@@ -277,7 +277,7 @@ def orients(layout: Layout, t, y, args) -> dict:
     return out
 
 
-def crossed_together(guards, values, starting, located, events=frozenset()):
+def crossed_together(guards, values, starting, located, events=frozenset(), passed_over=None):
     """Which guards crossed zero in the same step as the one located at (t, y).
 
     A pass ends at the earliest crossing of the guards that changed sign over a
@@ -295,11 +295,15 @@ def crossed_together(guards, values, starting, located, events=frozenset()):
     they let go of turns round was an event, there; a coupling's slip zero reached with the located one (a shaft
     stopping against two holds at once), to be decided with it). ``values``, ``starting``: every guard at (t, y)
     and where the pass started (:func:`guard_values`); ``located``: the guard the search located (a mask);
-    ``events``: the observations that are events (their elements' ``crossing_events``).  Array operations over the
+    ``events``: the observations that are events (their elements' ``crossing_events``); ``passed_over``: the knots
+    the pass steps over (:func:`.guard_roles.passed_over`), neither overtaken nor reached: one the located guard's
+    step went past is behind it, as the step allowed.  Array operations over the
     guard vector, the roles constant masks: a few operations whatever the number of guards.
     """
     switch, kink, limit = (guard_roles.of_role(guards, role) for role in ("switch", "kink", "limit"))
     armed = starting > 0.0
+    if passed_over is not None:
+        armed = armed & ~passed_over
     beside = armed & ~located  # armed where the pass started, and not the guard located
     resolution = jnp.where(kink, KNOT_RESOLUTION, jnp.where(limit, 1e-9, 1e-4) * jnp.abs(starting))
     passed = ~switch & beside & (values < -resolution)
