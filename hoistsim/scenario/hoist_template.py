@@ -13,12 +13,19 @@ from typing import NamedTuple
 
 from pydantic import Field
 
+from .period import machine_period
+from .schema import PeriodicSpec
 from .schema_base import Section
 from .schema_clutch import ConeSpec
 from .schema_drawn_clutches import FrictionClutchSpec
 from .schema_drivetrain import GearStageSpec, ShaftMotorSpec, ShaftSpec
 from .schema_load import LoadBearingsSpec, LoadOnShaftSpec
-from .schema_shaft_parts import BrakeOnShaftSpec, RatchetOnShaftSpec, RotorSpec, SliderCrankSpec
+from .schema_shaft_parts import (
+    BrakeOnShaftSpec,
+    RatchetOnShaftSpec,
+    RotorSpec,
+    SliderCrankSpec,
+)
 from .signals import TimeSignal
 
 # The cone clutch's outputs as the hoist names them (a drawn clutch's are the patterns filled in with its name).
@@ -168,25 +175,19 @@ def motor_ripple_as_drawn(spec, scenario) -> TemplateMotorSpec:
     return motor_as_drawn(scenario.motor, scenario)
 
 
-class TemplateLoadSpec(LoadOnShaftSpec):
-    """The hoist's load on the drum shaft: the drum turns at ``initial.drum_speed`` at the start."""
-
-    drum_speed_at_start: float = Field(0.0, exclude=True)
-
-    def shaft_speed(self, scenario) -> float:
-        return self.drum_speed_at_start
-
-
-def load_as_drawn(spec, scenario) -> TemplateLoadSpec:
+def load_as_drawn(spec, scenario) -> LoadOnShaftSpec:
     """The hoist's ``load:`` (with ``rope:``, ``ground:`` and the drum shaft's ``bearings:``) as the drivetrain's
-    load, hanging from the drum shaft at half the drum's diameter."""
+    load, hanging from the drum shaft at half the drum's diameter, the drum turning at ``initial.drum_speed`` at
+    the start."""
     gears, bearings = scenario.gears, scenario.bearings
-    return TemplateLoadSpec.model_construct(
+    drawn = LoadOnShaftSpec.model_construct(
         mass=spec.mass, shaft="drum", rope_radius=0.5 * scenario.drum.diameter, rope=scenario.rope,
-        ground=scenario.ground, drum_speed_at_start=scenario.initial.drum_speed,
+        ground=scenario.ground,
         bearings=None if bearings is None else LoadBearingsSpec.model_construct(
             gear_offset=bearings.gear_offset, rope_offset=bearings.rope_offset, span=bearings.span,
             wheel_pitch_diameter=gears.module * gears.wheel_teeth, pressure_angle=gears.pressure_angle))
+    drawn.resolve(scenario.gravity, scenario.initial.drum_speed)
+    return drawn
 
 
 class TemplateClutchSpec(TemplateNames, FrictionClutchSpec):
@@ -243,14 +244,25 @@ def ratchet_as_drawn(spec, scenario) -> RatchetOnShaftSpec:
     return RatchetOnShaftSpec.model_construct(release_time=spec.release_time, name="ratchet", shaft="drum")
 
 
-def the_load(spec, scenario) -> TemplateLoadSpec:
+def the_load(spec, scenario) -> LoadOnShaftSpec:
     """A section of the load's (its rope, the ground, the drum shaft's bearings): the drawn load, which holds it."""
     return load_as_drawn(scenario.load, scenario)
 
 
-def as_it_is(spec, scenario):
-    """A section that is no part of the machine but an analysis of its run (the periodic regime)."""
-    return spec
+class TemplatePeriodicSpec(PeriodicSpec):
+    """The periodic regime's analysis as the template writes it: with the machine's period and whether an inertia
+    varies with the angle, worked out from the hoist's sections (its element reads no more than its spec)."""
+
+    period: float = Field(0.0, exclude=True)  # rad of motor angle
+    inertia_varies_with_angle: bool = Field(False, exclude=True)  # a slider-crank: the energy guards stay on
+
+
+def periodic_as_drawn(spec, scenario) -> TemplatePeriodicSpec:
+    """A section that is no part of the machine but an analysis of its run (the periodic regime), with the
+    machine's period (when every periodic part is back where it started: :func:`.period.machine_period`)."""
+    return TemplatePeriodicSpec.model_construct(**{name: getattr(spec, name) for name in type(spec).model_fields},
+                                                period=machine_period(scenario),
+                                                inertia_varies_with_angle=scenario.reciprocating is not None)
 
 
 _LOAD_READS = ("drum", "gears", "rope", "ground", "bearings", "initial", "gravity")  # and the load's, for its parts
@@ -276,5 +288,6 @@ TEMPLATE: dict[str, tuple[TemplatePart, ...]] = {
     "brake": (TemplatePart("drivetrain.brakes.*", brake_as_drawn),),
     "ratchet": (TemplatePart("drivetrain.ratchets.*", ratchet_as_drawn),),
     "bearings": (TemplatePart("drivetrain.load.bearings", the_load, ("load", *_LOAD_READS)),),
-    "periodic_regime": (TemplatePart("periodic_regime", as_it_is, ("motor", "drum", "gears", "reciprocating")),),
+    "periodic_regime": (TemplatePart("periodic_regime", periodic_as_drawn,
+                                     ("motor", "drum", "gears", "reciprocating")),),
 }

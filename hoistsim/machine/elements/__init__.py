@@ -9,11 +9,13 @@ drivetrain's parts its template writes out (:class:`Drawn`): one element class f
 
 from __future__ import annotations
 
+import functools
+
+from ...scenario.lowering import lowered_parts
 from ..core.element import AbstractCoupling as AbstractCoupling
 from ..core.element import AbstractElement as AbstractElement
-from ...scenario.hoist_template import TEMPLATE, section_of
 from ._drawn import Drawn as Drawn
-from ._drawn import element_of, within_part
+from ._drawn import element_of
 from .bearing_friction import BearingFriction as BearingFriction
 from .bearings import DrumShaftLoads as DrumShaftLoads
 from .clutch_heating import ClutchHeating as ClutchHeating
@@ -24,11 +26,11 @@ from .elasto_backlash import ElastoBacklash as ElastoBacklash
 from .flywheel import Flywheel as Flywheel
 from .friction_brake import FrictionBrake as FrictionBrake
 from .friction_clutch import FrictionClutch as FrictionClutch
-from .heat_capacitor import HeatCapacitor as HeatCapacitor
 from .ground import Ground as Ground
+from .heat_capacitor import HeatCapacitor as HeatCapacitor
 from .holding_brake import HoldingBrake as HoldingBrake
-from .level_load import LevelLoad as LevelLoad
 from .housed_gear import HousedGear as HousedGear
+from .level_load import LevelLoad as LevelLoad
 from .linear_motor import LinearMotor as LinearMotor
 from .load_drag import LoadDrag as LoadDrag
 from .lossy_gear import LossyGear as LossyGear
@@ -38,8 +40,8 @@ from .motor_ripple import MotorRipple as MotorRipple
 from .motor_table import TableMotor as TableMotor
 from .one_way_clutch import OneWayClutch as OneWayClutch
 from .periodic_regime import PeriodicRegime as PeriodicRegime
-from .quadratic_torque import QuadraticTorque as QuadraticTorque
 from .planetary import Planetary as Planetary
+from .quadratic_torque import QuadraticTorque as QuadraticTorque
 from .ratchet import Ratchet as Ratchet
 from .resisting_ripple import ResistingRipple as ResistingRipple
 from .rigid_load import RigidLoad as RigidLoad
@@ -54,7 +56,7 @@ from .wire_rope import WireRope as WireRope
 # A drawn drivetrain's part (each part of a kind: "*"; a key within a part: dotted after it) -> its element, or the
 # variant's name -> element for a part with variants (its spec's ``characteristic``).  A key within a part (a
 # motor's ripple) is built from the part that holds it.  The order is the order of bodies, states and output
-# columns of a drawn drivetrain (the hoist's is its template's: :data:`TEMPLATE`).
+# columns of a drawn drivetrain (the hoist's is its template's).
 REGISTRY: dict[str, object] = {
     "drivetrain.shafts.*": Shaft,
     "drivetrain.shafts.*.resisting_ripple": ResistingRipple,
@@ -89,42 +91,19 @@ REGISTRY: dict[str, object] = {
 
 
 def element_sections(scenario) -> list[tuple[str, object, object]]:
-    """(section, its spec, what builds the element) for each element the scenario builds, in order: a drawn
-    drivetrain's parts in registry order; a hoist's sections in its template's order, each a :class:`Drawn`
-    part (a section that stands for several parts: a row each)."""
-    if scenario.drivetrain is None:
-        return [(section, spec, drawn) for section, parts, drawn in _TEMPLATE_PARTS
-                if (spec := section_of(scenario, parts)) is not None]
-    out = []
-    for path, parts, entry in _PATHS:
-        for section, spec, held in _parts_of(scenario, parts):
-            out.append((section, spec, element_of(entry, held)))
-    return out
+    """(section, its spec, what builds the element) for each element the scenario builds, in order (see
+    :func:`hoistsim.scenario.lowering.lowered_parts`): a drawn drivetrain's parts in registry order; a hoist's
+    sections in its template's order, each a :class:`Drawn` part (a section that stands for several parts: a
+    row each)."""
+    return [(part.section, part.spec, element_of(REGISTRY[part.path], part.held) if part.template is None
+             else _drawn(part.template)) for part in lowered_parts(scenario, REGISTRY)]
 
 
-# each registry path split once: (path, its parts, its entry)
-_PATHS = [(path, tuple(path.split(".")), entry) for path, entry in REGISTRY.items()]
-# each hoist section's drawn parts: (section, its path split, the part)
-_TEMPLATE_PARTS = [(section, tuple(section.split(".")), Drawn.of(part, REGISTRY))
-                   for section, parts in TEMPLATE.items() for part in parts]
-
-
-def _parts_of(scenario, parts: tuple) -> list:
-    """(dotted section, the spec that builds it, the part itself) of each part a registry path names:
-    drivetrain.clutches.* gives drivetrain.clutches.<name> for each clutch, drivetrain.torques.*
-    drivetrain.torques.<index>.  A key within a part (drivetrain.motors.*.ripple, drivetrain.load.rope) is
-    built from the part that holds it (its element reads its keys there), where it is given."""
-    found = [("", scenario, None)]
-    for part in parts:
-        if part == "*":
-            found = [(f"{where}.{key}", member, holder) for where, holder, _ in found
-                     for key, member in (holder.items() if isinstance(holder, dict) else enumerate(holder))]
-        else:
-            found = [(f"{where}.{part}" if where else part, getattr(holder, part, None), holder)
-                     for where, holder, _ in found]
-            found = [(where, member, holder) for where, member, holder in found if member is not None]
-    within = within_part(parts)
-    return [(where, holder if within else member, member) for where, member, holder in found]
+@functools.lru_cache(maxsize=None)
+def _drawn(part) -> Drawn:
+    """The template's part ``part`` as a :class:`Drawn` part, one for each (its cache of the element last built
+    is its own)."""
+    return Drawn.of(part, REGISTRY)
 
 
 def elements_for(scenario) -> tuple[AbstractElement, ...]:

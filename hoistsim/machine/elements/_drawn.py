@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ...scenario.lowering import within_part
+
 
 @dataclass(frozen=True, eq=False)  # each part its own key of the cache
 class Drawn:
@@ -38,12 +40,6 @@ class Drawn:
         """The drawn part ``part`` with its path's entry in ``registry`` (its path split once, here)."""
         parts = tuple(part.path.split("."))
         return cls(part, registry[part.path], parts[-1] if within_part(parts) else None)
-
-
-def within_part(parts: tuple) -> bool:
-    """Whether a registry path names a key within a part (drivetrain.motors.*.ripple, drivetrain.load.rope):
-    built from the part that holds it."""
-    return len(parts) > 2 and parts[-1] != "*"
 
 
 def element_of(entry, spec):

@@ -7,7 +7,6 @@ from typing import ClassVar
 import jax.numpy as jnp
 
 from ..._pytree import static
-from ...scenario.period import machine_period
 from ..core.element import STUCK, AbstractElement
 
 
@@ -38,7 +37,7 @@ class PeriodicRegime(AbstractElement):
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "PeriodicRegime":
-        return cls(period=machine_period(scenario), inertia_varies_with_angle=scenario.reciprocating is not None)
+        return cls(period=spec.period, inertia_varies_with_angle=spec.inertia_varies_with_angle)
 
     def angles(self) -> tuple:
         return ("motor",)
