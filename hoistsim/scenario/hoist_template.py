@@ -75,44 +75,37 @@ class TemplateNames(Section):
 
 
 class TemplateShaftSpec(TemplateNames, ShaftSpec):
-    """A shaft the hoist's template draws (motor, pinion, drum): geared where the template says, its speed
-    an output where the hoist's was, and its speed at the start no speed scale of the machine (the hoist's
-    slip resolution has always come from its motor's speeds, or failing that all its bodies')."""
-
-    geared_to: str = Field("", exclude=True)  # the shaft it turns with, "" for a body
-    ratio_to_root: float = Field(1.0, exclude=True)  # its speed over that shaft's
-    speed_observed: bool = Field(True, exclude=True)
-
-    def train(self, scenario) -> tuple:
-        return self.geared_to or self.name, self.ratio_to_root, self.speed * self.ratio_to_root
-
-    def sets_speed_scale(self) -> bool:
-        return False
-
-    def observed(self) -> bool:
-        return self.speed_observed
+    """A shaft the hoist's template draws with the hoist's names for what is on it (the drum's ripple)."""
 
 
-def motor_shaft_as_drawn(spec, scenario) -> TemplateShaftSpec:
+def _shaft(name: str, inertia: float, speed: float, geared_to: str = "", ratio: float = 1.0,
+           observed: bool = True) -> ShaftSpec:
+    """A shaft the template draws, with its gear train written in (turning with ``geared_to`` at ``ratio`` times
+    its speed, or a body of its own), its speed an output where the hoist's was (``observed``), and its speed at
+    the start no speed scale of the machine (the hoist's slip resolution has always come from its motor's
+    speeds, or failing that all its bodies')."""
+    return ShaftSpec.model_construct(name=name, inertia=inertia, speed=speed).with_resolved(
+        train=(geared_to or name, ratio, speed * ratio), scaled=False, observed=observed)
+
+
+def motor_shaft_as_drawn(spec, scenario) -> ShaftSpec:
     """The motor shaft: a body turning at ``initial.motor_speed``, its inertia the motor's rotor's (and what
     else the scene keys to it)."""
-    return TemplateShaftSpec.model_construct(name="motor", inertia=0.0, speed=scenario.initial.motor_speed)
+    return _shaft("motor", 0.0, scenario.initial.motor_speed)
 
 
-def pinion_shaft_as_drawn(spec, scenario) -> TemplateShaftSpec:
+def pinion_shaft_as_drawn(spec, scenario) -> ShaftSpec:
     """The pinion shaft (the clutch's output): a body with the pinion's inertia, turning z2/z1 times as fast as
     the drum at ``initial.drum_speed``; its speed is no output of the hoist (the motor's less the slip)."""
-    return TemplateShaftSpec.model_construct(
-        name="pinion", inertia=spec.pinion_inertia,
-        speed=scenario.initial.drum_speed * spec.wheel_teeth / spec.pinion_teeth, speed_observed=False)
+    return _shaft("pinion", spec.pinion_inertia, scenario.initial.drum_speed * spec.wheel_teeth / spec.pinion_teeth,
+                  observed=False)
 
 
-def drum_shaft_as_drawn(spec, scenario) -> TemplateShaftSpec:
+def drum_shaft_as_drawn(spec, scenario) -> ShaftSpec:
     """The drum shaft, geared to the pinion by the gears' teeth (z1/z2 times its speed), with the wheel's
     inertia (the drum's own is the drum's: :func:`drum_as_drawn`)."""
     ratio = float(spec.pinion_teeth) / float(spec.wheel_teeth)
-    return TemplateShaftSpec.model_construct(name="drum", inertia=spec.wheel_inertia, speed=scenario.initial.drum_speed,
-                                             geared_to="pinion", ratio_to_root=ratio)
+    return _shaft("drum", spec.wheel_inertia, scenario.initial.drum_speed, geared_to="pinion", ratio=ratio)
 
 
 def drum_ripple_as_drawn(spec, scenario) -> TemplateShaftSpec:
@@ -133,26 +126,15 @@ def flywheel_as_drawn(spec, scenario) -> RotorSpec:
     return RotorSpec.model_construct(name="flywheel", shaft=spec.shaft, inertia=spec.moment_of_inertia)
 
 
-class TemplateStageSpec(GearStageSpec):
-    """The hoist's gears as the template draws their lossy mesh: the stage from the pinion to the drum, its
-    speed ratio z1/z2 from the teeth, its outputs ``mesh_torque``, ``mesh_mode``, ..."""
-
-    def speed_ratio(self) -> float:
-        return float(self.teeth[0]) / float(self.teeth[1])
-
-    def mesh_prefix(self) -> str:
-        return "mesh"
-
-    def beyond(self, scenario) -> tuple:
-        return ("drum",)
-
-
-def mesh_as_drawn(spec, scenario) -> TemplateStageSpec:
-    """The hoist's lossy mesh (``gears:`` with an efficiency) as the drivetrain's stage ``mesh``."""
-    return TemplateStageSpec.model_construct(
+def mesh_as_drawn(spec, scenario) -> GearStageSpec:
+    """The hoist's lossy mesh (``gears:`` with an efficiency) as the drivetrain's stage ``mesh`` from the pinion
+    to the drum: its speed ratio z1/z2 from the teeth, its outputs ``mesh_torque``, ``mesh_mode``, ..."""
+    return GearStageSpec.model_construct(
         name="mesh", between=("pinion", "drum"), teeth=(spec.pinion_teeth, spec.wheel_teeth),
         ratio=spec.wheel_teeth / spec.pinion_teeth, efficiency=spec.efficiency,
-        backdrive_efficiency=spec.backdrive_efficiency)
+        backdrive_efficiency=spec.backdrive_efficiency,
+    ).with_resolved(beyond=("drum",), speed_ratio=float(spec.pinion_teeth) / float(spec.wheel_teeth),
+                    mesh_prefix="mesh")
 
 
 class TemplateMotorSpec(TemplateNames, ShaftMotorSpec):
@@ -180,26 +162,19 @@ def load_as_drawn(spec, scenario) -> LoadOnShaftSpec:
     load, hanging from the drum shaft at half the drum's diameter, the drum turning at ``initial.drum_speed`` at
     the start."""
     gears, bearings = scenario.gears, scenario.bearings
-    drawn = LoadOnShaftSpec.model_construct(
+    return LoadOnShaftSpec.model_construct(
         mass=spec.mass, shaft="drum", rope_radius=0.5 * scenario.drum.diameter, rope=scenario.rope,
         ground=scenario.ground,
         bearings=None if bearings is None else LoadBearingsSpec.model_construct(
             gear_offset=bearings.gear_offset, rope_offset=bearings.rope_offset, span=bearings.span,
-            wheel_pitch_diameter=gears.module * gears.wheel_teeth, pressure_angle=gears.pressure_angle))
-    drawn.resolve(scenario.gravity, scenario.initial.drum_speed)
-    return drawn
+            wheel_pitch_diameter=gears.module * gears.wheel_teeth, pressure_angle=gears.pressure_angle),
+    ).with_resolved(gravity=scenario.gravity, start_speed=scenario.initial.drum_speed)
 
 
 class TemplateClutchSpec(TemplateNames, FrictionClutchSpec):
     """The hoist's cone clutch as the template draws it: a friction clutch from the motor shaft to the pinion
-    shaft, pressed by the engagement force, with its halves' inertias, its heating (``clutch_heating:``) and the
-    hoist's names for its outputs."""
-
-    driving_inertia: float = Field(0.0, exclude=True)
-    driven_inertia: float = Field(0.0, exclude=True)
-
-    def halves(self) -> tuple[float, float]:
-        return self.driving_inertia, self.driven_inertia
+    shaft, pressed by the engagement force, with its heating (``clutch_heating:``) and the hoist's names for its
+    outputs."""
 
 
 def clutch_as_drawn(spec, scenario) -> TemplateClutchSpec:
@@ -212,8 +187,8 @@ def clutch_as_drawn(spec, scenario) -> TemplateClutchSpec:
     return TemplateClutchSpec.model_construct(
         name="clutch", between=("motor", "pinion"), static_friction=spec.static_friction,
         kinetic_friction=spec.kinetic_friction, surfaces=spec.surfaces, effective_radius=None, cone=cone, force=force,
-        driving_inertia=spec.driving_inertia, driven_inertia=spec.driven_inertia, heating=scenario.clutch_heating,
-        outputs_named=CLUTCH_NAMES)
+        heating=scenario.clutch_heating, outputs_named=CLUTCH_NAMES,
+    ).with_resolved(halves=(spec.driving_inertia, spec.driven_inertia))  # its halves' inertias, on its shafts
 
 
 def heating_as_drawn(spec, scenario) -> TemplateClutchSpec:
@@ -249,20 +224,13 @@ def the_load(spec, scenario) -> LoadOnShaftSpec:
     return load_as_drawn(scenario.load, scenario)
 
 
-class TemplatePeriodicSpec(PeriodicSpec):
-    """The periodic regime's analysis as the template writes it: with the machine's period and whether an inertia
-    varies with the angle, worked out from the hoist's sections (its element reads no more than its spec)."""
-
-    period: float = Field(0.0, exclude=True)  # rad of motor angle
-    inertia_varies_with_angle: bool = Field(False, exclude=True)  # a slider-crank: the energy guards stay on
-
-
-def periodic_as_drawn(spec, scenario) -> TemplatePeriodicSpec:
+def periodic_as_drawn(spec: PeriodicSpec, scenario) -> PeriodicSpec:
     """A section that is no part of the machine but an analysis of its run (the periodic regime), with the
-    machine's period (when every periodic part is back where it started: :func:`.period.machine_period`)."""
-    return TemplatePeriodicSpec.model_construct(**{name: getattr(spec, name) for name in type(spec).model_fields},
-                                                period=machine_period(scenario),
-                                                inertia_varies_with_angle=scenario.reciprocating is not None)
+    machine's period written in (rad of motor angle: when every periodic part is back where it started,
+    :func:`.period.machine_period`) and whether an inertia varies with the angle (a slider-crank: the energy
+    guards stay on)."""
+    return spec.with_resolved(period=machine_period(scenario),
+                              inertia_varies_with_angle=scenario.reciprocating is not None)
 
 
 _LOAD_READS = ("drum", "gears", "rope", "ground", "bearings", "initial", "gravity")  # and the load's, for its parts

@@ -15,6 +15,27 @@ class Section(BaseModel):
     # (the section's validators hold them)
     alternatives: ClassVar[tuple[tuple[str, ...], ...]] = ()
     _derived: tuple = PrivateAttr(default=())  # the keys set from others
+    # What a drawn part's element reads beside its own keys (the scene's gravity, a shaft's gear train), written
+    # into a copy where the scenario is lowered (:mod:`.lowering`): no file gives them, and no element reads the
+    # scenario for them.
+    _resolved: dict = PrivateAttr(default_factory=dict)
+
+    def lowered(self, scenario) -> "Section":
+        """The spec as its element reads it, standing alone (one that needs nothing beyond its keys: itself)."""
+        return self
+
+    def with_resolved(self, **values) -> "Section":
+        """A copy with ``values`` written in (see :meth:`lowered`)."""
+        out = self.model_copy()
+        out._resolved = {**self._resolved, **values}
+        return out
+
+    def resolved(self, name: str):
+        """What :meth:`with_resolved` wrote in as ``name``."""
+        if name not in self._resolved:  # a part built from a spec not lowered: the program's error, not the user's
+            raise RuntimeError(f"{type(self).__name__}.{name} is written in where the scenario is lowered "
+                               "(hoistsim/scenario/lowering.py)")
+        return self._resolved[name]
 
     def _derive(self, key: str, value) -> None:
         """Set ``key`` from the keys given (a stall torque from the nameplate, a ratio from teeth): read as such

@@ -77,9 +77,10 @@ class FrictionClutchSpec(OnShaft, FrictionSpec):
             return self.effective_radius * self.surfaces
         return self.cone.torque_per_newton(self.surfaces)
 
-    def halves(self) -> tuple[float, float]:
-        """kg*m^2: the inertia of its half on shaft a and on shaft b (a drawn clutch's halves are its shafts')."""
-        return 0.0, 0.0
+    def lowered(self, scenario) -> "FrictionClutchSpec":
+        """With the inertias of its halves on shaft a and on shaft b written in (kg*m^2; a drawn clutch's halves
+        are its shafts': none)."""
+        return self.with_resolved(halves=(0.0, 0.0))
 
     def fade(self) -> dict | None:
         """Its friction against its faces' temperature (tables on common knots), None for constant friction."""

@@ -57,13 +57,11 @@ class ShaftSpec(OnShaft, Section):
         root, ratio = groups[self.name]
         return root, ratio, start_speeds(drawn, groups)[self.name]
 
-    def sets_speed_scale(self) -> bool:
-        """Whether its speed at the start is one of the machine's speed scales (the slip resolution's)."""
-        return True
-
-    def observed(self) -> bool:
-        """Whether its speed is an output (``<name>_speed``, and ``final_<name>_speed`` in the summary)."""
-        return True
+    def lowered(self, scenario) -> "ShaftSpec":
+        """With its gear train written in (:meth:`train`: the shafts it is geared to are the drivetrain's), its
+        speed at the start one of the machine's speed scales (the slip resolution's, ``scaled``) and an output
+        (``observed``: ``<name>_speed``, ``final_<name>_speed``)."""
+        return self.with_resolved(train=self.train(scenario), scaled=True, observed=True)
 
 
 class TorqueSpec(SpeedLaws, Section):
@@ -122,6 +120,11 @@ class GearStageSpec(MeshSpec):
         """The shafts on its output side: its output shaft, then every shaft geared beyond it (what presses
         its teeth)."""
         return beyond_stage(scenario.drivetrain, self.name)
+
+    def lowered(self, scenario) -> "GearStageSpec":
+        """With the shafts beyond it (:meth:`beyond`), its speed ratio and its mesh's outputs' prefix written in."""
+        return self.with_resolved(beyond=self.beyond(scenario), speed_ratio=self.speed_ratio(),
+                                  mesh_prefix=self.mesh_prefix())
 
     @property
     def mesh(self) -> "GearStageSpec | None":

@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 from typing import Literal
 
-from pydantic import Field, PrivateAttr, model_validator
+from pydantic import Field, model_validator
 
 from ..errors import ScenarioError
 from . import plausible
@@ -58,34 +58,20 @@ class LoadOnShaftSpec(OnShaft, LoadSpec):
         """Which variant: ``rigid`` (moves with the rope's point on the drum) or ``elastic`` (a body on its rope)."""
         return "level" if self.path == "level" else "rigid" if self.rope is None else "elastic"
 
-    # Written in where the scenario is lowered (:func:`lowered`), not keys: what its elements read beside its own
-    # keys, so that each sees its spec alone.
-    _gravity: float | None = PrivateAttr(None)  # m/s^2: the scene's
-    _start_speed: float | None = PrivateAttr(None)  # rad/s: its shaft's at the start
-
-    def shaft_speed(self, scenario) -> float:
-        """rad/s: the speed of its shaft at the start."""
-        return scenario.drivetrain.shafts[self.shaft].train(scenario)[2]
-
     def lowered(self, scenario) -> "LoadOnShaftSpec":
-        """A copy that stands alone: the scene's gravity and its shaft's starting speed written in."""
-        out = self.model_copy()
-        out.resolve(scenario.gravity, self.shaft_speed(scenario))
-        return out
-
-    def resolve(self, gravity: float, start_speed: float) -> None:
-        """Write in what its elements read beside its keys (where it is lowered: its own copy)."""
-        self._gravity, self._start_speed = gravity, start_speed
+        """With the scene's gravity (m/s^2) and its shaft's speed at the start (rad/s) written in."""
+        shaft = scenario.drivetrain.shafts[self.shaft]
+        return self.with_resolved(gravity=scenario.gravity, start_speed=shaft.train(scenario)[2])
 
     @property
     def gravity(self) -> float:
-        """m/s^2: the scene's gravity (lowered first)."""
-        return _resolved(self._gravity, "gravity")
+        """m/s^2: the scene's gravity."""
+        return self.resolved("gravity")
 
     @property
     def start_speed(self) -> float:
-        """rad/s: its shaft's speed at the start (lowered first)."""
-        return _resolved(self._start_speed, "start_speed")
+        """rad/s: its shaft's speed at the start."""
+        return self.resolved("start_speed")
 
     @model_validator(mode="after")
     def _a_body_on_its_rope(self):
@@ -99,8 +85,3 @@ class LoadOnShaftSpec(OnShaft, LoadSpec):
                                     "moves rigidly with its shaft's radius, with no ground under it")
         return self
 
-
-def _resolved(value, name: str):
-    if value is None:  # a part built from a spec that was not lowered: the program's error, not the user's
-        raise RuntimeError(f"a load's {name} is written in where the scenario is lowered (scenario/lowering.py)")
-    return value

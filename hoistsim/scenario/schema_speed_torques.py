@@ -69,6 +69,11 @@ class HeatCapacitorSpec(Section):
     temperature: u.quantity(u.TEMPERATURE, gt=0.0) = Field(293.15, description="at t = 0")
     name: str = Field("", exclude=True)  # its key in drivetrain.heat_capacitors (set there, never written)
 
+    def lowered(self, scenario) -> "HeatCapacitorSpec":
+        """With the eddy-current brake whose heat warms it written in (the schema says there is one)."""
+        brakes = scenario.drivetrain.eddy_current_brakes
+        return self.with_resolved(brake=next(b for b in brakes.values() if b.heat_to == self.name))
+
 
 class EddyCurrentBrakeSpec(Section):
     """Modelica's EddyCurrentTorque on a shaft: it brakes with 2 nominal_torque e^2 w_n / (1 + w_n^2), w_n =

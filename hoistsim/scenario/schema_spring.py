@@ -39,6 +39,12 @@ class SpringSpec(Section):
                                                          "ElastoBacklash)")
     name: str = Field("", exclude=True)  # its key in drivetrain.springs (set there, never written)
 
+    def lowered(self, scenario) -> "SpringSpec":
+        """With its twist at the start written in: b's angle less a's (a shaft's ``angle``, the ground's 0)."""
+        shafts = scenario.drivetrain.shafts
+        start = [0.0 if side == "ground" else shafts[side].angle for side in self.between]
+        return self.with_resolved(initial_twist=start[1] - start[0])
+
     @model_validator(mode="after")
     def _a_spring_or_a_damper(self):
         keys = (self.stiffness, self.shear_modulus, self.diameter, self.length)

@@ -83,9 +83,10 @@ def _place(drawn: dict, path: list, spec, scenario, renamed: dict, inertias: dic
     elif kind == "shafts":
         inertias[spec.name] = inertias.get(spec.name, 0.0) + spec.inertia
         shaft = {"inertia": None}  # its place, first
-        if spec.geared_to:  # turns with its root through the hoist's gears: a stage of its own
+        root = spec.resolved("train")[0]
+        if root != spec.name:  # turns with its root through the hoist's gears: a stage of its own
             gears = scenario.gears
-            stage = {"between": [spec.geared_to, spec.name], "teeth": [gears.pinion_teeth, gears.wheel_teeth]}
+            stage = {"between": [root, spec.name], "teeth": [gears.pinion_teeth, gears.wheel_teeth]}
             drawn["gears"][_STAGE] = {**stage, **drawn["gears"].get(_STAGE, {})}
         else:
             shaft["speed"] = _value(spec.speed, u.ANGULAR_SPEED)
@@ -103,7 +104,7 @@ def _place(drawn: dict, path: list, spec, scenario, renamed: dict, inertias: dic
         clutch.pop("heating", None)
         clutch.pop("effective_radius", None)
         drawn["clutches"][spec.name] = {**clutch, **drawn["clutches"].get(spec.name, {})}
-        for shaft, inertia in zip(spec.between, spec.halves()):
+        for shaft, inertia in zip(spec.between, spec.resolved("halves")):
             inertias[shaft] = inertias.get(shaft, 0.0) + inertia
     elif kind == "load":
         drawn["load"] = _plain(spec)

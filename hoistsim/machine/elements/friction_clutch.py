@@ -78,7 +78,7 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
     @classmethod
     def from_spec(cls, spec, scenario) -> "FrictionClutch":
         a, b = spec.between
-        driving_inertia, driven_inertia = spec.halves()
+        driving_inertia, driven_inertia = spec.resolved("halves")
         fade = spec.fade()  # friction against the faces' temperature, or (never both) against the slip speed
         law = {} if fade is None else {"friction_temperatures": fade["temperatures"], "fades": True,
                                        "static_frictions": fade["static"], "kinetic_frictions": fade["kinetic"]}

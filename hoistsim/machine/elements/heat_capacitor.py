@@ -23,10 +23,8 @@ class HeatCapacitor(AbstractElement):
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "HeatCapacitor":
-        brakes = scenario.drivetrain.eddy_current_brakes
-        brake = next(b for b in brakes.values() if b.heat_to == spec.name)  # the schema says there is one
         return cls(heat_capacity=spec.heat_capacity, initial_temperature=spec.temperature,
-                   brake=EddyCurrentBrake.from_spec(brake, scenario), section=spec.name)
+                   brake=EddyCurrentBrake.from_spec(spec.resolved("brake"), scenario), section=spec.name)
 
     @property
     def temperature(self) -> str:

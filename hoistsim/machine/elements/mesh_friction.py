@@ -51,8 +51,9 @@ class MeshFriction(AbstractStageMesh):
     def from_spec(cls, spec, scenario) -> "MeshFriction":
         """A lossy gear stage's mesh: the input shaft's losses, pressed by what the shafts beyond take."""
         efficiency, backdrive = spec.efficiencies
-        return cls(efficiency=efficiency, backdrive_efficiency=backdrive, ratio=spec.speed_ratio(), section=spec.name,
-                   prefix=spec.mesh_prefix(), driving=spec.between[0], beyond=spec.beyond(scenario))
+        return cls(efficiency=efficiency, backdrive_efficiency=backdrive, ratio=spec.resolved("speed_ratio"),
+                   section=spec.name, prefix=spec.resolved("mesh_prefix"), driving=spec.between[0],
+                   beyond=spec.resolved("beyond"))
 
     def _per_load(self, side):
         # N*m lost at the pinion per N*m of tooth load at the drum: side +1 the pinion drives

@@ -37,7 +37,8 @@ class PeriodicRegime(AbstractElement):
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "PeriodicRegime":
-        return cls(period=spec.period, inertia_varies_with_angle=spec.inertia_varies_with_angle)
+        return cls(period=spec.resolved("period"),
+                   inertia_varies_with_angle=spec.resolved("inertia_varies_with_angle"))
 
     def angles(self) -> tuple:
         return ("motor",)

@@ -28,11 +28,11 @@ class Shaft(AbstractElement):
 
     @classmethod
     def from_spec(cls, spec, scenario) -> Shaft:
-        root, ratio, speed = spec.train(scenario)
+        root, ratio, speed = spec.resolved("train")
         return cls(inertia=spec.inertia, initial_speed=speed, speed_ratio=ratio, initial_angle=spec.angle,
                    section=spec.name,
-                   geared_to="" if root == spec.name else root, scaled=spec.sets_speed_scale(),
-                   observed=spec.observed(), angled="angle" in spec.model_fields_set)
+                   geared_to="" if root == spec.name else root, scaled=spec.resolved("scaled"),
+                   observed=spec.resolved("observed"), angled="angle" in spec.model_fields_set)
 
     @property
     def columns(self) -> dict:

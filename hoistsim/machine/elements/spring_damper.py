@@ -32,10 +32,8 @@ class SpringDamper(AbstractElement):
     @staticmethod
     def fields_from(spec, scenario) -> dict:
         a, b = (None if side == "ground" else side for side in spec.between)
-        shafts = scenario.drivetrain.shafts
-        start = [0.0 if side is None else shafts[side].angle for side in (a, b)]
         return dict(stiffness=spec.spring_rate, damping=spec.damping, unstretched_angle=spec.unstretched_angle,
-                    initial_twist=start[1] - start[0], driving=a, driven=b, section=spec.name)
+                    initial_twist=spec.resolved("initial_twist"), driving=a, driven=b, section=spec.name)
 
     @property
     def loss_state(self) -> str:
