@@ -7,7 +7,6 @@ import math
 import jax
 import numpy as np
 
-from ..components import Drum, GearPair, HangingLoad
 from ..errors import ScenarioError
 from ..scenario.loading import Scenario
 from .core.element import AbstractCoupling
@@ -31,31 +30,6 @@ def _padded(grid: np.ndarray) -> np.ndarray:
     return np.concatenate([grid, np.full(size - grid.size, grid[-1])])
 
 
-def _steady_lift_speed(scenario: Scenario) -> float:
-    """Speed at which the motor torque equals the load torque: the hoist lifting at constant speed.
-
-    The linear motor's C(omega) = C0 (1 - omega/omega0) against the load's weight brought to the
-    motor shaft, M g R / tau (the parts' own formulas, as the two-shaft model reduces them).
-    """
-    if scenario.motor.characteristic != "linear":
-        raise ScenarioError("initial.steady_lift", "needs a linear motor (stall_torque + no_load_speed)")
-    motor, gears = scenario.motor, scenario.gears
-    ratio = GearPair(gears.pinion_teeth, gears.wheel_teeth, gears.module, gears.pressure_angle).ratio
-    rope_radius = Drum(scenario.drum.diameter, scenario.drum.inertia).rope_radius
-    load_torque = HangingLoad(scenario.load.mass, scenario.gravity).weight * rope_radius / ratio
-    return motor.no_load_speed * (1.0 - load_torque / motor.stall_torque)
-
-
-def with_steady_lift(scenario: Scenario) -> Scenario:
-    """With ``initial.steady_lift``, the scenario with its initial speeds set to the steady lifting speed."""
-    if not scenario.initial.steady_lift:
-        return scenario
-    speed = _steady_lift_speed(scenario)
-    ratio = scenario.gears.wheel_teeth / scenario.gears.pinion_teeth
-    return scenario.model_copy(update={"initial": scenario.initial.model_copy(
-        update={"motor_speed": speed, "drum_speed": speed / ratio})})
-
-
 _checked: set = set()  # element structures already found to fit together
 
 
@@ -65,7 +39,7 @@ def machine_elements(scenario: Scenario) -> tuple:
     The check depends on the structure alone (which elements, on which shafts),
     so a sweep pays it once.
     """
-    elements = elements_for(with_steady_lift(scenario))
+    elements = elements_for(scenario)
     structure = jax.tree.structure(elements)
     if structure not in _checked:
         try:

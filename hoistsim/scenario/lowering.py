@@ -12,6 +12,7 @@ from __future__ import annotations
 from typing import NamedTuple
 
 from .hoist_template import TEMPLATE, TemplatePart, section_of
+from .steady_lift import with_steady_lift
 
 
 class Part(NamedTuple):
@@ -22,6 +23,20 @@ class Part(NamedTuple):
     path: str  # its registry path (drivetrain.clutches.*)
     held: object  # the spec that picks its variant: the part, or the key within it (a hoist's: its section)
     template: TemplatePart | None  # a hoist's section: the template's part that writes the drawn part out
+
+
+class Lowered(NamedTuple):
+    """A scenario lowered: the scenario its parts are written out from, and the parts."""
+
+    scenario: object  # the scenario as loaded, a hoist started at its steady lift (initial.steady_lift)
+    parts: list
+
+
+def lower(scenario, paths) -> Lowered:
+    """``scenario`` lowered to its parts (:func:`lowered_parts`), a hoist's started at its steady lifting speed
+    where ``initial.steady_lift`` asks (:func:`.steady_lift.with_steady_lift`)."""
+    scenario = with_steady_lift(scenario)
+    return Lowered(scenario, lowered_parts(scenario, paths))
 
 
 def lowered_parts(scenario, paths) -> list[Part]:

@@ -14,11 +14,11 @@ from pydantic import BaseModel
 from ruamel.yaml import YAML
 
 from ..errors import ScenarioError
-from ..machine.assemble import with_steady_lift
-from ..scenario import units as u
 from ..machine.elements import MeshFriction
+from ..scenario import units as u
 from ..scenario.hoist_template import TEMPLATE, section_of
 from ..scenario.signals import TimeSignal
+from ..scenario.steady_lift import with_steady_lift
 from ..scenario.tables import ForceTable
 
 # the columns of each table key a drawn part may have

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import functools
 
-from ...scenario.lowering import lowered_parts
+from ...scenario.lowering import lower
 from ..core.element import AbstractCoupling as AbstractCoupling
 from ..core.element import AbstractElement as AbstractElement
 from ._drawn import Drawn as Drawn
@@ -92,11 +92,15 @@ REGISTRY: dict[str, object] = {
 
 def element_sections(scenario) -> list[tuple[str, object, object]]:
     """(section, its spec, what builds the element) for each element the scenario builds, in order (see
-    :func:`hoistsim.scenario.lowering.lowered_parts`): a drawn drivetrain's parts in registry order; a hoist's
+    :func:`hoistsim.scenario.lowering.lower`): a drawn drivetrain's parts in registry order; a hoist's
     sections in its template's order, each a :class:`Drawn` part (a section that stands for several parts: a
     row each)."""
+    return _sections(lower(scenario, REGISTRY).parts)
+
+
+def _sections(parts) -> list[tuple[str, object, object]]:
     return [(part.section, part.spec, element_of(REGISTRY[part.path], part.held) if part.template is None
-             else _drawn(part.template)) for part in lowered_parts(scenario, REGISTRY)]
+             else _drawn(part.template)) for part in parts]
 
 
 @functools.lru_cache(maxsize=None)
@@ -107,5 +111,7 @@ def _drawn(part) -> Drawn:
 
 
 def elements_for(scenario) -> tuple[AbstractElement, ...]:
-    """The elements a scenario names, built from their sections, in order."""
-    return tuple(cls.from_spec(spec, scenario) for _, spec, cls in element_sections(scenario))
+    """The elements a scenario names, built from their sections, in order (a hoist's on the scenario started at
+    its steady lift, where it asks)."""
+    lowered = lower(scenario, REGISTRY)
+    return tuple(cls.from_spec(spec, lowered.scenario) for _, spec, cls in _sections(lowered.parts))
