@@ -63,16 +63,6 @@ class LoadOnShaftSpec(OnShaft, LoadSpec):
         shaft = scenario.drivetrain.shafts[self.shaft]
         return self.with_resolved(gravity=scenario.gravity, start_speed=shaft.train(scenario)[2])
 
-    @property
-    def gravity(self) -> float:
-        """m/s^2: the scene's gravity."""
-        return self.resolved("gravity")
-
-    @property
-    def start_speed(self) -> float:
-        """rad/s: its shaft's speed at the start."""
-        return self.resolved("start_speed")
-
     @model_validator(mode="after")
     def _a_body_on_its_rope(self):
         if self.rope is not None and self.mass <= 0.0:

@@ -13,7 +13,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from .guard_id import AHEAD, BEHIND, SLIP, GuardId, knot_guards
+from .guard_id import SLIP, GuardId, knot_guards
 from .layout import Layout
 
 
@@ -53,16 +53,15 @@ def passed_over(layout: Layout, guards) -> np.ndarray | None:
     return mask if mask.any() else None
 
 
-def knot_partners(guards) -> np.ndarray:
+def knot_partners(layout: Layout, guards) -> np.ndarray:
     """For each guard, the place of the other guard of its knot coordinate (the knot ahead's partner is the knot
     behind, and the other way round); any other guard's, its own place."""
     place = {name: i for i, (_, name, _) in enumerate(guards)}
     partner = np.arange(len(guards))
-    for i, (role, name, _) in enumerate(guards):
-        if role == "kink":
-            ahead, behind = knot_guards(name.section, name.kind[:-len(AHEAD)] if name.kind.endswith(AHEAD)
-                                        else name.kind[:-len(BEHIND)])
-            partner[i] = place[behind] if name == ahead else place[ahead]
+    for element in layout.elements:
+        for kink in element.kink_names():
+            ahead, behind = (place[name] for name in knot_guards(element.section, kink))
+            partner[ahead], partner[behind] = behind, ahead
     return partner
 
 

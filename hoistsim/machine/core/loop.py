@@ -28,26 +28,12 @@ from .columns import row_outputs, summary_values
 from .dynamics import Instant, slip_sign
 from .element import STUCK
 from .eventlog import LOG_FIELDS, unpack
-from .guard_id import (
-    BREAKAWAY_BACKWARD,
-    BREAKAWAY_FORWARD,
-    MARGIN_VALLEY,
-    MARGIN_VALLEYS_EACH_WAY,
-    SLIP_VALLEY,
-    GuardId,
-)
+from .guard_id import (BREAKAWAY_BACKWARD, BREAKAWAY_FORWARD, MARGIN_VALLEY, MARGIN_VALLEYS_EACH_WAY, SLIP_VALLEY,
+                       GuardId)
 from .kept_steps import Steps, no_steps, rows_from_steps
 from .layout import Layout
 from .ledger import ledger_values
-from .plan import (
-    CHATTERING,
-    KINK_BUDGET,
-    OK,
-    SOLVER_FAILED,
-    TOO_MANY_SEGMENTS,
-    Plan,
-    segment_budget,
-)
+from .plan import CHATTERING, KINK_BUDGET, OK, SOLVER_FAILED, TOO_MANY_SEGMENTS, Plan, segment_budget
 from .readout import RawRun
 from .schedule import Segment, segment_from
 from .stepping import integrate_pass
@@ -139,7 +125,7 @@ def _in_cycle(c: _Carry):
     return spent[0], spent[1], spent[2]
 
 
-def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, reply, lanes: bool):
+def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, reply, lanes: bool, passed_over):
     _, observations, kinks = _in_cycle(c)
     observing = observations < plan.max_switches
     kinking = kinks < KINK_BUDGET * plan.max_switches
@@ -171,8 +157,8 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
         rtol=plan.rtol, atol=plan.atol, dtmax=c.step_cap, cap_until=c.cap_until, max_steps=MAX_STEPS_PER_SEGMENT,
         kept=c.kept, count=c.kept_count, modes=c.modes, first_step=c.step_guess, bends=guard_roles.bends(guards),
         slopes0=guard_roles.bend_slopes(plan.layout, guards, anchors, kinking),
-        values0=starting, crossing_step_kept=not lanes, passed_over=guard_roles.passed_over(plan.layout, guards),
-        partners=guard_roles.knot_partners(guards))
+        values0=starting, crossing_step_kept=not lanes, passed_over=passed_over,
+        partners=guard_roles.knot_partners(plan.layout, guards))
 
 
 def _decided(plan: Plan, segment: Segment, c: _Carry, columns: bool, lanes: bool) -> _Carry:
@@ -214,7 +200,8 @@ def _step(plan: Plan, solver, columns: bool, lanes: bool, c: _Carry) -> _Carry:
     reply = c.reply
     c, durations = _note(plan, segment, c, c.t, c.y, c.modes, reply)
     start_t, start_y = c.t, c.y
-    pass_args, starting, sol = _solve_segment(plan, segment, c, solver, guards, reply, lanes)
+    passed_over = guard_roles.passed_over(layout, guards)  # the knots the pass steps over (a constant mask)
+    pass_args, starting, sol = _solve_segment(plan, segment, c, solver, guards, reply, lanes, passed_over)
 
     t_end, y_end, hit, failed = sol.t, sol.y, sol.hit, sol.failed
     masks = {name: sol.mask[i] for i, (_, name, _) in enumerate(guards)}
@@ -241,7 +228,7 @@ def _step(plan: Plan, solver, columns: bool, lanes: bool, c: _Carry) -> _Carry:
     missed = missed | (margin_valley & over)
     events = {GuardId(e.section, kind) for e in layout.elements for kind in e.crossing_events}
     overtaken, limit_overtaken, reached = switching.crossed_together(
-        guards, at_end, starting, sol.mask, events, guard_roles.passed_over(layout, guards))
+        guards, at_end, starting, sol.mask, events, passed_over)
     # An observation or a limit below zero at the switch located, yet not the crossing found (it crossed and
     # came back within the step, so that only part of the step showed it): the pass is solved again once, only
     # up to that switch's instant and with the switches held off, so that its own root is found; the next

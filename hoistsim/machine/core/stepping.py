@@ -93,7 +93,7 @@ class _Carry(eqx.Module):
     kept: Steps | None
     count: jax.Array
     shift: jax.Array | None  # (guards,): added to the guards read, the knots passed over so far (None: none are)
-    streak: jax.Array  # step attempts since the pass began or last passed over a knot
+    streak: jax.Array | None  # step attempts since the pass began or last passed over a knot (None: none are)
 
 
 def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, dtmax, max_steps: int,
@@ -119,9 +119,9 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
     the knot ahead and the distance from the knot behind, whole numbers apart; ``partners`` (guards,) gives each
     guard's pair.  An accepted step that takes the coordinate past a knot moves both on by the knots passed (a
     whole number added to each guard: nothing is read again), so that the pair watches the next knot either
-    way; the step before it has stopped just short of the knot and this one ends just past it (``bends``), so
-    no step straddles a knot by more than a millionth of itself.  ``max_steps`` counts the attempts since the
-    pass began or last passed a knot.
+    way; the step before it has stopped just short of the knot and this one ends just past it (``bends``), and a
+    step that passes a knot more than ``STRADDLE`` of a step before its end is taken again short of it.
+    ``max_steps`` counts the attempts since the pass began or last passed a knot.
 
     ``bends`` (guards,): the guards where the rate bends (a table's knots): a step across one is refused for the
     bend's error, so a step that would cross one (as far as the guard's rate at the start, then its last step,
@@ -184,7 +184,7 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
         failed=jnp.array(False), crossed=nothing, reached=values, proposed=first - t0, cut=first_cut,
         dense=_zeros_like(jax.eval_shape(stepper.step, t0, t_next, y0, state)[2]) if crossing_step_kept else None,
         kept=kept, count=jnp.asarray(count), shift=None if passed_over is None else jnp.zeros_like(values),
-        streak=jnp.array(0))
+        streak=None if passed_over is None else jnp.array(0))
 
     def going(c: _Carry):
         return ~c.done & ~c.failed
@@ -196,16 +196,17 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
             c.t, c.t_next, c.y, y1, args, error, error_order, c.control)
         values = guards(c.t_next, y1, args, c.shift)
         through = (c.values > 0.0) & (values <= 0.0)
+        # where in the step each guard that crossed reached zero, the guard taken as a line over the step
+        line_zero = c.values / jnp.where(through, c.values - values, 1.0)
         if passed_over is not None:
             # a knot passed over more than a hair before the step's end (where the guard, taken as a line over the
             # step, reached zero) is a bend inside the step: its error (the slope's jump, times the distance to
             # the step's nearer end, times the step) passes the embedded estimate in part, and each such step
             # adds it (taken, the engine's 14 000 knots left its series eight times as far from a run at rtol
             # 1e-12).  Taken again, ending just short of the knot, as a step refused.
-            where_zero = c.values / jnp.where(through, c.values - values, 1.0)
             # (one within the knots' resolution of the step's start is reached where the step starts: it may be
             # nearer than the time's resolution allows a step to end short of it)
-            past = (1.0 - where_zero) * (c.t_next - c.t)  # s: how long before the step's end it was reached
+            past = (1.0 - line_zero) * (c.t_next - c.t)  # s: how long before the step's end it was reached
             straddled = keep & jnp.any(passed_over & through & (past > STRADDLE * c.proposed)
                                        & (c.values > KNOT_RESOLUTION))
             keep, next_t0 = keep & ~straddled, jnp.where(straddled, c.t, next_t0)
@@ -220,7 +221,7 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
         cut = jnp.zeros((), bool)
         crossed = keep & through & (True if passed_over is None else ~passed_over)
         hit = jnp.any(crossed)
-        onward, shift, streak = values, c.shift, c.streak + 1
+        onward, shift, streak = values, c.shift, None if c.streak is None else c.streak + 1
         if passed_over is not None:
             # knots passed over by a step taken (not one that ends at a crossing, taken again up to it): each
             # pair moves on by the knots passed, the one side's count less the other's (whole numbers)
@@ -239,8 +240,7 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
             ahead = bends & (onward > 0.0) & (values < c.values)
             due = jnp.min(jnp.where(ahead, onward * h / jnp.where(ahead, c.values - values, 1.0), jnp.inf))
             crossed_bend = bends & through
-            fraction = jnp.min(jnp.where(crossed_bend, c.values / jnp.where(crossed_bend, c.values - values, 1.0),
-                                         jnp.inf))
+            fraction = jnp.min(jnp.where(crossed_bend, line_zero, jnp.inf))
             foretold = jnp.where(keep, c.t_next + due * jnp.where(due < NEAR_BEND * h, PAST_BEND, SHORT_OF_BEND),
                                  c.t + h * jnp.minimum(fraction * SHORT_OF_BEND, 1.0))
             cut = (foretold > next_t0) & (foretold < next_t1)
@@ -259,7 +259,7 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
                 keep, c.t_next, next_t1)), state=accept(state, c.state), control=control,
             values=accept(onward, c.values), steps=steps, rejected=c.rejected + ~keep,
             done=hit | (keep & (c.t_next >= end)), hit=hit,
-            failed=(streak >= max_steps) & ~hit & ~(keep & (c.t_next >= end)),
+            failed=((steps if streak is None else streak) >= max_steps) & ~hit & ~(keep & (c.t_next >= end)),
             crossed=crossed, reached=values, proposed=proposed, cut=cut,
             dense=dense if crossing_step_kept else None, kept=kept, count=count,
             shift=None if shift is None else accept(shift, c.shift), streak=streak)

@@ -58,7 +58,7 @@ class DrumShaftLoads(AbstractElement):
             wheel_pitch_radius=0.5 * bearings.wheel_pitch_diameter,
             tan_pressure_angle=math.tan(bearings.pressure_angle),
             load_mass=spec.mass,
-            gravity=spec.gravity,
+            gravity=spec.resolved("gravity"),
             rope_radius=spec.rope_radius,
             gear_offset=bearings.gear_offset,
             rope_offset=bearings.rope_offset,

@@ -26,8 +26,8 @@ class ElasticLoad(AbstractLoad):
     def from_spec(cls, spec, scenario) -> "ElasticLoad":
         radius = spec.rope_radius
         resting = spec.ground is not None
-        return cls(mass=spec.mass, gravity=spec.gravity, rope_radius=radius, drum=spec.shaft,
-                   initial_speed=0.0 if resting else radius * spec.start_speed)
+        return cls(mass=spec.mass, gravity=spec.resolved("gravity"), rope_radius=radius, drum=spec.shaft,
+                   initial_speed=0.0 if resting else radius * spec.resolved("start_speed"))
 
     def bodies(self) -> dict:
         return {"load": self.initial_speed}

@@ -15,7 +15,7 @@ class RigidLoad(AbstractLoad):
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "RigidLoad":
-        return cls(mass=spec.mass, gravity=spec.gravity, rope_radius=spec.rope_radius, drum=spec.shaft)
+        return cls(mass=spec.mass, gravity=spec.resolved("gravity"), rope_radius=spec.rope_radius, drum=spec.shaft)
 
     def shafts(self) -> dict:
         return {"rope_point": (self.drum, self.rope_radius), "load": ("rope_point", 1.0)}

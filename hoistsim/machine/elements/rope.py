@@ -12,7 +12,7 @@ class Rope(AbstractRope):
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "Rope":
-        k, g = spec.rope.stiffness, spec.gravity
+        k, g = spec.rope.stiffness, spec.resolved("gravity")
         return cls(constant_stiffness=k, damping=damping(spec, k), initial_stretch=initial_stretch(spec, g, k),
                    weight=spec.mass * g)
 

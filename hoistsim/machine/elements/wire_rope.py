@@ -39,7 +39,7 @@ class WireRope(AbstractRope):
 
     @classmethod
     def from_spec(cls, spec, scenario) -> "WireRope":
-        rope, g = spec.rope, spec.gravity
+        rope, g = spec.rope, spec.resolved("gravity")
         axial = rope.modulus * rope.metallic_area
         k = axial / rope.free_length
         return cls(axial_stiffness=axial, free_length=rope.free_length, damping=damping(spec, k),
