@@ -2,18 +2,20 @@
 
 A sweep's runs differ in their swept keys alone.  Building every run's
 scenario and plan in full (pydantic copies, the swept values validated again,
-every element built) costs about as much as the runs themselves.  Here the
-first run of a block is built in full, the template; every other run has its
-swept values set on the template's sections as they were validated when the
-file was read (no checks run again: each value passed them then), and only
-the elements whose sections a swept key reaches are built again.  An element
-is reached by a key of its own section or of a section its ``from_spec`` reads
-from the scenario (seen once, by building it with the scenario behind a
-recorder).  Each block's first, middle and last runs are also built the full
-way and compared leaf by leaf: on any difference the block is built the full
-way, as it is wherever this does not apply (a drawn drivetrain, a swept
-``simulation.`` or ``initial.`` key, steady-lift starting speeds).  Full output
-is built so too: its runs share the output grid as they share the simulation.
+every part written out and its element built) costs about as much as the runs
+themselves.  Here the first run of a block is built in full, the template;
+every other run has its swept values set on the template's scenario as they
+were validated when the file was read (no checks run again: each value passed
+them then), and only the parts a swept key reaches are written out again
+(:func:`hoistsim.scenario.lowering.lowered_again`) and their elements built.
+A part is reached by a key where the scenario lowered with another of the
+key's values builds it otherwise (:func:`reached_positions`): whatever the
+part reads of the scenario, a hoist's or a drawn drivetrain's.  Each block's
+middle and last runs are also built the full way and compared leaf by leaf:
+on any difference the block is built the full way, as it is wherever this does
+not apply (a swept ``simulation.`` key, steady-lift starting speeds, a key in
+a section the sweep adds).  Full output is built so too: its
+runs share the output grid as they share the simulation.
 """
 
 from __future__ import annotations
@@ -29,37 +31,46 @@ from .._pytree import static_values
 from ..machine.assemble import build_plan, plan_from
 from ..machine.core.plan import Plan
 from ..machine.core.schedule import scheduled_times
-from ..machine.elements import element_sections
-from ..scenario.sweep_spec import swept_field, with_validated_value
+from ..machine.elements import REGISTRY, element_class, elements_for
+from ..scenario.lowering import lower, lowered_again
+from ..scenario.sweep_spec import with_validated_value
 from ..scenario.swept_values import SweptValues
 
 
-class _Recorder:
-    """The scenario as an element's ``from_spec`` sees it, noting the sections read ("*": anything else)."""
-
-    def __init__(self, scenario, read: set):
-        object.__setattr__(self, "_scenario", scenario)
-        object.__setattr__(self, "_read", read)
-
-    def __getattr__(self, name):
-        scenario = object.__getattribute__(self, "_scenario")
-        object.__getattribute__(self, "_read").add(name if name in type(scenario).model_fields else "*")
-        return getattr(scenario, name)
-
-
-def reached_sections(scenario, keys) -> dict[str, set]:
-    """The element sections a swept key reaches (the key is in the section, or in a section its ``from_spec``
-    reads from the scenario), each with the swept sections it reads from the scenario ("*": it reads
-    something else of it, so assume all)."""
-    swept = {key.split(".")[0] for key in keys}
-    reached = {}
-    for section, spec, cls in element_sections(scenario):
-        read: set = set()
-        cls.from_spec(spec, _Recorder(scenario, read))
-        through = swept if "*" in read else read & swept
-        if through or section.split(".")[0] in swept:
-            reached[section] = through
+def reached_positions(scenario, changed: list) -> set[int]:
+    """The positions of the elements of ``scenario`` that another value of its keys reaches: those built
+    otherwise from any scenario of ``changed`` (the same scenario, a key or two set to other values)."""
+    elements = elements_for(scenario)
+    reached = set()
+    for other in changed:
+        others = elements_for(other)
+        if len(others) != len(elements):  # another value adds or drops a part: every element is reached
+            return set(range(len(elements)))
+        reached |= {k for k, (a, b) in enumerate(zip(elements, others)) if not _same_element(a, b)}
     return reached
+
+
+def swept_changes(runs, indices: list[int], scenario) -> list:
+    """For each swept key that takes more than one value over runs ``indices``, ``scenario`` (the first's) with
+    the key at another of them: the scenarios :func:`reached_positions` compares."""
+    where = runs.positions_of(np.asarray(indices))
+    changed = []
+    for key, p in zip(runs.keys, where):
+        other = np.flatnonzero(p != p[0])
+        if other.size:
+            changed.append(with_validated_value(scenario, key, runs.base.provenance.swept[key].validated[
+                int(p[other[0]])]))
+    return changed
+
+
+def _same_element(a, b) -> bool:
+    """Two elements built alike: one class, structure and static values, every leaf equal."""
+    if type(a) is not type(b) or static_values(a) != static_values(b):
+        return False
+    if jax.tree.structure(a) != jax.tree.structure(b):
+        return False
+    return all(np.shape(x) == np.shape(y) and np.array_equal(x, y, equal_nan=True)
+               for x, y in zip(jax.tree.leaves(a), jax.tree.leaves(b)))
 
 
 def applies(runs) -> bool:
@@ -67,11 +78,11 @@ def applies(runs) -> bool:
     base = getattr(runs, "base", None)
     if base is None or not runs.keys or any(key not in base.provenance.swept for key in runs.keys):
         return False
-    if base.drivetrain is not None:  # several elements to a section: each run's built in full
+    if any(key.startswith("simulation.") for key in runs.keys) or base.initial.steady_lift:
         return False
-    if any(key.startswith(("simulation.", "initial.")) for key in runs.keys) or base.initial.steady_lift:
-        return False
-    return True
+    # a key in a section the sweep adds has no value validated alone: each run is validated whole
+    return not any(isinstance(kept, list) and None in kept
+                   for kept in (base.provenance.swept[key].validated for key in runs.keys))
 
 
 class BlockPlans:
@@ -234,12 +245,11 @@ def block_plans(runs, indices: list[int], summary_only: bool = True) -> BlockPla
         return None
     template_scenario = runs.scenario(indices[0])
     template, grid = build_plan(template_scenario, summary_only=summary_only)
-    sections = element_sections(template_scenario)
-    # worked out for each block (some 40 us: each element built once behind a recorder), not kept on the runs
-    reach = reached_sections(template_scenario, runs.keys)
-    positions = [k for k, (section, _, _) in enumerate(sections) if section in reach]
+    parts = lower(template_scenario, REGISTRY).parts
+    # worked out for each block (the scenario lowered again for each key swept over it), not kept on the runs
+    positions = sorted(reached_positions(template_scenario, swept_changes(runs, indices, template_scenario)))
     for columns in (_stacked_columns, _listed_columns):
-        rebuilt = columns(runs, indices, template, template_scenario, sections, reach, positions)
+        rebuilt = columns(runs, indices, template, template_scenario, parts, positions)
         if rebuilt is None:
             continue
         plans = BlockPlans(template, rebuilt, template_scenario.simulation, len(indices), grid)
@@ -249,26 +259,23 @@ def block_plans(runs, indices: list[int], summary_only: bool = True) -> BlockPla
     return None
 
 
-def _stacked_columns(runs, indices, template, scenario, sections, reach, positions) -> dict | None:
-    """Each rebuilt element built once for the whole block, from its section with every run's swept values
-    stacked (a leading axis of runs); None where an element reads a swept section from the scenario, a
-    swept value does not stack (tables of different lengths, words), or ``from_spec`` does not take arrays."""
-    if any(reach[sections[k][0]] for k in positions):
-        return None
+def _stacked_columns(runs, indices, template, scenario, parts, positions) -> dict | None:
+    """Each rebuilt element built once for the whole block, from its part written out from the scenario with
+    every run's swept values stacked (a leading axis of runs); None where a swept value does not stack (tables
+    of different lengths, words), or writing the part out or ``from_spec`` does not take arrays."""
     stacks = {}
     for key in runs.keys:  # kept as columns as the sweep was read (a list: values that do not stack)
         kept = runs.base.provenance.swept[key].validated
         stacks[key] = kept.stacked if isinstance(kept, SweptValues) else None
     if any(stacks[key] is None for key in runs.keys):
         return None
-    where = runs.positions_of(np.asarray(indices))
-    values = [(key, _taken(stacks[key], p)) for key, p in zip(runs.keys, where)]
+    for key, p in zip(runs.keys, runs.positions_of(np.asarray(indices))):
+        scenario = with_validated_value(scenario, key, _taken(stacks[key], p))
     rebuilt = {}
     for k in positions:
-        section, spec, cls = sections[k]
-        own = _section_with(spec, section, values)
         try:
-            element = cls.from_spec(own, scenario)
+            part = lowered_again(parts[k], scenario)
+            element = element_class(part).from_spec(part.spec)
             if _statics(element) != _statics(template.elements[k]):
                 return None
             rebuilt[k] = StackedElements(template.elements[k], element, len(indices))
@@ -285,39 +292,23 @@ def _taken(stacked, rows):
     return stacked[rows]
 
 
-def _listed_columns(runs, indices, template, template_scenario, sections, reach, positions) -> dict | None:
-    """Each rebuilt element built run by run, from its section with the run's swept values."""
+def _listed_columns(runs, indices, template, template_scenario, parts, positions) -> dict | None:
+    """Each rebuilt element built run by run, from its part written out from the scenario with the run's
+    swept values (the template's scenario copied along each key's path only)."""
     built = {k: [template.elements[k]] for k in positions}
     statics = {k: _statics(template.elements[k]) for k in positions}
-    # the scenario itself is copied with each run's values only where a rebuilt element reads a swept
-    # section from it; else each rebuilt section alone is (the pydantic copies are most of a run's cost)
-    whole = any(reach[sections[k][0]] for k in positions)
     validated = {key: runs.base.provenance.swept[key].validated for key in runs.keys}
     for i in indices[1:]:
-        values = [(key, validated[key][p]) for key, p in zip(runs.keys, runs.positions(i))]
         scenario = template_scenario
-        if whole:
-            for key, value in values:
-                scenario = with_validated_value(scenario, key, value)
+        for key, p in zip(runs.keys, runs.positions(i)):
+            scenario = with_validated_value(scenario, key, validated[key][p])
         for k, elements in built.items():
-            section, spec, cls = sections[k]
-            own = swept_field(scenario, section) if whole else _section_with(spec, section, values)
-            if type(own) is not type(spec) or getattr(own, "characteristic", None) != getattr(
-                    spec, "characteristic", None):
-                return None  # a swept key changes which element the section builds
-            element = cls.from_spec(own, scenario)
+            part = lowered_again(parts[k], scenario)
+            element = element_class(part).from_spec(part.spec)
             if _statics(element) != statics[k]:
-                return None
+                return None  # a swept key changes which element the part builds, or its structure
             elements.append(element)
     return {k: ListedElements(elements) for k, elements in built.items()}
-
-
-def _section_with(spec, section: str, values: list):
-    """A section with the swept values under it set (validated already: copies, no checks)."""
-    for key, value in values:
-        if key.startswith(section + "."):
-            spec = with_validated_value(spec, key[len(section) + 1:], value)
-    return spec
 
 
 def _statics(element) -> tuple:

@@ -27,7 +27,7 @@ from ..scenario.loading import Scenario
 from ..scenario.sweep_runs import SweepRuns
 from ..scenario.sweep_spec import with_swept_value
 from .blocks import LazyScenarios, check_status, devices_for, in_order, over_devices
-from .block_plans import applies, block_plans, reached_sections
+from .block_plans import applies, block_plans, reached_positions, swept_changes
 from ..results.sensitivity_result import Sensitivity, differentiable_summaries, existing, units_over
 from .derivative_program import along_directions
 from .key_directions import PLAN_STEP, extrapolated, is_table, key_value, offsets, plan_direction, value_to_set
@@ -141,14 +141,21 @@ def sweep_sensitivity(scenario: Scenario, wrt: list[str], of: list[str] | None =
 
 
 def _unreached_keys(runs: SweepRuns, first: Scenario, wrt: list[str]) -> set[str]:
-    """The keys of ``wrt`` that reach no element a swept key reaches (:func:`reached_sections`): the elements
-    they move are the same in every run, and so is each's direction (where the sweep's plans are built from a
-    template at all: one element a section, no swept ``simulation.`` or ``initial.`` key)."""
+    """The keys of ``wrt`` that reach no element a swept key reaches (:func:`reached_positions`: the scenario
+    lowered with another value of the key): the elements they move are the same in every run, and so is each's
+    direction (where the sweep's plans are built from a template at all: no swept ``simulation.`` or
+    ``initial.`` key)."""
     if not applies(runs):
         return set()
-    swept = set(reached_sections(first, runs.keys))
+    swept = reached_positions(first, swept_changes(runs, list(range(len(runs))), first))
     return {key for key in wrt if not key.startswith(("simulation.", "initial.")) and key not in runs.keys
-            and not set(reached_sections(first, [key])) & swept}
+            and not reached_positions(first, [_nudged(first, key)]) & swept}
+
+
+def _nudged(scenario: Scenario, key: str) -> Scenario:
+    """``scenario`` with ``key`` a step away from its value (a force table: scaled)."""
+    x = key_value(scenario, key)
+    return with_swept_value(scenario, key, value_to_set(scenario, key, x + PLAN_STEP * (abs(x) or 1.0)))
 
 
 def _from_template(runs: SweepRuns, first: Scenario, plan, wrt: list[str], values: dict, unswept: set[str]):

@@ -57,12 +57,11 @@ def section_of(scenario, parts: tuple):
 
 
 class TemplatePart(NamedTuple):
-    """A drawn part a hoist section stands for: its path in a drivetrain (``drivetrain.shafts.*``), what writes
-    it out from the section and the scenario, and the other sections that reads (its element's too)."""
+    """A drawn part a hoist section stands for: its path in a drivetrain (``drivetrain.shafts.*``) and what
+    writes it out from the section and the scenario."""
 
     path: str
     as_drawn: object  # (section, scenario) -> the drawn part's spec (for a key within a part: the part)
-    reads: tuple = ()
 
 
 class TemplateNames(Section):
@@ -233,29 +232,26 @@ def periodic_as_drawn(spec: PeriodicSpec, scenario) -> PeriodicSpec:
                               inertia_varies_with_angle=scenario.reciprocating is not None)
 
 
-_LOAD_READS = ("drum", "gears", "rope", "ground", "bearings", "initial", "gravity")  # and the load's, for its parts
-
 # Each hoist section (dotted within another) -> the drawn parts it stands for, in the order of the machine's
 # bodies, states and columns.
 TEMPLATE: dict[str, tuple[TemplatePart, ...]] = {
-    "motor": (TemplatePart("drivetrain.shafts.*", motor_shaft_as_drawn, ("initial",)),
+    "motor": (TemplatePart("drivetrain.shafts.*", motor_shaft_as_drawn),
               TemplatePart("drivetrain.motors.*", motor_as_drawn)),
-    "motor.ripple": (TemplatePart("drivetrain.motors.*.ripple", motor_ripple_as_drawn, ("motor",)),),
-    "gears": (TemplatePart("drivetrain.shafts.*", pinion_shaft_as_drawn, ("initial",)),
-              TemplatePart("drivetrain.shafts.*", drum_shaft_as_drawn, ("initial",))),
+    "motor.ripple": (TemplatePart("drivetrain.motors.*.ripple", motor_ripple_as_drawn),),
+    "gears": (TemplatePart("drivetrain.shafts.*", pinion_shaft_as_drawn),
+              TemplatePart("drivetrain.shafts.*", drum_shaft_as_drawn)),
     "gears.mesh": (TemplatePart("drivetrain.gears.*.mesh", mesh_as_drawn),),
-    "clutch": (TemplatePart("drivetrain.clutches.*", clutch_as_drawn, ("clutch_heating",)),),
+    "clutch": (TemplatePart("drivetrain.clutches.*", clutch_as_drawn),),
     "clutch_heating": (TemplatePart("drivetrain.clutches.*.heating", heating_as_drawn),),
     "drum": (TemplatePart("drivetrain.rotors.*", drum_as_drawn),),
     "drum.resisting_ripple": (TemplatePart("drivetrain.shafts.*.resisting_ripple", drum_ripple_as_drawn),),
-    "load": (TemplatePart("drivetrain.load", load_as_drawn, _LOAD_READS),),
-    "rope": (TemplatePart("drivetrain.load.rope", the_load, ("load", *_LOAD_READS)),),
-    "ground": (TemplatePart("drivetrain.load.ground", the_load, ("load", *_LOAD_READS)),),
+    "load": (TemplatePart("drivetrain.load", load_as_drawn),),
+    "rope": (TemplatePart("drivetrain.load.rope", the_load),),
+    "ground": (TemplatePart("drivetrain.load.ground", the_load),),
     "flywheel": (TemplatePart("drivetrain.rotors.*", flywheel_as_drawn),),
     "reciprocating": (TemplatePart("drivetrain.slider_cranks.*", slider_crank_as_drawn),),
     "brake": (TemplatePart("drivetrain.brakes.*", brake_as_drawn),),
     "ratchet": (TemplatePart("drivetrain.ratchets.*", ratchet_as_drawn),),
-    "bearings": (TemplatePart("drivetrain.load.bearings", the_load, ("load", *_LOAD_READS)),),
-    "periodic_regime": (TemplatePart("periodic_regime", periodic_as_drawn,
-                                     ("motor", "drum", "gears", "reciprocating")),),
+    "bearings": (TemplatePart("drivetrain.load.bearings", the_load),),
+    "periodic_regime": (TemplatePart("periodic_regime", periodic_as_drawn),),
 }

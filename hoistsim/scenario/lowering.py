@@ -16,13 +16,14 @@ from .steady_lift import with_steady_lift
 
 
 class Part(NamedTuple):
-    """One part of the machine a scenario names."""
+    """One part of the machine a scenario names, written out as the drawn drivetrain's part it is."""
 
     section: str  # its dotted place in the scenario (drivetrain.clutches.c; a hoist's section: clutch)
-    spec: object  # the spec its element is built from (a key within a part, its rope: the part that holds it)
+    spec: object  # its drawn spec, standing alone (a key within a part, its rope: the part that holds it)
     path: str  # its registry path (drivetrain.clutches.*)
-    held: object  # the spec that picks its variant: the part, or the key within it (a hoist's: its section)
-    template: TemplatePart | None  # a hoist's section: the template's part that writes the drawn part out
+    held: object  # the spec that picks its variant: the part, or the key within it
+    source: tuple  # where the section it is written from is in the scenario (names, a list's index)
+    template: TemplatePart | None  # a hoist's section: the template's part that writes it out
 
 
 class Lowered(NamedTuple):
@@ -40,14 +41,36 @@ def lower(scenario, paths) -> Lowered:
 
 
 def lowered_parts(scenario, paths) -> list[Part]:
-    """Each part ``scenario`` names, in order: a drawn drivetrain's under ``paths`` (the machine's registry, in
-    its order), a hoist's sections as its template writes them out (a section that stands for several parts:
-    a part each)."""
+    """Each part ``scenario`` names, in order, written out: a drawn drivetrain's under ``paths`` (the machine's
+    registry, in its order) with what it needs of the scenario written in, a hoist's sections as its template
+    writes them out (a section that stands for several parts: a part each)."""
     if scenario.drivetrain is None:
-        return [Part(section, spec, part.path, spec, part) for section, parts, part in _TEMPLATE_PARTS
-                if (spec := section_of(scenario, parts)) is not None]
-    return [Part(section, _lowered(spec, scenario), path, held, None) for path in paths
-            for section, spec, held in _parts_of(scenario, tuple(path.split(".")))]
+        return [_part(section, parts, part.path, part.as_drawn(spec, scenario), part) for section, parts, part
+                in _TEMPLATE_PARTS if (spec := section_of(scenario, parts)) is not None]
+    return [_part(section, source, path, _lowered(spec, scenario), None) for path in paths
+            for section, source, spec in _parts_of(scenario, tuple(path.split(".")))]
+
+
+def lowered_again(part: Part, scenario) -> Part:
+    """``part`` written out again from another scenario (a sweep's run: its own values in the same sections)."""
+    section = _at(scenario, part.source)
+    spec = _lowered(section, scenario) if part.template is None else part.template.as_drawn(section, scenario)
+    return _part(part.section, part.source, part.path, spec, part.template)
+
+
+def _part(section: str, source: tuple, path: str, spec, template) -> Part:
+    parts = path.split(".")
+    held = getattr(spec, parts[-1]) if within_part(parts) else spec
+    return Part(section, spec, path, held, source, template)
+
+
+def _at(scenario, source: tuple):
+    """What ``source`` names in the scenario: sections by name, parts by name (a dict's key), a list's index."""
+    holder = scenario
+    for name in source:
+        holder = holder[name] if isinstance(holder, dict) else holder[int(name)] if isinstance(
+            holder, (list, tuple)) else getattr(holder, name)
+    return holder
 
 
 def _lowered(spec, scenario):
@@ -68,18 +91,18 @@ _TEMPLATE_PARTS = [(section, tuple(section.split(".")), part) for section, parts
 
 
 def _parts_of(scenario, parts: tuple) -> list:
-    """(dotted section, the spec that builds it, the part itself) of each part a registry path names:
+    """(dotted section, where the spec that builds it is, that spec) of each part a registry path names:
     drivetrain.clutches.* gives drivetrain.clutches.<name> for each clutch, drivetrain.torques.*
     drivetrain.torques.<index>.  A key within a part (drivetrain.motors.*.ripple, drivetrain.load.rope) is
     built from the part that holds it (its element reads its keys there), where it is given."""
-    found = [("", scenario, None)]
+    found = [((), scenario, None)]
     for part in parts:
         if part == "*":
-            found = [(f"{where}.{key}", member, holder) for where, holder, _ in found
+            found = [((*where, str(key)), member, holder) for where, holder, _ in found
                      for key, member in (holder.items() if isinstance(holder, dict) else enumerate(holder))]
         else:
-            found = [(f"{where}.{part}" if where else part, getattr(holder, part, None), holder)
-                     for where, holder, _ in found]
+            found = [((*where, part), getattr(holder, part, None), holder) for where, holder, _ in found]
             found = [(where, member, holder) for where, member, holder in found if member is not None]
-    within = within_part(parts)
-    return [(where, holder if within else member, member) for where, member, holder in found]
+    if within_part(parts):
+        return [(".".join(where), where[:-1], holder) for where, _, holder in found]
+    return [(".".join(where), where, member) for where, member, _ in found]

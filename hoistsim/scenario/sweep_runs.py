@@ -15,12 +15,11 @@ from collections.abc import Sequence
 from functools import cached_property
 
 import numpy as np
-from pydantic import BaseModel
 
 from ..errors import ScenarioError
 from .keys import ALTERNATIVES
 from .schema import Scenario
-from .sweep_spec import with_swept_value, with_validated_value
+from .sweep_spec import held_at, with_swept_value, with_validated_value
 
 
 class SweepRuns:
@@ -91,20 +90,16 @@ class SweepRuns:
             value = self.swept[key].values[p]
             if _in_sections(run, key):  # as validated when read (its checks, and every combination's, passed)
                 run = with_validated_value(run, key, self.swept[key].validated[p])
-            else:  # a key in a section the sweep adds, or in a drawn part: validated again
+            else:  # a key in a section the sweep adds: validated again
                 run = with_swept_value(run, key, value, raw)
             _assign_copied(raw, key, value)
         return run.with_provenance(self._run_base.provenance.of_run(raw))
 
 
 def _in_sections(scenario: Scenario, key: str) -> bool:
-    """Whether every section on a key's path is there, each a section (not parts by name, not a list)."""
-    node = scenario
-    for part in key.split(".")[:-1]:
-        node = getattr(node, part, None)
-        if not isinstance(node, BaseModel):
-            return False
-    return True
+    """Whether every section on a key's path is there (sections, parts by name, a list's members)."""
+    holder = key.rpartition(".")[0]
+    return not holder or held_at(scenario, holder) is not None
 
 
 class Labels(Sequence):

@@ -164,11 +164,9 @@ def _field_adapter(model: type[BaseModel], name: str) -> TypeAdapter:
 
 
 def swept_field(scenario: Scenario, key: str) -> Any:
-    """What a dotted key holds in a validated scenario (None where a section on its path is absent)."""
-    value = scenario
-    for part in key.split("."):
-        value = getattr(value, part, None)
-    return value
+    """What a dotted key holds in a validated scenario, a drawn part's by its name (None where something on its
+    path is absent)."""
+    return held_at(scenario, key)
 
 
 def swept_number(scenario: Scenario, key: str) -> float:

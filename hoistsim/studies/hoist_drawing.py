@@ -95,7 +95,7 @@ def _place(drawn: dict, path: list, spec, scenario, renamed: dict, inertias: dic
         drawn["gears"].setdefault(_STAGE, {}).update(
             {k: v for k, v in (("efficiency", spec.efficiency), ("backdrive_efficiency", spec.backdrive_efficiency))
              if v is not None})
-        mesh = MeshFriction.from_spec(spec, scenario)  # its outputs' names as the hoist has them
+        mesh = MeshFriction.from_spec(spec)  # its outputs' names as the hoist has them
         renamed.update({name: f"{_STAGE}_{name}" for name in (*mesh.columns, *mesh.summaries)})
     elif kind == "clutches" and key == "heating":
         drawn["clutches"].setdefault(spec.name, {})["heating"] = _plain(spec.heating)

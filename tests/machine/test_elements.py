@@ -24,7 +24,9 @@ from hoistsim import scenario_from_dict, simulate
 from hoistsim.machine.assemble import build_plan, log_rows, step_room
 from hoistsim.machine.core.element import AbstractCoupling, AbstractElement, abstract_methods
 from hoistsim.machine.core.loop import OK, compiled_run
-from hoistsim.machine.elements import REGISTRY, Drawn, element_sections, elements_for
+from hoistsim.machine.elements import REGISTRY, element_class, element_sections, elements_for
+from hoistsim.running.block_plans import _same_element
+from hoistsim.scenario.lowering import lower, lowered_again
 
 TIGHT = {"rtol": 1e-10, "atol": 1e-12}
 # A start that slips, locks, and lifts: every mode of the clutch and a moving drum.
@@ -142,7 +144,7 @@ class _SecondBrake(AbstractCoupling):
     can_slip = False
 
     @classmethod
-    def from_spec(cls, spec, scenario):
+    def from_spec(cls, spec):
         return cls()
 
     def joins(self):
@@ -203,7 +205,7 @@ def test_a_coupling_without_its_numbers_fails_where_it_is_defined():
             section = "unbounded"
 
             @classmethod
-            def from_spec(cls, spec, scenario):
+            def from_spec(cls, spec):
                 return cls()
 
             def joins(self):
@@ -229,7 +231,7 @@ def test_an_abstract_class_leaves_its_methods_to_the_classes_below_it():
         section = "pinion_hold"
 
         @classmethod
-        def from_spec(cls, spec, scenario):
+        def from_spec(cls, spec):
             return cls(capacity_torque=spec)
 
         def capacity(self, x):
@@ -238,7 +240,7 @@ def test_an_abstract_class_leaves_its_methods_to_the_classes_below_it():
         def sliding_torque(self, x):
             return 0.0
 
-    hold = _PinionHold.from_spec(250.0, None)
+    hold = _PinionHold.from_spec(250.0)
     assert abstract_methods(_PinionHold) == [] and hold.joins() == ("pinion", None)
     # still a frozen pytree dataclass: its field a traced leaf
     assert jax.tree_util.tree_leaves(hold) == [250.0]
@@ -246,10 +248,9 @@ def test_an_abstract_class_leaves_its_methods_to_the_classes_below_it():
         hold.capacity_torque = 1.0
 
 
-def test_every_registered_element_is_built_from_its_section_and_the_scenario():
-    classes = registered_classes()
-    for cls in classes:
-        assert list(inspect.signature(cls.from_spec).parameters) == ["spec", "scenario"], cls.__name__
+def test_every_registered_element_is_built_from_its_part_alone():
+    for cls in registered_classes():
+        assert list(inspect.signature(cls.from_spec).parameters) == ["spec"], cls.__name__
 
 
 def registered_classes() -> list:
@@ -258,24 +259,10 @@ def registered_classes() -> list:
                               for c in (entry.values() if isinstance(entry, dict) else [entry])))
 
 
-class _Reading:
-    """A scenario that notes the names read off it."""
-
-    def __init__(self, scenario, read: set):
-        object.__setattr__(self, "_scenario", scenario)
-        object.__setattr__(self, "_read", read)
-
-    def __getattr__(self, name):
-        object.__getattribute__(self, "_read").add(name)
-        return getattr(object.__getattribute__(self, "_scenario"), name)
-
-
-def test_a_part_the_template_draws_is_built_again_whenever_what_it_reads_is_another():
-    """A drawn hoist part serves again while its section and what it reads are the same objects: what its
-    template and its element read of the scenario is all declared in ``reads`` (a section read and not
-    declared would leave a run with another run's part), and another value of any is another part."""
-    from hoistsim.machine.elements._drawn import _LAST_BUILT
-
+def test_a_hoist_is_lowered_to_drawn_parts_each_built_from_its_spec_alone():
+    """Every hoist section the template draws is lowered to drawn parts under the registry's paths; a part's
+    element is built from its spec alone, the same again when the part is written out again from the scenario;
+    and another value of what a part reads of the scenario (the start) is another part."""
     lossy = {"efficiency": 0.95}
     heating = {"heat_capacity": "2.4 kJ/K", "cooling": "20 W/K", "ambient_temperature": "25 degC",
                "static_friction": [["25 degC", 0.3], ["300 degC", 0.22]]}
@@ -289,18 +276,16 @@ def test_a_part_the_template_draws_is_built_again_whenever_what_it_reads_is_anot
                      bearings={"gear_offset": "0.1 m", "rope_offset": "0.3 m", "span": "0.8 m"})]
     drawn = 0
     for scenario in scenes:
-        for section, spec, entry in element_sections(scenario):
-            assert isinstance(entry, Drawn), section  # a hoist's every part is a drawn part
-            _LAST_BUILT.clear()
-            read: set = set()
-            entry.from_spec(spec, _Reading(scenario, read))
-            assert read <= set(entry.part.reads), (section, entry.part.as_drawn.__name__, read)
+        lowered = lower(scenario, REGISTRY)
+        for part in lowered.parts:
+            assert part.path in REGISTRY and part.template is not None, part.section
+            element = element_class(part).from_spec(part.spec)
+            again = lowered_again(part, lowered.scenario)
+            assert _same_element(element, element_class(again).from_spec(again.spec)), part.section
             drawn += 1
     assert drawn >= 25
-    # a section read, and the part built from another of it: another part, never the last one again
     base = scenes[0]
     (shaft,) = [e for e in elements_for(base) if e.section == "motor" and hasattr(e, "scaled")]
     faster = base.model_copy(update={"initial": base.initial.model_copy(update={"motor_speed": 9.0})})
     (again,) = [e for e in elements_for(faster) if e.section == "motor" and hasattr(e, "scaled")]
     assert shaft.initial_speed == base.initial.motor_speed and again.initial_speed == 9.0
-    assert [e for e in elements_for(base) if e.section == "motor" and hasattr(e, "scaled")][0] is not again

@@ -29,7 +29,7 @@ class NamesOnly(AbstractElement):
     summary_names: tuple = static(())
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "NamesOnly":
+    def from_spec(cls, spec) -> "NamesOnly":
         raise NotImplementedError("built in the tests alone")
 
     @property

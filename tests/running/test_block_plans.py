@@ -11,12 +11,14 @@ from helpers import SCENARIOS
 
 from hoistsim import load_scenario, sweep
 from hoistsim.machine.assemble import build_plan
+from hoistsim.machine.elements import element_sections
 from hoistsim.running import block_plans as bp
 from hoistsim.scenario.sweep_runs import SweepRuns
 
 FORCES = SCENARIOS / "force_sweep_engage_at_speed.yaml"
 BRAKE = SCENARIOS / "engage_at_speed_with_brake.yaml"
 WINDOW = SCENARIOS / "clutch_force_window.yaml"
+COUPLED = SCENARIOS / "coupled_clutches.yaml"
 
 SWEEPS = [
     (FORCES, ["clutch.engagement_force=3 kN:12 kN:7"]),
@@ -31,6 +33,12 @@ SWEEPS = [
     # a state's starting value: the starting state per run
     (WINDOW, ["clutch_heating.initial_temperature=20 degC:60 degC:3"]),
     (WINDOW, ["clutch_heating.max_temperature=70 degC,90 degC"]),
+    # the start: each run's starting state its own
+    (FORCES, ["initial.motor_speed=100 rpm:300 rpm:3"]),
+    # a drawn drivetrain's parts, by name and by a list's index
+    (COUPLED, ["drivetrain.shafts.J1.inertia=0.5 kg*m^2:2 kg*m^2:4"]),
+    (COUPLED, ["drivetrain.clutches.clutch2.kinetic_friction=0.3:0.5:3", "drivetrain.shafts.J4.speed=0 rad/s,1 rad/s"]),
+    (COUPLED, ["drivetrain.torques.0.torque=[{harmonics: [{amplitude: 5 N*m, frequency: 5 Hz}]}, 4 N*m]"]),
 ]
 
 
@@ -44,26 +52,34 @@ def test_every_run_is_its_plan_built_alone(path, spec):
         assert bp.same_plan(alone, plans.plan(i)), runs.label(i)
 
 
-@pytest.mark.parametrize("spec, rebuilt", [
-    ("clutch.engagement_force=4 kN:6 kN:3", {"clutch"}),
-    # the clutch reads the heating section (its friction tables): both are built per run
-    ("clutch_heating.heat_capacity=30 J/K:50 J/K:3", {"clutch", "clutch_heating"}),
+@pytest.mark.parametrize("path, spec, rebuilt", [
+    (WINDOW, "clutch.engagement_force=4 kN:6 kN:3", {"clutch"}),
+    # the clutch holds the heating section, but builds nothing from its heat capacity
+    (WINDOW, "clutch_heating.heat_capacity=30 J/K:50 J/K:3", {"clutch_heating"}),
+    # the heating's friction tables are the clutch's to use: the clutch alone is reached
+    (WINDOW, "clutch_heating.static_friction=[[[20 degC, 0.3], [300 degC, 0.2]], [[20 degC, 0.3], [300 degC, 0.25]]]",
+     {"clutch"}),
+    # the drum's starting speed reaches the shafts that start at it (a rigid load's element keeps none)
+    (FORCES, "initial.drum_speed=0 rpm,5 rpm", {"gears"}),
+    (COUPLED, "drivetrain.shafts.J2.inertia=1 kg*m^2,2 kg*m^2", {"drivetrain.shafts.J2"}),
 ])
-def test_only_the_elements_a_swept_key_reaches_are_built_per_run(spec, rebuilt):
-    runs = SweepRuns(load_scenario(WINDOW, sweeps=[spec]))
-    plans = bp.block_plans(runs, [0, 1, 2])
-    sections = [section for section, _, _ in bp.element_sections(runs.scenario(0))]
+def test_only_the_elements_a_swept_key_reaches_are_built_per_run(path, spec, rebuilt):
+    runs = SweepRuns(load_scenario(path, sweeps=[spec]))
+    indices = list(range(len(runs)))
+    plans = bp.block_plans(runs, indices)
+    sections = [section for section, _, _ in element_sections(runs.scenario(0))]
     assert {sections[k] for k in plans.rebuilt} == rebuilt
+    for i in indices:
+        assert bp.same_plan(build_plan(runs.scenario(i), summary_only=True)[0], plans.plan(i)), runs.label(i)
 
 
-@pytest.mark.parametrize("spec", ["simulation.rtol=1e-6,1e-8", "initial.motor_speed=100 rpm,200 rpm"])
-def test_a_sweep_of_the_simulation_or_the_start_is_built_run_by_run(spec):
-    runs = SweepRuns(load_scenario(FORCES, sweeps=[spec]))
+def test_a_sweep_of_the_simulation_is_built_run_by_run():
+    runs = SweepRuns(load_scenario(FORCES, sweeps=["simulation.rtol=1e-6,1e-8"]))
     assert bp.block_plans(runs, [0, 1]) is None
 
 
 def test_a_missed_dependency_is_caught_and_the_block_built_run_by_run(monkeypatch):
-    monkeypatch.setattr(bp, "reached_sections", lambda scenario, keys: set())
+    monkeypatch.setattr(bp, "reached_positions", lambda scenario, changed: set())
     runs = SweepRuns(load_scenario(FORCES, sweeps=["clutch.engagement_force=3 kN:12 kN:5"]))
     assert bp.block_plans(runs, list(range(5))) is None
 
@@ -83,9 +99,12 @@ def test_the_summaries_are_those_of_plans_built_run_by_run(monkeypatch):
     (FORCES, ["clutch.engagement_force=3 kN:12 kN:7"], True),
     (FORCES, ["load.mass=100 kg:900 kg:5", "clutch.engagement_force=4 kN,9 kN"], True),
     (BRAKE, ["brake.release_time=0.55 s:0.9 s:4"], True),
-    # tables of different lengths do not stack; the clutch reading the heating section is built with it
+    # tables of different lengths do not stack
     (BRAKE, ["clutch.engagement_force=[[[0 s, 0 N], [0.6 s, 5 kN]], 4 kN]"], False),
-    (WINDOW, ["clutch_heating.heat_capacity=30 J/K:50 J/K:3"], False),
+    (WINDOW, ["clutch_heating.heat_capacity=30 J/K:50 J/K:3"], True),
+    (COUPLED, ["drivetrain.shafts.J1.inertia=0.5 kg*m^2:2 kg*m^2:4"], True),
+    (COUPLED, ["drivetrain.clutches.clutch2.kinetic_friction=0.3:0.5:3", "drivetrain.shafts.J4.speed=0 rad/s,1 rad/s"],
+     True),
 ])
 def test_a_swept_number_builds_its_element_once_for_the_block(path, spec, stacked):
     """Swept values that stack (numbers, tables of one length) build each reached element once, for all the

@@ -85,7 +85,7 @@ class AbstractElement:
 
     @classmethod
     @abc.abstractmethod
-    def from_spec(cls, spec, scenario) -> AbstractElement:
+    def from_spec(cls, spec) -> AbstractElement:
         """The element its section builds: ``spec`` the section (validated, SI), ``scenario`` the whole."""
 
     def bodies(self) -> dict:

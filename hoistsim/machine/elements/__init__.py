@@ -3,19 +3,16 @@
 A scenario section that is present builds its element (or elements); a section that is
 absent builds nothing, so the scene has none of its bodies, states, terms,
 guards or columns.  Variants of a section (the load on a rigid or an elastic rope) are
-alternatives picked by the keys given, each in its own file.  The hoist's sections are the drawn
-drivetrain's parts its template writes out (:class:`Drawn`): one element class for a part, in either form.
+alternatives picked by the keys given, each in its own file.  Every scenario is lowered first to the drawn
+drivetrain's parts (:mod:`hoistsim.scenario.lowering`; a hoist's are the ones its template writes out): an element
+is built from its part's spec alone, and one element class serves a part in either form.
 """
 
 from __future__ import annotations
 
-import functools
-
 from ...scenario.lowering import lower
 from ..core.element import AbstractCoupling as AbstractCoupling
 from ..core.element import AbstractElement as AbstractElement
-from ._drawn import Drawn as Drawn
-from ._drawn import element_of
 from .bearing_friction import BearingFriction as BearingFriction
 from .bearings import DrumShaftLoads as DrumShaftLoads
 from .clutch_heating import ClutchHeating as ClutchHeating
@@ -91,27 +88,19 @@ REGISTRY: dict[str, object] = {
 
 
 def element_sections(scenario) -> list[tuple[str, object, object]]:
-    """(section, its spec, what builds the element) for each element the scenario builds, in order (see
-    :func:`hoistsim.scenario.lowering.lower`): a drawn drivetrain's parts in registry order; a hoist's
-    sections in its template's order, each a :class:`Drawn` part (a section that stands for several parts: a
-    row each)."""
-    return _sections(lower(scenario, REGISTRY).parts)
+    """(section, its part's drawn spec, the element class that builds it) for each element the scenario builds,
+    in order (the parts :func:`hoistsim.scenario.lowering.lower` writes out; a hoist's in its template's order)."""
+    return [(part.section, part.spec, element_class(part)) for part in lower(scenario, REGISTRY).parts]
 
 
-def _sections(parts) -> list[tuple[str, object, object]]:
-    return [(part.section, part.spec, element_of(REGISTRY[part.path], part.held) if part.template is None
-             else _drawn(part.template)) for part in parts]
-
-
-@functools.lru_cache(maxsize=None)
-def _drawn(part) -> Drawn:
-    """The template's part ``part`` as a :class:`Drawn` part, one for each (its cache of the element last built
-    is its own)."""
-    return Drawn.of(part, REGISTRY)
+def element_class(part) -> type:
+    """The element class that builds a lowered part: its registry path's, its variant's (its spec's
+    ``characteristic``) for a path with variants."""
+    entry = REGISTRY[part.path]
+    return entry[part.held.characteristic] if isinstance(entry, dict) else entry
 
 
 def elements_for(scenario) -> tuple[AbstractElement, ...]:
-    """The elements a scenario names, built from their sections, in order (a hoist's on the scenario started at
-    its steady lift, where it asks)."""
-    lowered = lower(scenario, REGISTRY)
-    return tuple(cls.from_spec(spec, lowered.scenario) for _, spec, cls in _sections(lowered.parts))
+    """The elements a scenario names, each built from its part's spec alone, in order (a hoist's on the scenario
+    started at its steady lift, where it asks)."""
+    return tuple(cls.from_spec(spec) for _, spec, cls in element_sections(scenario))

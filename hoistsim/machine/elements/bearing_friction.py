@@ -30,7 +30,7 @@ class BearingFriction(AbstractSlipHeat):
     slip_varies: bool = static(False)
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "BearingFriction":
+    def from_spec(cls, spec) -> "BearingFriction":
         a, b = spec.sides
         varying = slip_columns(spec.slip_table, "slip_torques")
         return cls(static_torque=spec.peak * spec.torque_at_rest, kinetic_torque=spec.torque_at_rest, driving=a,

@@ -52,7 +52,7 @@ class DrumShaftLoads(AbstractElement):
     columns: ClassVar[dict] = {name: ("N", text) for name, text in _DESCRIPTIONS.items()}
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "DrumShaftLoads":
+    def from_spec(cls, spec) -> "DrumShaftLoads":
         bearings = spec.bearings
         return cls(
             wheel_pitch_radius=0.5 * bearings.wheel_pitch_diameter,

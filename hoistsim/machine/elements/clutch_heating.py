@@ -34,7 +34,7 @@ class ClutchHeating(NamedOutputs, AbstractElement):
     names: tuple = static(())  # (pattern, name) of each output its drawing names otherwise (NamedOutputs)
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "ClutchHeating":
+    def from_spec(cls, spec) -> "ClutchHeating":
         heating = spec.heating
         limited = heating.max_temperature is not None
         return cls(heat_capacity=heating.heat_capacity, conductance=heating.cooling,

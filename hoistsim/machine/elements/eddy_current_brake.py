@@ -36,7 +36,7 @@ class EddyCurrentBrake(AbstractElement):
     heat_to: str | None = static(None)  # the heat capacitor its heat warms, whose temperature it has
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "EddyCurrentBrake":
+    def from_spec(cls, spec) -> "EddyCurrentBrake":
         fixed = spec.reference_temperature if spec.temperature is None else spec.temperature
         return cls(nominal_torque=spec.nominal_torque, nominal_speed=spec.nominal_speed,
                    **signal_fields(spec.excitation, "excitation"), temperature_coefficient=spec.temperature_coefficient,

@@ -23,7 +23,7 @@ class ElasticLoad(AbstractLoad):
     }
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "ElasticLoad":
+    def from_spec(cls, spec) -> "ElasticLoad":
         radius = spec.rope_radius
         resting = spec.ground is not None
         return cls(mass=spec.mass, gravity=spec.resolved("gravity"), rope_radius=radius, drum=spec.shaft,

@@ -36,8 +36,8 @@ class ElastoBacklash(SpringDamper):
                                        "backlash_backward": ("contact", "separation")}
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "ElastoBacklash":
-        return cls(**cls.fields_from(spec, scenario), half_play=0.5 * spec.backlash, damped=spec.damping > 0.0)
+    def from_spec(cls, spec) -> "ElastoBacklash":
+        return cls(**cls.fields_from(spec), half_play=0.5 * spec.backlash, damped=spec.damping > 0.0)
 
     @property
     def columns(self) -> dict:

@@ -19,7 +19,7 @@ class Flywheel(AbstractElement):
     section: str = static("flywheel")  # its name: the flywheel, or a rotor the hoist's template keys (the drum)
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "Flywheel":
+    def from_spec(cls, spec) -> "Flywheel":
         return cls(inertia=spec.moment_of_inertia, shaft=spec.shaft, section=spec.name)
 
     def inertias(self) -> tuple:

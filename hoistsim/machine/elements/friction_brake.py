@@ -29,7 +29,7 @@ class FrictionBrake(AbstractSlipHeat, AbstractShaftHold):
     apply_time: object  # s (inf: never closes again)
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "FrictionBrake":
+    def from_spec(cls, spec) -> "FrictionBrake":
         kinetic = spec.static_torque if spec.kinetic_torque is None else spec.kinetic_torque
         return cls(static_torque=spec.static_torque, kinetic_torque=kinetic, release_time=spec.release_time,
                    apply_time=np.inf if spec.apply_time is None else spec.apply_time, shaft=spec.shaft,

@@ -76,7 +76,7 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
     crossing_events: ClassVar[dict] = {"clutch_force": ("engage", "disengage")}
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "FrictionClutch":
+    def from_spec(cls, spec) -> "FrictionClutch":
         a, b = spec.between
         driving_inertia, driven_inertia = spec.resolved("halves")
         fade = spec.fade()  # friction against the faces' temperature, or (never both) against the slip speed

@@ -51,7 +51,7 @@ class Ground(OneWayHold, AbstractCoupling):
         return {**out, "dynamic_factor_standard": "1"} if self.classed else out
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "Ground":
+    def from_spec(cls, spec) -> "Ground":
         hoisting_class = spec.ground.hoisting_class
         classed = hoisting_class is not None
         phi2_min, beta2 = HOISTING_CLASSES[hoisting_class] if classed else (float("nan"), float("nan"))

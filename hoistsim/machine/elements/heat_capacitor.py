@@ -22,9 +22,9 @@ class HeatCapacitor(AbstractElement):
     section: str = static("")  # its key in drivetrain.heat_capacitors
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "HeatCapacitor":
+    def from_spec(cls, spec) -> "HeatCapacitor":
         return cls(heat_capacity=spec.heat_capacity, initial_temperature=spec.temperature,
-                   brake=EddyCurrentBrake.from_spec(spec.resolved("brake"), scenario), section=spec.name)
+                   brake=EddyCurrentBrake.from_spec(spec.resolved("brake")), section=spec.name)
 
     @property
     def temperature(self) -> str:

@@ -21,7 +21,7 @@ class HoldingBrake(AbstractShaftHold):
     reports_switches: ClassVar[bool] = False
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "HoldingBrake":
+    def from_spec(cls, spec) -> "HoldingBrake":
         return cls(release_time=spec.release_time, shaft=spec.shaft, section=spec.name)
 
     def capacity(self, x):

@@ -20,7 +20,7 @@ class HousedGear(AbstractLinkage):
     section: str = static("")  # the stage's name
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "HousedGear":
+    def from_spec(cls, spec) -> "HousedGear":
         return cls(ratio=spec.ratio, driving=spec.between[0], driven=spec.between[1], housing=spec.housing,
                    section=spec.name)
 

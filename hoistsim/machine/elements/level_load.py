@@ -27,7 +27,7 @@ class LevelLoad(AbstractElement):
     }
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "LevelLoad":
+    def from_spec(cls, spec) -> "LevelLoad":
         return cls(mass=spec.mass, rope_radius=spec.rope_radius, drum=spec.shaft)
 
     def shafts(self) -> dict:

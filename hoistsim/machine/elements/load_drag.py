@@ -25,7 +25,7 @@ class LoadDrag(AbstractElement):
     }
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "LoadDrag":
+    def from_spec(cls, spec) -> "LoadDrag":
         return cls(nominal_force=spec.drag.force, nominal_speed=spec.drag.speed)
 
     def force(self, x):

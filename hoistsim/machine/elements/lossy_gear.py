@@ -61,7 +61,7 @@ class LossyGear(AbstractStageMesh):
     margin_each_way: ClassVar[bool] = True
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "LossyGear":
+    def from_spec(cls, spec) -> "LossyGear":
         """A stage's loss table: the input shaft's losses, pressed by what the shafts beyond take."""
         table = np.asarray(spec.loss_table, dtype=float)
         return cls(speeds=table[:, 0], input_efficiencies=table[:, 1], output_efficiencies=table[:, 2],

@@ -48,7 +48,7 @@ class MeshFriction(AbstractStageMesh):
     losing_part: ClassVar[str] = "the mesh"
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "MeshFriction":
+    def from_spec(cls, spec) -> "MeshFriction":
         """A lossy gear stage's mesh: the input shaft's losses, pressed by what the shafts beyond take."""
         efficiency, backdrive = spec.efficiencies
         return cls(efficiency=efficiency, backdrive_efficiency=backdrive, ratio=spec.resolved("speed_ratio"),

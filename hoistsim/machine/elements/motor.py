@@ -19,7 +19,7 @@ class Motor(AbstractShaftWork):
     section: str = static("")  # the motor's name
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "Motor":
+    def from_spec(cls, spec) -> "Motor":
         kind = MOTOR_VARIANTS[spec.characteristic]
         return cls(law=kind(inertia=spec.moment_of_inertia, **kind.characteristic_from(spec)), shaft=spec.shaft,
                    section=spec.name)

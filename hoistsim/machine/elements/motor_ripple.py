@@ -22,5 +22,5 @@ class MotorRipple(AbstractRipple):
     meaning: ClassVar[str] = "motor torque ripple, added to the characteristic"
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "MotorRipple":
+    def from_spec(cls, spec) -> "MotorRipple":
         return cls.of_part(spec.ripple, spec.shaft, spec)

@@ -36,7 +36,7 @@ class PeriodicRegime(AbstractElement):
     columns: ClassVar[dict] = {"kinetic_energy": ("J", "kinetic energy of the whole machine")}
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "PeriodicRegime":
+    def from_spec(cls, spec) -> "PeriodicRegime":
         return cls(period=spec.resolved("period"),
                    inertia_varies_with_angle=spec.resolved("inertia_varies_with_angle"))
 

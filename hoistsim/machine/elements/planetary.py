@@ -20,7 +20,7 @@ class Planetary(AbstractLinkage):
     section: str = static("")  # its name
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "Planetary":
+    def from_spec(cls, spec) -> "Planetary":
         return cls(ratio=spec.ratio, sun=spec.sun, carrier=spec.carrier, ring=spec.ring, section=spec.name)
 
     def members(self) -> tuple:

@@ -21,7 +21,7 @@ class QuadraticTorque(AbstractShaftWork):
     reverses: bool = static(True)  # its sign follows the speed's (Modelica's TorqueDirection = false)
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "QuadraticTorque":
+    def from_spec(cls, spec) -> "QuadraticTorque":
         law = spec.quadratic
         return cls(nominal_torque=law.nominal_torque, nominal_speed=law.nominal_speed, shaft=spec.shaft,
                    section=spec.name, reverses=law.direction == "reverses")

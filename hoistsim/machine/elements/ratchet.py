@@ -24,6 +24,6 @@ class Ratchet(OneWayHold, AbstractShaftHold):
     observes_slip_peak: ClassVar[bool] = False
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "Ratchet":
+    def from_spec(cls, spec) -> "Ratchet":
         return cls(release_time=np.inf if spec.release_time is None else spec.release_time, shaft=spec.shaft,
                    section=spec.name)

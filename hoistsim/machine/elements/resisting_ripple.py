@@ -22,5 +22,5 @@ class ResistingRipple(AbstractRipple):
     meaning: ClassVar[str] = "resisting torque ripple on shaft {shaft}, positive against its turning"
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "ResistingRipple":
+    def from_spec(cls, spec) -> "ResistingRipple":
         return cls.of_part(spec.resisting_ripple, spec.name, spec)

@@ -14,7 +14,7 @@ class RigidLoad(AbstractLoad):
     """
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "RigidLoad":
+    def from_spec(cls, spec) -> "RigidLoad":
         return cls(mass=spec.mass, gravity=spec.resolved("gravity"), rope_radius=spec.rope_radius, drum=spec.shaft)
 
     def shafts(self) -> dict:

@@ -11,7 +11,7 @@ class Rope(AbstractRope):
     constant_stiffness: object  # k, N/m
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "Rope":
+    def from_spec(cls, spec) -> "Rope":
         k, g = spec.rope.stiffness, spec.resolved("gravity")
         return cls(constant_stiffness=k, damping=damping(spec, k), initial_stretch=initial_stretch(spec, g, k),
                    weight=spec.mass * g)

@@ -27,7 +27,7 @@ class Shaft(AbstractElement):
     angled: bool = static(False)  # its angle is given: a state and an output (<name>_angle) whatever reads it
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> Shaft:
+    def from_spec(cls, spec) -> Shaft:
         root, ratio, speed = spec.resolved("train")
         return cls(inertia=spec.inertia, initial_speed=speed, speed_ratio=ratio, initial_angle=spec.angle,
                    section=spec.name,

@@ -23,7 +23,7 @@ class ShaftTorque(AbstractShaftWork):
     section: str = static("")  # torque1, torque2, ... in the order of drivetrain.torques
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> ShaftTorque:
+    def from_spec(cls, spec) -> ShaftTorque:
         return cls(**signal_fields(spec.torque, "torque"), shaft=spec.shaft, section=spec.name)
 
     @property

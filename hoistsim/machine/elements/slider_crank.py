@@ -34,7 +34,7 @@ class SliderCrank(NamedOutputs, AbstractElement):
     inertia_varies: ClassVar[bool] = True
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "SliderCrank":
+    def from_spec(cls, spec) -> "SliderCrank":
         return cls(mass=spec.mass, crank_radius=spec.crank_radius, rod_length=spec.rod_length, shaft=spec.shaft,
                    section=spec.name, names=names_of(spec))
 

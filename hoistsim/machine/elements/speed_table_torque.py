@@ -21,7 +21,7 @@ class SpeedTableTorque(AbstractShaftWork):
     section: str = static("")  # torque1, torque2, ... in the order of drivetrain.torques
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "SpeedTableTorque":
+    def from_spec(cls, spec) -> "SpeedTableTorque":
         speeds, torques = zip(*spec.torque_by_speed)
         return cls(table_speeds=np.asarray(speeds, float), table_torques=np.asarray(torques, float),
                    shaft=spec.shaft, section=spec.name)

@@ -26,11 +26,11 @@ class SpringDamper(AbstractElement):
     section: str = static("")  # its name
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "SpringDamper":
-        return cls(**cls.fields_from(spec, scenario))
+    def from_spec(cls, spec) -> "SpringDamper":
+        return cls(**cls.fields_from(spec))
 
     @staticmethod
-    def fields_from(spec, scenario) -> dict:
+    def fields_from(spec) -> dict:
         a, b = (None if side == "ground" else side for side in spec.between)
         return dict(stiffness=spec.spring_rate, damping=spec.damping, unstretched_angle=spec.unstretched_angle,
                     initial_twist=spec.resolved("initial_twist"), driving=a, driven=b, section=spec.name)

@@ -38,7 +38,7 @@ class WireRope(AbstractRope):
                                "rope_stiffness": ("N/m", "rope stiffness E A / L at the free length L")}
 
     @classmethod
-    def from_spec(cls, spec, scenario) -> "WireRope":
+    def from_spec(cls, spec) -> "WireRope":
         rope, g = spec.rope, spec.resolved("gravity")
         axial = rope.modulus * rope.metallic_area
         k = axial / rope.free_length
