@@ -8,7 +8,8 @@ every series, every event's time and kind, its exact instants and its summary va
 - events and instants: the same count and kinds, their times within ``--event-tol`` s (1e-9);
 - series on the output grid: within ``--series-tol`` (1e-8) of the series' range (its max less its min,
   at least 1e-300) in the old run, the grid being the same times;
-- summary values: within 1e-8 of their magnitude (at least 1e-12), NaN where NaN.
+- summary values: within 1e-8 of their magnitude (at least 1e-12), NaN where NaN;
+- no series, summary value, event or instant field the old runs did not have (the file's layout kept).
 
 It prints a row per scene (the worst event time difference, the worst series difference over its range
 and the series it is in, the worst summary value) and exits 1 if any is out of tolerance.
@@ -101,6 +102,9 @@ def compare(old: dict, new: dict, event_tol: float, series_tol: float) -> tuple[
         worst_value = max(worst_value, off if np.isfinite(off) else np.inf)
     if worst_value > series_tol:
         problems.append(f"a summary value {worst_value:.1e} off")
+    added = sorted(k for k in new if k not in old and k.startswith(("series/", "values/", "events/", "instants/")))
+    if added:  # the file's layout has grown: an output the old runs did not write
+        problems.append(f"new: {', '.join(added[:4])}{', ...' if len(added) > 4 else ''}")
     row = f"events {worst_time:8.1e} s   series {worst_series:8.1e} ({where or '-'})   values {worst_value:8.1e}"
     return not problems, row + ("   " + "; ".join(problems) if problems else "")
 

@@ -27,7 +27,7 @@ SOLVER_COUNTS = {"steps": STEPS, "rejected_steps": REJECTED, "segments": PASSES,
 def instant_categories(layout: Layout, kinds) -> np.ndarray:
     """Each instant's category by its kind: a threshold crossed (limit), an observation, a period mark
     (cycle), a switch, or else scheduled."""
-    limits = {kind for element in layout.elements for kind in element.limits}
+    limits = {layout.name(kind) for element in layout.elements for kind in element.limits}
     cycles = [kind for _, _, kind in layout.cycles]
     return np.asarray(["limit" if k in limits else "observation" if k in layout.observation_kinds
                        else "cycle" if k in cycles else "switch" if k in SWITCH_KINDS else "scheduled"
@@ -59,7 +59,7 @@ def chunk_record(layout: Layout, raw, count: int, grid: np.ndarray, indices, lab
     hits = (on_grid < grid.size) & (grid[np.minimum(on_grid, grid.size - 1)] == times[:, 0]) & (last == np.arange(run.size))
     grid_values[run[hits], :, on_grid[hits]] = at_events[hits]  # a grid time with events at it: the state after them
     series, after = {}, {}
-    for i, (name, (units, text)) in enumerate(columns.items()):
+    for i, (name, (units, text)) in zip(layout.column_slots, columns.items()):
         block, behind = grid_values[:, i, :], at_events[last, i]
         if units == "1":  # a flag or a mode
             block, behind = block.astype(np.int8), behind.astype(np.int8)

@@ -35,7 +35,7 @@ from ..results.run_result import Summaries
 from ..results.run_summaries import summary_columns
 from ..scenario.loading import Scenario
 from .block_plans import block_plans, padded
-from .simulation import SimulationError, failure_message, run_result, scenario_errors, simulate
+from .simulation import SimulationError, failure_message, read_layout, run_result, scenario_errors, simulate
 
 # Bytes of time series a chunk may hold on each device it is split over.  Measured: with full output,
 # small chunks are fastest per run; summary-only runs hold one row each and go 2048 a device at a time
@@ -205,7 +205,7 @@ def _launch(runs, scenarios, group, plans, fast, summary_only: bool, chunk: int,
     # launched, not waited for: the host goes on while they run
     calls = [(time.perf_counter(), run(stacked)) if lean else None for _, stacked in chunks]
     return dict(chunks=chunks, calls=calls, run=run, sizes=sizes, lean=lean, periodic=periodic, solver=solver,
-                devices=devices, layout=group_plans[0].layout, first_plan=group_plans[0])
+                devices=devices, layout=read_layout(group_plans[0], first), first_plan=group_plans[0])
 
 
 def _results(group: dict):
@@ -306,7 +306,8 @@ def check_status(runs, scenarios, part, start, layout, raw, lean) -> None:
 
 def _check_errors(runs, scenarios, part, start, layout, raw, lean) -> None:
     """The first run of the chunk that crossed an element's error limit raises its one-line ScenarioError."""
-    kinds = [kind for element in layout.elements for kind in element.errors if kind in layout.event_kinds]
+    kinds = [layout.name(kind) for element in layout.elements for kind in element.errors
+             if layout.name(kind) in layout.event_kinds]
     if not kinds:
         return
     counts = np.asarray(raw.kind_counts[: len(part)])[:, [layout.kind_code(kind) for kind in kinds]]

@@ -18,13 +18,14 @@ from .. import _jax
 from ..machine.core.loop import SOLVERS, restart_loop
 
 
-def differentiated(plan, directions, solver_name: str, columns: bool):
+def differentiated(plan, directions, solver_name: str, columns: bool, layout=None):
     """The run of ``plan`` and its derivatives along each of ``directions`` (stacked: one a key), one compiled
     program a structure and count of keys (:func:`hoistsim._jax.executable` holds and stores it):
     (the run's Readout, the derivatives of its scalars (keys, scalars), of its grid columns (keys, columns,
     rows) and of its event columns (keys, columns, events), the seconds the run took).  ``columns`` False: the
     summaries alone (no rows, a log that only counts), as a summary-only sweep's run; else room for every
-    event row and kept step, the run taken again with more where it needed it."""
+    event row and kept step, the run taken again with more where it needed it.  ``layout``: the plan's, as the
+    run is read back (its outputs under its scenario's names: :func:`hoistsim.running.simulation.read_layout`)."""
     from ..machine.assemble import log_rows, step_room
     from ..machine.core.readout import Readout
 
@@ -35,7 +36,7 @@ def differentiated(plan, directions, solver_name: str, columns: bool):
         started = time.perf_counter()
         raw, d_scalars, d_grid, d_events = jax.device_get(program(plan, directions))
         elapsed = time.perf_counter() - started
-        readout = Readout(plan.layout, jax.tree.map(lambda leaf: leaf[0], raw))  # every direction's run is one
+        readout = Readout(layout or plan.layout, jax.tree.map(lambda leaf: leaf[0], raw))  # each direction's run is one
         if not columns or (not readout.log_overflowed and not readout.steps_overflowed):
             return readout, d_scalars, d_grid, d_events, elapsed
         sizes = (log_rows(plan, log_size=readout.event_count + 1), step_room(plan, readout.kept_steps))

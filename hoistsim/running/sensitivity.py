@@ -20,7 +20,7 @@ from ..scenario.keys import key_units
 from ..scenario.loading import Scenario
 from .derivative_program import differentiated
 from .key_directions import is_table, key_value, stacked_directions
-from .simulation import SimulationError, failure_message, row_order, run_result
+from .simulation import SimulationError, failure_message, read_layout, row_order, run_result
 
 if TYPE_CHECKING:
     from .sweep_sensitivity import SweepSensitivity
@@ -46,39 +46,39 @@ def sensitivity(scenario: Scenario, wrt: list[str], of: list[str] | None = None,
     if not wrt:
         raise ScenarioError("--wrt", "name at least one key, like --wrt clutch.kinetic_friction")
     plan, grid = build_plan(scenario, summary_only=not series)
-    summaries = plan.layout.summaries
+    layout = read_layout(plan, scenario)
+    summaries = layout.summaries
     of = differentiable_summaries(summaries, of)
     values = {key: key_value(scenario, key) for key in wrt}
     directions = stacked_directions(scenario, wrt, values, plan)
     readout, d_scalars, at_grid, at_events, elapsed = differentiated(plan, directions, scenario.simulation.solver,
-                                                                     columns=series)
+                                                                     columns=series, layout=layout)
     if readout.status != OK:
         raise SimulationError(failure_message(scenario, readout) if series else
                               f"{scenario.name}: the run stopped at t = {readout.end_time:.6g} s: "
                               f"{STATUS_TEXT[readout.status]}")
     scalars, tangents = np.asarray(readout.raw.scalars), np.asarray(d_scalars)
-    names = list(summaries)
-    value = {name: float(scalars[1 + names.index(name)]) for name in of}
-    derivative = {name: {key: float(existing(value[name], tangents[k, 1 + names.index(name)]))
+    value = {name: float(scalars[1 + layout.summary_slot(name)]) for name in of}
+    derivative = {name: {key: float(existing(value[name], tangents[k, 1 + layout.summary_slot(name)]))
                          for k, key in enumerate(wrt)} for name in of}
     from ..results.output import summary_units
 
-    units = summary_units(plan.layout)
+    units = summary_units(layout)
     tables = tuple(key for key in wrt if is_table(scenario, key))
     result = Sensitivity(scenario.name, values, {key: key_units(key) or "1" for key in wrt}, value,
                          {name: units.get(name, "") or "1" for name in of}, derivative, tables)
     if series:
-        result.run = _with_series(run_result(scenario, "", grid, readout, elapsed), plan, readout, grid, values,
+        result.run = _with_series(run_result(scenario, "", grid, readout, elapsed), layout, readout, grid, values,
                                   result.key_units, at_grid, at_events)
     return result
 
 
-def _with_series(run, plan, readout, grid, values: dict, units_of_keys: dict, at_grid, at_events):
+def _with_series(run, layout, readout, grid, values: dict, units_of_keys: dict, at_grid, at_events):
     """``run`` with each output column's derivative along each key added as a series of its own (its units the
     column's over the key's; flags and modes have none), on the run's rows: the grid's and each event's."""
     order, keep = row_order(grid, readout.events()[0])
     rows, events = grid.size, readout.event_count
-    for i, (name, (units, _)) in enumerate(plan.layout.columns().items()):
+    for i, (name, (units, _)) in zip(layout.column_slots, layout.columns().items()):
         if units == "1":  # a flag or a mode: whole steps, no derivative
             continue
         for k, key in enumerate(values):

@@ -19,6 +19,7 @@ from ..results.chunk_records import instant_categories
 from ..results.output import summary_units
 from ..results.run_result import RunResult
 from ..scenario.loading import Scenario
+from ..scenario.lowering import output_names
 
 
 class SimulationError(RuntimeError):
@@ -41,7 +42,7 @@ def simulate(scenario: Scenario, label: str = "") -> RunResult:
         run = _jax.executable(functools.partial(_loop, sim.solver, rows, room), plan,
                               name=f"run-{sim.solver}-{rows}-{room}")
         started = _time.perf_counter()
-        raw = Readout(plan.layout, jax.device_get(run(plan)))
+        raw = Readout(read_layout(plan, scenario), jax.device_get(run(plan)))
         elapsed = _time.perf_counter() - started
         if not raw.log_overflowed and not raw.steps_overflowed:
             break
@@ -68,7 +69,7 @@ def scenario_errors(scenario: Scenario, raw: Readout) -> None:
     times, kinds, _, _ = raw.events()
     for element in raw.layout.elements:
         for kind, (key, message) in element.errors.items():
-            crossed = times[kinds == kind]
+            crossed = times[kinds == raw.layout.name(kind)]
             if crossed.size:
                 raise ScenarioError(key, message.format(time=float(crossed.min())), source=scenario.source)
 
@@ -95,7 +96,13 @@ def scene_summary_units(scenario: Scenario) -> dict[str, str]:
     from ..machine.assemble import machine_elements
     from ..machine.core.layout import Layout
 
-    return summary_units(Layout(machine_elements(scenario)))
+    return summary_units(Layout(machine_elements(scenario)).named(output_names(scenario)))
+
+
+def read_layout(plan, scenario: Scenario):
+    """The plan's layout, its outputs under the names the scenario's results are written under (a hoist's
+    ``slip_speed`` for its clutch's ``clutch_slip``): how a run of it is read back."""
+    return plan.layout.named(output_names(scenario))
 
 
 def row_order(grid: np.ndarray, event_time: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

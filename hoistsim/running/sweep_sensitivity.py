@@ -31,7 +31,7 @@ from .block_plans import applies, block_plans, reached_positions, swept_changes
 from ..results.sensitivity_result import Sensitivity, differentiable_summaries, existing, units_over
 from .derivative_program import along_directions
 from .key_directions import PLAN_STEP, extrapolated, is_table, key_value, offsets, plan_direction, value_to_set
-from .simulation import scene_summary_units
+from .simulation import read_layout, scene_summary_units
 
 # Runs a compiled call differentiates at once (a power of two up to this: few compiled shapes).  Each run's
 # tangents make it (1 + keys) runs' work, and a chunk steps until its slowest run is done.
@@ -107,7 +107,7 @@ def sweep_sensitivity(scenario: Scenario, wrt: list[str], of: list[str] | None =
     count = len(runs)
     first = runs.scenario(0)
     plan, _ = build_plan(first, summary_only=True)
-    layout = plan.layout
+    layout = read_layout(plan, first)
     of = differentiable_summaries(layout.summaries, of)
     values = {key: np.full(count, key_value(first, key)) for key in wrt}
     unswept = _unreached_keys(runs, first, wrt)
@@ -115,7 +115,7 @@ def sweep_sensitivity(scenario: Scenario, wrt: list[str], of: list[str] | None =
     chunks = _from_template(runs, first, plan, wrt, values, unswept)
     if chunks is None:
         chunks = _built_run_by_run(runs, scenarios, wrt, values, unswept)
-    tangents = np.empty((count, len(wrt), 1 + len(layout.summaries)))  # as a run's scalars, up to its summaries
+    tangents = np.empty((count, len(wrt), 1 + layout.summary_count))  # as a run's scalars, up to its summaries
     columns: list = []
     for part, raw, d_scalars in chunks:
         check_status(runs, scenarios, part, 0, raw.layout, raw.first, lean=True)
@@ -124,9 +124,8 @@ def sweep_sensitivity(scenario: Scenario, wrt: list[str], of: list[str] | None =
         columns.append((np.asarray(part), summary_columns(runs.labels_of(np.asarray(part)), batch.summary(),
                                                           batch.ledger(), batch.count("lock"), batch.count("unlock"))))
     summaries = in_order(columns, count)
-    names = list(layout.summaries)
     value = {name: summaries.columns[name] for name in of}
-    derivative = {name: {key: existing(value[name], tangents[:, k, 1 + names.index(name)])
+    derivative = {name: {key: existing(value[name], tangents[:, k, 1 + layout.summary_slot(name)])
                          for k, key in enumerate(wrt)} for name in of}
     for name in of:
         for key in wrt:
@@ -199,7 +198,7 @@ def _from_template(runs: SweepRuns, first: Scenario, plan, wrt: list[str], value
             part = list(range(offset, min(offset + width, len(runs))))
             lanes = part + [part[-1]] * (width - len(part))
             plans = fast.stacked(lanes)
-            yield part, plans, directions(lanes, plans), first.simulation.solver, template.layout
+            yield part, plans, directions(lanes, plans), first.simulation.solver, read_layout(template, first)
 
     return _results(chunks(), width)
 
@@ -232,7 +231,8 @@ def _built_run_by_run(runs: SweepRuns, scenarios: dict, wrt: list[str], values: 
                 lanes = lanes + [lanes[-1]] * (width - len(lanes))
                 moved = directions[offset:offset + width]
                 moved = moved + [moved[-1]] * (width - len(moved))
-                yield part, _stacked([p for _, _, p in lanes]), _stacked(moved), solver, lanes[0][2].layout
+                yield part, _stacked([p for _, _, p in lanes]), _stacked(moved), solver, read_layout(lanes[0][2],
+                                                                                                     lanes[0][1])
 
         yield from _results(chunks(), width)
 

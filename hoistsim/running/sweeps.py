@@ -28,6 +28,7 @@ from ..results.run_summaries import summaries_of
 from ..scenario.loading import Scenario
 from ..scenario.sweep_runs import SweepRuns
 from .blocks import chunk_for, run_blocks
+from .simulation import read_layout
 from .simulation import SimulationError
 
 # Chunks in a block: the unit of work handed out (to a cluster's workers) and written (to a file's chunks).
@@ -169,7 +170,7 @@ def _sweep(runs, client, *, summary_only, chunk_size, progress, output, command,
         from ..results.reading import FileSummaries
 
         plan, _ = build_plan(runs.scenario(0), summary_only=True)
-        flags = [name for name, units in plan.layout.summaries.items() if units == "bool"]
+        flags = [name for name, units in read_layout(plan, runs.scenario(0)).summaries.items() if units == "bool"]
         return FileSummaries(output, flags), None, warnings
     if summary_only:
         return outcome, None, warnings

@@ -11,11 +11,9 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
-from pydantic import Field
 
 from .period import machine_period
 from .schema import PeriodicSpec
-from .schema_base import Section
 from .schema_clutch import ConeSpec
 from .schema_drawn_clutches import FrictionClutchSpec
 from .schema_drivetrain import GearStageSpec, ShaftMotorSpec, ShaftSpec
@@ -28,21 +26,20 @@ from .schema_shaft_parts import (
 )
 from .signals import TimeSignal
 
-# The cone clutch's outputs as the hoist names them (a drawn clutch's are the patterns filled in with its name).
-CLUTCH_NAMES = {"{name}_torque": "clutch_torque", "{name}_slip": "slip_speed", "{name}_locked": "clutch_locked",
-                "{name}_force": "engagement_force", "{name}_energy": "clutch_energy",
-                "{name}_capacity": "clutch_capacity", "{name}_mode": "clutch_mode",
-                "{name}_lockup_time": "lockup_time", "{name}_slip_duration": "slip_duration",
-                "{name}_peak_torque": "peak_clutch_torque", "{name}_peak_slip_speed": "peak_slip_speed",
-                "{name}_slip_energy": "slip_energy"}
-
-
-def heating_names(heating) -> dict:
-    """The names the hoist gives its clutch heating's outputs (its overheat's where it has a limit)."""
-    names = {"{name}_temperature_peak": "temperature_peak"}
-    if heating.max_temperature is not None:
-        names |= {"{name}_overheat_time": "overheat_time", "{name}_overheat": "overheat"}
-    return names
+# The drawn parts' outputs the hoist names otherwise (its users' names, kept in its files), drawn name -> the
+# hoist's; None: an output the hoist does not write (its pinion's speed: the motor's less the slip).
+CLUTCH_NAMES = {"clutch_slip": "slip_speed", "clutch_force": "engagement_force", "clutch_lockup_time": "lockup_time",
+                "clutch_slip_duration": "slip_duration", "clutch_peak_torque": "peak_clutch_torque",
+                "clutch_peak_slip_speed": "peak_slip_speed", "clutch_slip_energy": "slip_energy"}
+HEATING_NAMES = {"clutch_temperature_peak": "temperature_peak", "clutch_overheat_time": "overheat_time",
+                 "clutch_overheat": "overheat"}
+PINION_NAMES = {"pinion_speed": None, "final_pinion_speed": None}
+# the hoist's lossy mesh is the stage "mesh": its outputs <stage>_mesh_<what> are the hoist's mesh_<what>
+MESH_NAMES = {f"mesh_mesh_{what}": f"mesh_{what}" for what in ("torque", "loss_power", "heat", "mode", "loss_energy")}
+MOTOR_RIPPLE_NAMES = {"motor_ripple_torque": "ripple_torque"}
+DRUM_RIPPLE_NAMES = {"drum_resisting_ripple_torque": "resisting_ripple_torque",
+                     "drum_resisting_ripple_work": "resisting_ripple_work"}
+SLIDER_CRANK_NAMES = {"reciprocating_position": "slider_position"}
 
 
 def section_of(scenario, parts: tuple):
@@ -57,34 +54,20 @@ def section_of(scenario, parts: tuple):
 
 
 class TemplatePart(NamedTuple):
-    """A drawn part a hoist section stands for: its path in a drivetrain (``drivetrain.shafts.*``) and what
-    writes it out from the section and the scenario."""
+    """A drawn part a hoist section stands for: its path in a drivetrain (``drivetrain.shafts.*``), what writes
+    it out from the section and the scenario, and the hoist's names for its outputs (applied when results are
+    written: the machine runs under the drawn names)."""
 
     path: str
     as_drawn: object  # (section, scenario) -> the drawn part's spec (for a key within a part: the part)
+    names: dict = {}  # a drawn output's name -> the hoist's (None: not written)
 
 
-class TemplateNames(Section):
-    """Outputs the template names otherwise than the drawn part's patterns would (the hoist's names)."""
-
-    outputs_named: dict = Field(default_factory=dict, exclude=True)
-
-    def output_names(self) -> dict[str, str]:
-        return self.outputs_named
-
-
-class TemplateShaftSpec(TemplateNames, ShaftSpec):
-    """A shaft the hoist's template draws with the hoist's names for what is on it (the drum's ripple)."""
-
-
-def _shaft(name: str, inertia: float, speed: float, geared_to: str = "", ratio: float = 1.0,
-           observed: bool = True) -> ShaftSpec:
+def _shaft(name: str, inertia: float, speed: float, geared_to: str = "", ratio: float = 1.0) -> ShaftSpec:
     """A shaft the template draws, with its gear train written in (turning with ``geared_to`` at ``ratio`` times
-    its speed, or a body of its own), its speed an output where the hoist's was (``observed``), and its speed at
-    the start no speed scale of the machine (the hoist's slip resolution has always come from its motor's
-    speeds, or failing that all its bodies')."""
+    its speed, or a body of its own)."""
     return ShaftSpec.model_construct(name=name, inertia=inertia, speed=speed).with_resolved(
-        train=(geared_to or name, ratio, speed * ratio), scaled=False, observed=observed)
+        train=(geared_to or name, ratio, speed * ratio))
 
 
 def motor_shaft_as_drawn(spec, scenario) -> ShaftSpec:
@@ -96,8 +79,7 @@ def motor_shaft_as_drawn(spec, scenario) -> ShaftSpec:
 def pinion_shaft_as_drawn(spec, scenario) -> ShaftSpec:
     """The pinion shaft (the clutch's output): a body with the pinion's inertia, turning z2/z1 times as fast as
     the drum at ``initial.drum_speed``; its speed is no output of the hoist (the motor's less the slip)."""
-    return _shaft("pinion", spec.pinion_inertia, scenario.initial.drum_speed * spec.wheel_teeth / spec.pinion_teeth,
-                  observed=False)
+    return _shaft("pinion", spec.pinion_inertia, scenario.initial.drum_speed * spec.wheel_teeth / spec.pinion_teeth)
 
 
 def drum_shaft_as_drawn(spec, scenario) -> ShaftSpec:
@@ -107,12 +89,9 @@ def drum_shaft_as_drawn(spec, scenario) -> ShaftSpec:
     return _shaft("drum", spec.wheel_inertia, scenario.initial.drum_speed, geared_to="pinion", ratio=ratio)
 
 
-def drum_ripple_as_drawn(spec, scenario) -> TemplateShaftSpec:
+def drum_ripple_as_drawn(spec, scenario) -> ShaftSpec:
     """The drum's resisting ripple: the drum shaft's (outputs resisting_ripple_torque, resisting_ripple_work)."""
-    return TemplateShaftSpec.model_construct(
-        name="drum", resisting_ripple=spec, outputs_named={
-            "{name}_resisting_ripple_torque": "resisting_ripple_torque",
-            "{name}_resisting_ripple_work": "resisting_ripple_work"})
+    return ShaftSpec.model_construct(name="drum", resisting_ripple=spec)
 
 
 def drum_as_drawn(spec, scenario) -> RotorSpec:
@@ -132,26 +111,19 @@ def mesh_as_drawn(spec, scenario) -> GearStageSpec:
         name="mesh", between=("pinion", "drum"), teeth=(spec.pinion_teeth, spec.wheel_teeth),
         ratio=spec.wheel_teeth / spec.pinion_teeth, efficiency=spec.efficiency,
         backdrive_efficiency=spec.backdrive_efficiency,
-    ).with_resolved(beyond=("drum",), speed_ratio=float(spec.pinion_teeth) / float(spec.wheel_teeth),
-                    mesh_prefix="mesh")
+    ).with_resolved(beyond=("drum",), speed_ratio=float(spec.pinion_teeth) / float(spec.wheel_teeth))
 
 
-class TemplateMotorSpec(TemplateNames, ShaftMotorSpec):
-    """The hoist's motor as the template draws it."""
-
-
-def motor_as_drawn(spec, scenario) -> TemplateMotorSpec:
+def motor_as_drawn(spec, scenario) -> ShaftMotorSpec:
     """The hoist's ``motor:`` as the drivetrain's motor ``motor`` on the motor shaft (outputs motor_torque,
     motor_work; its ripple's ripple_torque, motor_ripple_work)."""
-    drawn = TemplateMotorSpec.model_construct(**{name: getattr(spec, name) for name in type(spec).model_fields},
-                                              shaft="motor", name="motor",
-                                              outputs_named={"{name}_ripple_torque": "ripple_torque"} if spec.ripple
-                                              else {})
+    drawn = ShaftMotorSpec.model_construct(**{name: getattr(spec, name) for name in type(spec).model_fields},
+                                           shaft="motor", name="motor")
     drawn._derived = spec.derived()  # a stall torque from the nameplate stays the nameplate's to say
     return drawn
 
 
-def motor_ripple_as_drawn(spec, scenario) -> TemplateMotorSpec:
+def motor_ripple_as_drawn(spec, scenario) -> ShaftMotorSpec:
     """The motor's ripple: the drawn motor's, which holds it."""
     return motor_as_drawn(scenario.motor, scenario)
 
@@ -170,41 +142,31 @@ def load_as_drawn(spec, scenario) -> LoadOnShaftSpec:
     ).with_resolved(gravity=scenario.gravity, start_speed=scenario.initial.drum_speed)
 
 
-class TemplateClutchSpec(TemplateNames, FrictionClutchSpec):
-    """The hoist's cone clutch as the template draws it: a friction clutch from the motor shaft to the pinion
-    shaft, pressed by the engagement force, with its heating (``clutch_heating:``) and the hoist's names for its
-    outputs."""
-
-
-def clutch_as_drawn(spec, scenario) -> TemplateClutchSpec:
-    """The hoist's ``clutch:`` (and ``clutch_heating:``) as the drivetrain's clutch ``clutch``."""
+def clutch_as_drawn(spec, scenario) -> FrictionClutchSpec:
+    """The hoist's ``clutch:`` (and ``clutch_heating:``) as the drivetrain's clutch ``clutch``: a friction clutch
+    from the motor shaft to the pinion shaft, pressed by the engagement force, with its heating."""
     table = spec.engagement_force
     cone = ConeSpec.model_construct(inner_radius=spec.inner_radius, outer_radius=spec.outer_radius,
                                     half_angle=spec.half_angle, mean_radius=spec.mean_radius)
     force = TimeSignal.model_construct(times=table.times, values=table.forces, amplitudes=(), frequencies=(),
                                        phases=())
-    return TemplateClutchSpec.model_construct(
+    return FrictionClutchSpec.model_construct(
         name="clutch", between=("motor", "pinion"), static_friction=spec.static_friction,
         kinetic_friction=spec.kinetic_friction, surfaces=spec.surfaces, effective_radius=None, cone=cone, force=force,
-        heating=scenario.clutch_heating, outputs_named=CLUTCH_NAMES,
+        heating=scenario.clutch_heating,
     ).with_resolved(halves=(spec.driving_inertia, spec.driven_inertia))  # its halves' inertias, on its shafts
 
 
-def heating_as_drawn(spec, scenario) -> TemplateClutchSpec:
-    """``clutch_heating:``: the drawn clutch's heating (its element reads the heating and the clutch's names)."""
-    return TemplateClutchSpec.model_construct(name="clutch", heating=spec, outputs_named=heating_names(spec))
+def heating_as_drawn(spec, scenario) -> FrictionClutchSpec:
+    """``clutch_heating:``: the drawn clutch's heating (its element reads the heating and the clutch's name)."""
+    return FrictionClutchSpec.model_construct(name="clutch", heating=spec)
 
 
-class TemplateSliderCrankSpec(TemplateNames, SliderCrankSpec):
-    """The hoist's slider-crank as the template draws it."""
-
-
-def slider_crank_as_drawn(spec, scenario) -> TemplateSliderCrankSpec:
+def slider_crank_as_drawn(spec, scenario) -> SliderCrankSpec:
     """``reciprocating:``: a slider-crank named reciprocating on the motor shaft (outputs slider_position,
     reciprocating_inertia)."""
-    return TemplateSliderCrankSpec.model_construct(name="reciprocating", shaft="motor", mass=spec.mass,
-                                           crank_radius=spec.crank_radius, rod_length=spec.rod_length,
-                                           outputs_named={"{name}_position": "slider_position"})
+    return SliderCrankSpec.model_construct(name="reciprocating", shaft="motor", mass=spec.mass,
+                                           crank_radius=spec.crank_radius, rod_length=spec.rod_length)
 
 
 def brake_as_drawn(spec, scenario) -> BrakeOnShaftSpec:
@@ -237,19 +199,20 @@ def periodic_as_drawn(spec: PeriodicSpec, scenario) -> PeriodicSpec:
 TEMPLATE: dict[str, tuple[TemplatePart, ...]] = {
     "motor": (TemplatePart("drivetrain.shafts.*", motor_shaft_as_drawn),
               TemplatePart("drivetrain.motors.*", motor_as_drawn)),
-    "motor.ripple": (TemplatePart("drivetrain.motors.*.ripple", motor_ripple_as_drawn),),
-    "gears": (TemplatePart("drivetrain.shafts.*", pinion_shaft_as_drawn),
+    "motor.ripple": (TemplatePart("drivetrain.motors.*.ripple", motor_ripple_as_drawn, MOTOR_RIPPLE_NAMES),),
+    "gears": (TemplatePart("drivetrain.shafts.*", pinion_shaft_as_drawn, PINION_NAMES),
               TemplatePart("drivetrain.shafts.*", drum_shaft_as_drawn)),
-    "gears.mesh": (TemplatePart("drivetrain.gears.*.mesh", mesh_as_drawn),),
-    "clutch": (TemplatePart("drivetrain.clutches.*", clutch_as_drawn),),
-    "clutch_heating": (TemplatePart("drivetrain.clutches.*.heating", heating_as_drawn),),
+    "gears.mesh": (TemplatePart("drivetrain.gears.*.mesh", mesh_as_drawn, MESH_NAMES),),
+    "clutch": (TemplatePart("drivetrain.clutches.*", clutch_as_drawn, CLUTCH_NAMES),),
+    "clutch_heating": (TemplatePart("drivetrain.clutches.*.heating", heating_as_drawn, HEATING_NAMES),),
     "drum": (TemplatePart("drivetrain.rotors.*", drum_as_drawn),),
-    "drum.resisting_ripple": (TemplatePart("drivetrain.shafts.*.resisting_ripple", drum_ripple_as_drawn),),
+    "drum.resisting_ripple": (TemplatePart("drivetrain.shafts.*.resisting_ripple", drum_ripple_as_drawn,
+                                           DRUM_RIPPLE_NAMES),),
     "load": (TemplatePart("drivetrain.load", load_as_drawn),),
     "rope": (TemplatePart("drivetrain.load.rope", the_load),),
     "ground": (TemplatePart("drivetrain.load.ground", the_load),),
     "flywheel": (TemplatePart("drivetrain.rotors.*", flywheel_as_drawn),),
-    "reciprocating": (TemplatePart("drivetrain.slider_cranks.*", slider_crank_as_drawn),),
+    "reciprocating": (TemplatePart("drivetrain.slider_cranks.*", slider_crank_as_drawn, SLIDER_CRANK_NAMES),),
     "brake": (TemplatePart("drivetrain.brakes.*", brake_as_drawn),),
     "ratchet": (TemplatePart("drivetrain.ratchets.*", ratchet_as_drawn),),
     "bearings": (TemplatePart("drivetrain.load.bearings", the_load),),

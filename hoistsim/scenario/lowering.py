@@ -1,10 +1,11 @@
 """A scenario lowered to the drawn drivetrain's parts the machine builds: the one place that walks a scenario for
 them.
 
-A drawn drivetrain's parts are its own, found under the machine's registry paths (``drivetrain.clutches.*``) in
-the registry's order; a hoist's are the parts its template writes out (:data:`.hoist_template.TEMPLATE`), in the
-template's order, each with the template's part that writes it.  The machine maps a part's path to its element
-and knows nothing of the hoist's sections.
+A drawn drivetrain's parts are its own, found under the machine's registry paths (``drivetrain.clutches.*``); a
+hoist's are the parts its template writes out (:data:`.hoist_template.TEMPLATE`), each with the template's part
+that writes it; both in the registry's order.  The machine maps a part's path to its element and knows nothing of
+the hoist's sections; the names a hoist's results are written under are applied when they are written
+(:func:`output_names`).
 """
 
 from __future__ import annotations
@@ -27,26 +28,42 @@ class Part(NamedTuple):
 
 
 class Lowered(NamedTuple):
-    """A scenario lowered: the scenario its parts are written out from, and the parts."""
+    """A scenario lowered: the scenario its parts are written out from, the parts, and the names its results
+    are written under where they are not the parts' own (:func:`output_names`)."""
 
     scenario: object  # the scenario as loaded, a hoist started at its steady lift (initial.steady_lift)
     parts: list
+    names: dict  # a part's output's name -> the scenario's (None: not written)
 
 
 def lower(scenario, paths) -> Lowered:
     """``scenario`` lowered to its parts (:func:`lowered_parts`), a hoist's started at its steady lifting speed
     where ``initial.steady_lift`` asks (:func:`.steady_lift.with_steady_lift`)."""
     scenario = with_steady_lift(scenario)
-    return Lowered(scenario, lowered_parts(scenario, paths))
+    return Lowered(scenario, lowered_parts(scenario, paths), output_names(scenario))
+
+
+def output_names(scenario) -> dict:
+    """The names a scenario's results are written under where they are not its parts' own: a hoist's, those its
+    users know (``slip_speed`` for its clutch's ``clutch_slip``; None: an output the hoist does not write); none
+    for a drawn drivetrain.  The machine runs under the parts' names, so a hoist and the drivetrain it stands
+    for are one program."""
+    if scenario.drivetrain is not None:
+        return {}
+    return {name: hoist for _, parts, part in _TEMPLATE_PARTS if section_of(scenario, parts) is not None
+            for name, hoist in part.names.items()}
 
 
 def lowered_parts(scenario, paths) -> list[Part]:
-    """Each part ``scenario`` names, in order, written out: a drawn drivetrain's under ``paths`` (the machine's
-    registry, in its order) with what it needs of the scenario written in, a hoist's sections as its template
-    writes them out (a section that stands for several parts: a part each)."""
-    if scenario.drivetrain is None:
-        return [_part(section, parts, part.path, part.as_drawn(spec, scenario), part) for section, parts, part
-                in _TEMPLATE_PARTS if (spec := section_of(scenario, parts)) is not None]
+    """Each part ``scenario`` names, written out, in the order of ``paths`` (the machine's registry): a drawn
+    drivetrain's with what it needs of the scenario written in, a hoist's sections as its template writes them
+    out (a section that stands for several parts: a part each; parts under one path in the template's order).
+    One order for every machine: a hoist and the drivetrain it stands for are one program."""
+    if scenario.drivetrain is None:  # in the registry's order as a drawn drivetrain's (the template's within a path)
+        order = {path: rank for rank, path in enumerate(paths)}
+        return sorted([_part(section, parts, part.path, part.as_drawn(spec, scenario), part) for section, parts, part
+                       in _TEMPLATE_PARTS if (spec := section_of(scenario, parts)) is not None],
+                      key=lambda part: order.get(part.path, 0))
     return [_part(section, source, path, _lowered(spec, scenario), None) for path in paths
             for section, source, spec in _parts_of(scenario, tuple(path.split(".")))]
 

@@ -58,10 +58,8 @@ class ShaftSpec(OnShaft, Section):
         return root, ratio, start_speeds(drawn, groups)[self.name]
 
     def lowered(self, scenario) -> "ShaftSpec":
-        """With its gear train written in (:meth:`train`: the shafts it is geared to are the drivetrain's), its
-        speed at the start one of the machine's speed scales (the slip resolution's, ``scaled``) and an output
-        (``observed``: ``<name>_speed``, ``final_<name>_speed``)."""
-        return self.with_resolved(train=self.train(scenario), scaled=True, observed=True)
+        """With its gear train written in (:meth:`train`: the shafts it is geared to are the drivetrain's)."""
+        return self.with_resolved(train=self.train(scenario))
 
 
 class TorqueSpec(SpeedLaws, Section):
@@ -112,10 +110,6 @@ class GearStageSpec(MeshSpec):
         """The output's speed over the input's."""
         return 1.0 / self.ratio
 
-    def mesh_prefix(self) -> str:
-        """How a lossy mesh's outputs begin: ``<stage>_mesh`` (``_mesh_torque``, ``_mesh_mode``, ...)."""
-        return f"{self.name}_mesh"
-
     def beyond(self, scenario) -> tuple:
         """The shafts on its output side: its output shaft, then every shaft geared beyond it (what presses
         its teeth)."""
@@ -123,8 +117,7 @@ class GearStageSpec(MeshSpec):
 
     def lowered(self, scenario) -> "GearStageSpec":
         """With the shafts beyond it (:meth:`beyond`), its speed ratio and its mesh's outputs' prefix written in."""
-        return self.with_resolved(beyond=self.beyond(scenario), speed_ratio=self.speed_ratio(),
-                                  mesh_prefix=self.mesh_prefix())
+        return self.with_resolved(beyond=self.beyond(scenario), speed_ratio=self.speed_ratio())
 
     @property
     def mesh(self) -> "GearStageSpec | None":

@@ -34,6 +34,7 @@ from ..machine.assemble import build_plan
 from ..machine.core.plan import OK
 from ..running.derivative_program import differentiated
 from ..running.key_directions import key_value, stacked_directions, value_to_set
+from ..running.simulation import read_layout
 from ..scenario.keys import key_units
 from ..scenario.loading import Scenario
 from ..scenario.sweep_spec import with_swept_value
@@ -103,7 +104,7 @@ def fit(scenario: Scenario, measured, match: list[str], keys: list[str],
     if not match:
         raise ScenarioError("--match", "name at least one series to match, like --match motor_speed")
     plan, _ = build_plan(scenario, summary_only=True)
-    columns = plan.layout.columns()
+    columns = read_layout(plan, scenario).columns()
     for name in match:
         if name not in columns:
             raise ScenarioError("--match", f"no series {name!r} in this scene; it has {', '.join(columns)}")
@@ -279,14 +280,15 @@ class _Model:
         times = self.trace.time
         plan = dataclasses.replace(plan, grid=self.trace.grid())
         directions = stacked_directions(scenario, self.keys, dict(zip(self.keys, values)), plan, "--fit")
-        readout, _, tangents, _, _ = differentiated(plan, directions, scenario.simulation.solver, columns=True)
+        layout = read_layout(plan, scenario)
+        readout, _, tangents, _, _ = differentiated(plan, directions, scenario.simulation.solver, columns=True,
+                                                    layout=layout)
         if readout.status != OK:
             return None, None
         rows = np.asarray(readout.raw.grid_columns)
-        names = list(plan.layout.columns())
         m = times.size
-        found = {name: rows[names.index(name), :m] for name in self.match}
-        jacobian = {name: np.asarray(tangents)[:, names.index(name), :m].T for name in self.match}
+        found = {name: rows[layout.column_slot(name), :m] for name in self.match}
+        jacobian = {name: np.asarray(tangents)[:, layout.column_slot(name), :m].T for name in self.match}
         return found, jacobian
 
 

@@ -34,6 +34,7 @@ from ..machine.assemble import build_plan, log_rows, step_room
 from ..machine.core.plan import OK
 from ..machine.core.readout import KEPT_STEPS, STATUS
 from ..running.blocks import compiled_batch, devices_for
+from ..running.simulation import read_layout
 from ..scenario.keys import field_at
 from ..scenario.plausible import Plausible
 from ..scenario.units import Limits, dimension_of, metadata_of, to_si
@@ -152,7 +153,7 @@ def _costs(model, candidates: np.ndarray, cost_of) -> np.ndarray:
     plan is shaped unlike the scenario's own and so cannot share the compiled call)."""
     costs = np.full(len(candidates), np.inf)
     plans, lanes = [], []
-    signature = None
+    signature, named = None, None
     for k, values in enumerate(candidates):
         try:
             scenario = model.scenario_at(values)
@@ -162,21 +163,22 @@ def _costs(model, candidates: np.ndarray, cost_of) -> np.ndarray:
         plan = dataclasses.replace(plan, grid=model.trace.grid())
         leaves, structure = jax.tree.flatten(plan)
         shape = (structure, static_values(plan), [np.shape(leaf) for leaf in leaves])
-        signature = signature if signature is not None else shape
+        if signature is None:
+            signature, named = shape, scenario
         if shape == signature:
             plans.append(plan)
             lanes.append(k)
-    names = list(plans[0].layout.columns()) if plans else []
+    layout = read_layout(plans[0], named) if plans else None
     for offset in range(0, len(plans), CHUNK):
         chunk = plans[offset:offset + CHUNK]
-        for lane, found in zip(lanes[offset:offset + CHUNK], _run_chunk(chunk, model.solver, names, model)):
+        for lane, found in zip(lanes[offset:offset + CHUNK], _run_chunk(chunk, model.solver, layout, model)):
             if found is not None:
                 cost = cost_of(found)
                 costs[lane] = cost if math.isfinite(cost) else math.inf
     return costs
 
 
-def _run_chunk(plans: list, solver: str, names: list[str], model) -> list:
+def _run_chunk(plans: list, solver: str, layout, model) -> list:
     """Each plan's matched columns at the measured times ({column: rows}, None where its run failed): the chunk
     padded to CHUNK runs with its last (one compiled shape), run as one vectorised call; taken again with
     room for more steps where a run kept more than the call had room for."""
@@ -194,5 +196,5 @@ def _run_chunk(plans: list, solver: str, names: list[str], model) -> list:
         sizes = (sizes[0], step_room(plans[0], kept))
     status = raw.counters[: len(plans), STATUS]
     rows = np.asarray(raw.grid_columns)
-    return [{name: rows[k, names.index(name), :m] for name in model.match} if status[k] == OK else None
+    return [{name: rows[k, layout.column_slot(name), :m] for name in model.match} if status[k] == OK else None
             for k in range(len(plans))]

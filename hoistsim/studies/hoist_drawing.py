@@ -1,5 +1,6 @@
 """The drivetrain a hoist scenario stands for, written out as a scenario of its own (``hoistsim check
---drivetrain``): the template's parts with their keys, in SI units, and the names its outputs take there.
+--drivetrain``): the parts the scenario is lowered to (:mod:`hoistsim.scenario.lowering`) with their keys, in SI
+units, and the names its outputs take there.
 
 Run, it gives the hoist's motion under the drawn parts' names (``clutch_slip`` for ``slip_speed``), to round-off:
 the template's gear ratio z1/z2 is the drawn stage's 1 / (z2/z1).  The periodic regime's analysis (a hoist's
@@ -14,17 +15,15 @@ from pydantic import BaseModel
 from ruamel.yaml import YAML
 
 from ..errors import ScenarioError
-from ..machine.elements import MeshFriction
 from ..scenario import units as u
-from ..scenario.hoist_template import TEMPLATE, section_of
+from ..scenario.lowering import lower
 from ..scenario.signals import TimeSignal
-from ..scenario.steady_lift import with_steady_lift
 from ..scenario.tables import ForceTable
 
 # the columns of each table key a drawn part may have
 _TABLE_COLUMNS = {"torque_speed": (u.ANGULAR_SPEED, u.TORQUE), "static_friction": (u.TEMPERATURE, u.DIMENSIONLESS),
                   "kinetic_friction": (u.TEMPERATURE, u.DIMENSIONLESS), "table": (u.ANGLE, u.TORQUE)}
-_STAGE = "gears"  # the drawn gear stage's name (its lossy mesh's outputs: gears_mesh_torque, ...)
+_STAGE = "mesh"  # the drawn gear stage's name, the template's (its lossy mesh's outputs: mesh_mesh_torque, ...)
 
 
 def hoist_as_drivetrain(scenario) -> tuple[dict, dict[str, str]]:
@@ -33,18 +32,15 @@ def hoist_as_drivetrain(scenario) -> tuple[dict, dict[str, str]]:
     if scenario.drivetrain is not None:
         raise ScenarioError("drivetrain", "is drawn already: --drivetrain writes a hoist's sections out as one",
                             source=scenario.source)
-    scenario = with_steady_lift(scenario)
+    lowered = lower(scenario, ())  # a hoist's parts are its template's, in its order
+    scenario = lowered.scenario  # started at its steady lift where it asks
     drawn: dict = {kind: {} for kind in ("shafts", "motors", "clutches", "gears", "rotors", "slider_cranks",
                                          "brakes", "ratchets")}
-    renamed: dict[str, str] = {}
+    renamed = {hoist: name for name, hoist in lowered.names.items() if hoist is not None}
     inertias: dict[str, float] = {}  # each shaft's, with the clutch's halves on it (a drawn clutch's are its shafts')
-    for section, parts in TEMPLATE.items():
-        spec = section_of(scenario, tuple(section.split(".")))
-        if spec is None:
-            continue
-        for part in parts:
-            if part.path.startswith("drivetrain."):
-                _place(drawn, part.path.split(".")[1:], part.as_drawn(spec, scenario), scenario, renamed, inertias)
+    for part in lowered.parts:
+        if part.path.startswith("drivetrain."):
+            _place(drawn, part.path.split(".")[1:], part.spec, scenario, inertias)
     for shaft, inertia in inertias.items():
         drawn["shafts"][shaft]["inertia"] = _value(inertia, u.INERTIA)
     out = {"name": f"{scenario.name}-drawn",
@@ -70,14 +66,10 @@ def hoist_as_drivetrain_text(scenario) -> str:
     return "\n".join(lines) + "\n" + text.getvalue()
 
 
-def _place(drawn: dict, path: list, spec, scenario, renamed: dict, inertias: dict) -> None:
+def _place(drawn: dict, path: list, spec, scenario, inertias: dict) -> None:
     """Write one drawn part (or a key within one) into the drivetrain's plain data (``inertias``: each shaft's,
     written when every part is placed)."""
     kind, key = path[0], path[-1]
-    names = spec.output_names() if hasattr(spec, "output_names") else {}
-    part_name = getattr(spec, "name", "") or kind
-    renamed.update({hoist: drawn_name for pattern, hoist in names.items()
-                    if (drawn_name := pattern.format(name=part_name)) != hoist})
     if kind == "shafts" and key == "resisting_ripple":
         drawn["shafts"][spec.name]["resisting_ripple"] = _plain(spec.resisting_ripple)
     elif kind == "shafts":
@@ -95,8 +87,6 @@ def _place(drawn: dict, path: list, spec, scenario, renamed: dict, inertias: dic
         drawn["gears"].setdefault(_STAGE, {}).update(
             {k: v for k, v in (("efficiency", spec.efficiency), ("backdrive_efficiency", spec.backdrive_efficiency))
              if v is not None})
-        mesh = MeshFriction.from_spec(spec)  # its outputs' names as the hoist has them
-        renamed.update({name: f"{_STAGE}_{name}" for name in (*mesh.columns, *mesh.summaries)})
     elif kind == "clutches" and key == "heating":
         drawn["clutches"].setdefault(spec.name, {})["heating"] = _plain(spec.heating)
     elif kind == "clutches":

@@ -21,9 +21,10 @@ import pytest
 from click.testing import CliRunner
 from helpers import SCENARIOS
 
-from hoistsim import load_scenario, scenario_from_dict, scenario_from_text, simulate
+from hoistsim import _jax, load_scenario, scenario_from_dict, scenario_from_text, simulate
 from hoistsim.cli import main
 from hoistsim.errors import ScenarioError
+from hoistsim.machine.core import loop
 from hoistsim.studies.hoist_drawing import hoist_as_drivetrain
 
 TIGHT = {"rtol": 1e-10, "atol": 1e-12}
@@ -90,6 +91,23 @@ def test_a_hoist_is_the_drivetrain_it_stands_for(name):
         tighter = simulate(load_scenario(SCENARIOS / f"{name}.yaml", overrides=TIGHTER))
     data, renamed = hoist_as_drivetrain(hoist)
     _same_run(simulate(hoist), simulate(scenario_from_dict(data)), renamed, EVERY_PART[name], tighter)
+
+
+def test_a_hoist_and_the_drivetrain_it_stands_for_are_one_program():
+    """The machine runs under its parts' own names, in one order for every machine; a hoist's names are applied
+    where its results are written.  So the hoist and its drawing (``check --drivetrain``) are served one
+    compiled program: the second run compiles nothing, and each is written under its own names."""
+    hoist = load_scenario(SCENARIOS / "exercise6_direct_start.yaml")
+    data, renamed = hoist_as_drivetrain(hoist)
+    with _jax.serving_recorded() as served:
+        run = simulate(hoist)
+        traced = loop.trace_count
+        drawn = simulate(scenario_from_dict(data))
+    assert loop.trace_count == traced and len(served) == 1  # one program, served twice
+    assert {"slip_speed", "lockup_time"} <= set(run.series) | set(run.values)
+    assert {"clutch_slip", "clutch_lockup_time", "pinion_speed"} <= set(drawn.series) | set(drawn.values)
+    assert "clutch_slip" not in run.series and "pinion_speed" not in run.series  # the hoist's file as it was
+    assert renamed["slip_speed"] == "clutch_slip"
 
 
 def test_a_ratchet_drawn_by_the_hoist_holds_as_a_drawn_one():

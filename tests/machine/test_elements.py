@@ -9,6 +9,7 @@ slipping clutch.
 
 from __future__ import annotations
 
+import ast
 import copy
 import dataclasses
 import inspect
@@ -24,7 +25,7 @@ from hoistsim import scenario_from_dict, simulate
 from hoistsim.machine.assemble import build_plan, log_rows, step_room
 from hoistsim.machine.core.element import AbstractCoupling, AbstractElement, abstract_methods
 from hoistsim.machine.core.loop import OK, compiled_run
-from hoistsim.machine.elements import REGISTRY, element_class, element_sections, elements_for
+from hoistsim.machine.elements import REGISTRY, Shaft, element_class, element_sections, elements_for
 from hoistsim.running.block_plans import _same_element
 from hoistsim.scenario.lowering import lower, lowered_again
 
@@ -127,10 +128,10 @@ def test_motor_off_meets_a_second_inertia_through_a_slipping_clutch():
 
 def test_a_scene_names_only_its_elements():
     plain = build_plan(_scene())[0].layout
-    # the sections its elements are built from (the hoist's template draws some as several parts: the motor
-    # shaft and the motor, the pinion and drum shafts)
-    assert list(dict.fromkeys(section for section, _, _ in element_sections(_scene()))) == [
-        "motor", "gears", "clutch", "drum", "load"]
+    # the sections its elements are built from, in the registry's order as any drivetrain's (the hoist's
+    # template draws some as several parts: the motor shaft and the motor, the pinion and drum shafts)
+    assert [section for section, _, _ in element_sections(_scene())] == [
+        "motor", "gears", "gears", "drum", "motor", "clutch", "load"]
     assert plain.bodies == ["motor", "pinion"]
     assert plain.state_names == ["motor.speed", "pinion.speed", "motor_work", "clutch_energy", "load_position"]
     heavy = build_plan(_scene(flywheel={"inertia": "3 kg*m^2"}))[0].layout
@@ -178,6 +179,36 @@ def test_the_core_names_no_part_of_the_machine():
         text = path.read_text(encoding="utf-8")
         found = re.findall(r"\b(clutch|brake|load|motor|drum|pinion|gear)\w*", text, flags=re.IGNORECASE)
         assert not found, f"{path.name} names {sorted(set(found))}"
+
+
+def test_a_new_part_is_its_keys_one_element_file_one_registry_line_and_its_display():
+    """The eddy-current brake, the worked example of docs/architecture.md: its keys (its spec, its field on the
+    drivetrain), its element's file, its registry line, its display and its place among the displays are every
+    module that names it (and the heat capacitor's, a part that holds one to warm from it)."""
+    package = ROOT / "hoistsim"
+    naming = {path.relative_to(package).as_posix() for path in package.rglob("*.py")
+              if re.search(r"\b(EddyCurrentBrake\w*|eddy_current_brakes?)\b", path.read_text(encoding="utf-8"))}
+    assert naming == {"scenario/schema_speed_torques.py", "scenario/schema_drivetrain.py",
+                      "machine/elements/eddy_current_brake.py", "machine/elements/__init__.py",
+                      "machine/elements/heat_capacitor.py", "display/eddy_current_brake.py", "display/__init__.py"}
+
+
+def test_no_module_beyond_the_elements_builds_or_reads_an_element_by_its_class():
+    """The lowering, the assembly, the core, the loop, the sweeps, the results and the figures serve every part
+    without naming one: a new part needs no change there.  (The tables ``check`` prints of a scene's motors and
+    ropes are a study of those parts.)"""
+    classes = {cls.__name__ for cls in registered_classes()}
+    package = ROOT / "hoistsim"
+    for path in package.rglob("*.py"):
+        where = path.relative_to(package).as_posix()
+        if where.startswith("machine/elements/") or where == "studies/machine_tables.py":
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        used = {node.id for node in ast.walk(tree) if isinstance(node, ast.Name)}
+        used |= {node.attr for node in ast.walk(tree) if isinstance(node, ast.Attribute)}
+        used |= {alias.name for node in ast.walk(tree) if isinstance(node, (ast.Import, ast.ImportFrom))
+                 for alias in node.names}
+        assert not used & classes, f"{where} names {sorted(used & classes)}"
 
 
 def test_every_element_is_one_file_named_after_it():
@@ -285,7 +316,7 @@ def test_a_hoist_is_lowered_to_drawn_parts_each_built_from_its_spec_alone():
             drawn += 1
     assert drawn >= 25
     base = scenes[0]
-    (shaft,) = [e for e in elements_for(base) if e.section == "motor" and hasattr(e, "scaled")]
+    (shaft,) = [e for e in elements_for(base) if e.section == "motor" and isinstance(e, Shaft)]
     faster = base.model_copy(update={"initial": base.initial.model_copy(update={"motor_speed": 9.0})})
-    (again,) = [e for e in elements_for(faster) if e.section == "motor" and hasattr(e, "scaled")]
+    (again,) = [e for e in elements_for(faster) if e.section == "motor" and isinstance(e, Shaft)]
     assert shaft.initial_speed == base.initial.motor_speed and again.initial_speed == 9.0

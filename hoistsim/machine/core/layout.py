@@ -8,6 +8,8 @@ way in: ``state_index(name)``, ``coupling_index(section)``,
 
 from __future__ import annotations
 
+import copy
+
 from .element import AbstractCoupling
 
 # Kinds of the events the core itself records: coupling mode changes.
@@ -121,6 +123,11 @@ class Layout:
                 raise LayoutError(element.section, f"{element.section!r} names more than one part of the machine, "
                                   "and this one's guards and events are found by its name")
         self._columns, self.summaries = _outputs(elements, self.angle_shafts)
+        # where the loop writes each output among its own (all of them, in this order; see named)
+        self.column_slots = list(range(len(self._columns)))
+        self.summary_slots = list(range(len(self.summaries)))
+        self.summary_count = len(self.summaries)
+        self._names: dict = {}  # the names it reads back under (see named)
         self.ledger_kinds = {"kinetic_energy": "potential"}
         self.ledger_kinds.update({name: kind for e in elements for name, kind in e.ledger_kinds.items()})
 
@@ -164,3 +171,37 @@ class Layout:
     def columns(self) -> dict[str, tuple[str, str]]:
         """Every output column of the machine: name -> (units, description), in element order."""
         return self._columns
+
+    def named(self, names: dict) -> Layout:
+        """This layout with its outputs under the names a scenario writes its results under (``names``: an
+        output's, event kind's, ledger term's or state's name -> the scenario's; None: an output not written),
+        for reading a run back.  The loop writes its arrays in the elements' order, under whatever names: one
+        program serves every scenario that names the same machine's outputs otherwise."""
+        if not names:
+            return self
+        named = copy.copy(self)
+        named._names = dict(names)
+        columns = [(slot, names.get(name, name), value) for slot, (name, value) in enumerate(self._columns.items())]
+        named._columns = {name: value for _, name, value in columns if name is not None}
+        named.column_slots = [slot for slot, name, _ in columns if name is not None]
+        summaries = [(slot, names.get(name, name), units) for slot, (name, units) in enumerate(self.summaries.items())]
+        named.summaries = {name: units for _, name, units in summaries if name is not None}
+        named.summary_slots = [slot for slot, name, _ in summaries if name is not None]
+        for kinds in ("event_kinds", "switch_kinds", "observation_kinds", "state_names"):
+            setattr(named, kinds, [names.get(kind, kind) for kind in getattr(self, kinds)])
+        named.ledger_kinds = {names.get(term, term): kind for term, kind in self.ledger_kinds.items()}
+        named._state_index = {name: i for i, name in enumerate(named.state_names)}
+        named.cycles = [(i, kink, names.get(kind, kind)) for i, kink, kind in self.cycles]
+        return named
+
+    def name(self, name: str) -> str:
+        """What an element's output, event kind or term ``name`` is read back as (:meth:`named`)."""
+        return self._names.get(name, name)
+
+    def column_slot(self, name: str) -> int:
+        """Where the loop writes the output column ``name`` (as read back) among its columns."""
+        return self.column_slots[list(self._columns).index(name)]
+
+    def summary_slot(self, name: str) -> int:
+        """Where the loop writes the summary ``name`` (as read back) among its summaries."""
+        return self.summary_slots[list(self.summaries).index(name)]

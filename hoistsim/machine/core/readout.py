@@ -82,7 +82,7 @@ class Readout:
         events = self.event_count
         grid, at_events = np.asarray(self.raw.grid_columns), np.asarray(self.raw.event_columns)
         return {name: self._cast(name, np.concatenate([grid[i, :rows], at_events[i, :events]]))
-                for i, name in enumerate(self.layout.columns())}
+                for i, name in zip(self.layout.column_slots, self.layout.columns())}
 
     def events(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Times, kinds, elements and torque margins of every logged event (observations included)."""
@@ -99,7 +99,7 @@ class Readout:
         n = self.event_count
         times, kinds, _, _ = self.events()
         values = np.asarray(self.raw.event_columns)[:, :n]
-        rows = {name: values[i] for i, name in enumerate(self.layout.columns())}
+        rows = {name: values[i] for i, name in zip(self.layout.column_slots, self.layout.columns())}
         state = np.asarray(self.raw.event_state)[:n]
         rows.update({name: state[:, i] for i, name in enumerate(self.layout.state_names)})
         return {"time": times, "kind": kinds, **rows}
@@ -125,16 +125,16 @@ class Readout:
 
     def summary(self) -> dict:
         """The elements' summary values by name (yes/no values as bools)."""
-        values = self.raw.scalars[1: 1 + len(self.layout.summaries)]
-        return {name: bool(v) if units == "bool" else float(v)
-                for (name, units), v in zip(self.layout.summaries.items(), values)}
+        values = self.raw.scalars[1: 1 + self.layout.summary_count]
+        return {name: bool(values[i]) if units == "bool" else float(values[i])
+                for i, (name, units) in zip(self.layout.summary_slots, self.layout.summaries.items())}
 
     def ledger(self) -> dict:
         """Each energy term: name -> (kind, value at the start, value at the end)."""
-        n = len(self.layout.ledger_kinds)
-        start = self.raw.scalars[1 + len(self.layout.summaries):][:n]
-        end = self.raw.scalars[1 + len(self.layout.summaries) + n:][:n]
-        peak = self.raw.scalars[1 + len(self.layout.summaries) + 2 * n]
+        n, first = len(self.layout.ledger_kinds), 1 + self.layout.summary_count
+        start = self.raw.scalars[first:][:n]
+        end = self.raw.scalars[first + n:][:n]
+        peak = self.raw.scalars[first + 2 * n]
         terms = {name: (kind, float(a), float(b))
                  for (name, kind), a, b in zip(self.layout.ledger_kinds.items(), start, end)}
         return terms | {PEAK_TERM: (HELD, 0.0, float(peak))}
@@ -153,13 +153,13 @@ class BatchReadout:
 
     def summary(self) -> dict[str, np.ndarray]:
         """:meth:`Readout.summary` of every run: name -> values (yes/no values as bools)."""
-        values = np.asarray(self.raw.scalars[: self.count_runs, 1: 1 + len(self.layout.summaries)])
+        values = np.asarray(self.raw.scalars[: self.count_runs, 1: 1 + self.layout.summary_count])
         return {name: values[:, i].astype(bool) if units == "bool" else values[:, i].astype(float)
-                for i, (name, units) in enumerate(self.layout.summaries.items())}
+                for i, (name, units) in zip(self.layout.summary_slots, self.layout.summaries.items())}
 
     def ledger(self) -> dict:
         """:meth:`Readout.ledger` of every run: name -> (kind, starts, ends)."""
-        n, first = len(self.layout.ledger_kinds), 1 + len(self.layout.summaries)
+        n, first = len(self.layout.ledger_kinds), 1 + self.layout.summary_count
         scalars = np.asarray(self.raw.scalars[: self.count_runs])
         terms = {name: (kind, scalars[:, first + i], scalars[:, first + n + i])
                  for i, (name, kind) in enumerate(self.layout.ledger_kinds.items())}

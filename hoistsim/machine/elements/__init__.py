@@ -53,7 +53,8 @@ from .wire_rope import WireRope as WireRope
 # A drawn drivetrain's part (each part of a kind: "*"; a key within a part: dotted after it) -> its element, or the
 # variant's name -> element for a part with variants (its spec's ``characteristic``).  A key within a part (a
 # motor's ripple) is built from the part that holds it.  The order is the order of bodies, states and output
-# columns of a drawn drivetrain (the hoist's is its template's).
+# columns of every machine, a hoist's as a drawn drivetrain's (one program for a hoist and the drivetrain it stands
+# for).
 REGISTRY: dict[str, object] = {
     "drivetrain.shafts.*": Shaft,
     "drivetrain.shafts.*.resisting_ripple": ResistingRipple,
@@ -89,7 +90,7 @@ REGISTRY: dict[str, object] = {
 
 def element_sections(scenario) -> list[tuple[str, object, object]]:
     """(section, its part's drawn spec, the element class that builds it) for each element the scenario builds,
-    in order (the parts :func:`hoistsim.scenario.lowering.lower` writes out; a hoist's in its template's order)."""
+    in the registry's order (the parts :func:`hoistsim.scenario.lowering.lower` writes out)."""
     return [(part.section, part.spec, element_class(part)) for part in lower(scenario, REGISTRY).parts]
 
 

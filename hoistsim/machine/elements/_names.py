@@ -1,11 +1,12 @@
-"""What a part's outputs are called: patterns filled in with its name, or the names its drawing gives them."""
+"""What a part's outputs are called: patterns filled in with its name."""
 
 from __future__ import annotations
 
 
 class NamedOutputs:
     """A part whose outputs (columns, summaries, ledger terms, events) are named by patterns filled in with its
-    name (``{name}_torque``), save those its drawing names otherwise (``names``: the hoist's template's)."""
+    name (``{name}_torque``).  A scenario that names them otherwise (a hoist's ``slip_speed``) does so where its
+    results are written (:func:`hoistsim.scenario.lowering.output_names`): the machine runs under these."""
 
     @property
     def part_name(self) -> str:
@@ -13,9 +14,4 @@ class NamedOutputs:
         return self.section
 
     def named(self, pattern: str) -> str:
-        return dict(self.names).get(pattern, pattern.format(name=self.part_name))
-
-
-def names_of(spec) -> tuple:
-    """The output names a part's spec gives otherwise than its patterns, as a static field holds them."""
-    return tuple(sorted(spec.output_names().items()))
+        return pattern.format(name=self.part_name)

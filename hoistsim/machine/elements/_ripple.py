@@ -11,7 +11,7 @@ import numpy as np
 from ..._pytree import static
 from ..core.element import AbstractElement
 from ._knots import interpolate, interval
-from ._names import NamedOutputs, names_of
+from ._names import NamedOutputs
 
 
 class AbstractRipple(NamedOutputs, AbstractElement):
@@ -32,7 +32,6 @@ class AbstractRipple(NamedOutputs, AbstractElement):
     form: str = static("harmonics")
     shaft: str = static("")  # the shaft whose angle it follows and on which it acts
     part: str = static("")  # the name of the part it belongs to (a motor, a shaft)
-    names: tuple = static(())  # (pattern, name) of each output its drawing names otherwise (NamedOutputs)
 
     key: ClassVar[str]  # its key in its part: its name is <part>.<key> (the hoist's motor.ripple)
     direction: ClassVar[float]  # +1: drives the shaft; -1: resists it
@@ -43,7 +42,7 @@ class AbstractRipple(NamedOutputs, AbstractElement):
     @classmethod
     def of_part(cls, ripple, shaft: str, spec) -> "AbstractRipple":
         """The ripple ``ripple`` (a RippleSpec) of the part ``spec``, on ``shaft``."""
-        return cls(**cls.fields_from(ripple), shaft=shaft, part=spec.name, names=names_of(spec))
+        return cls(**cls.fields_from(ripple), shaft=shaft, part=spec.name)
 
     @property
     def section(self) -> str:  # a name of its own: its kinks are found by it

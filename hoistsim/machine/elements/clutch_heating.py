@@ -6,7 +6,7 @@ import numpy as np
 
 from ..._pytree import static
 from ..core.element import AbstractElement
-from ._names import NamedOutputs, names_of
+from ._names import NamedOutputs
 from ._slip_heat import slip_power
 
 
@@ -31,7 +31,6 @@ class ClutchHeating(NamedOutputs, AbstractElement):
     max_temperature: object  # K (inf where no limit is given)
     limited: bool = static(False)  # a max_temperature is given: the overheat guard and summary exist
     clutch: str = static("")  # the clutch's name
-    names: tuple = static(())  # (pattern, name) of each output its drawing names otherwise (NamedOutputs)
 
     @classmethod
     def from_spec(cls, spec) -> "ClutchHeating":
@@ -40,7 +39,7 @@ class ClutchHeating(NamedOutputs, AbstractElement):
         return cls(heat_capacity=heating.heat_capacity, conductance=heating.cooling,
                    ambient_temperature=heating.ambient_temperature, initial_temperature=heating.start_temperature,
                    max_temperature=heating.max_temperature if limited else np.inf, limited=limited,
-                   clutch=spec.name, names=names_of(spec))
+                   clutch=spec.name)
 
     @property
     def section(self) -> str:  # a name of its own: its guards are found by it

@@ -10,12 +10,12 @@ import numpy as np
 from ..._pytree import static
 from ..core.element import SLIP_BACKWARD, SLIP_FORWARD, STUCK
 from ._signal import signal_at, signal_fields, signal_tables
-from ._names import NamedOutputs, names_of
+from ._names import NamedOutputs
 from ._knots import interpolate, knots_passed
 from ._slip_heat import AbstractSlipHeat
 from ._slip_table import along_slip, slip_columns, slip_knots
 
-# what each of its outputs is, by its role (named <name>_<role> unless its drawing names it otherwise)
+# what each of its outputs is, by its role (named <name>_<role>)
 _COLUMNS = {
     "torque": ("N*m", "torque clutch {name} passes from the {a} shaft to {b}, positive when the {a} shaft drives"),
     "slip": ("rad/s", "speed of the {a} shaft less that of {b}"),
@@ -69,7 +69,6 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
     in_harmonics: bool = static(False)
     fades: bool = static(False)
     slip_varies: bool = static(False)
-    names: tuple = static(())  # (pattern, name) of each output its drawing names otherwise (NamedOutputs)
 
     observation_kinds: ClassVar[tuple] = ("clutch_force",)
     crossings: ClassVar[tuple] = ("clutch_force",)
@@ -87,7 +86,7 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
                    torque_per_newton=spec.torque_per_newton, **signal_fields(spec.force, "force"),
                    driving_inertia=driving_inertia, driven_inertia=driven_inertia, driving=a,
                    driven=None if b == "ground" else b, section=spec.name, in_harmonics=spec.force.has_harmonics,
-                   names=names_of(spec), **law)
+                   **law)
 
     @property
     def heat_state(self) -> str:

@@ -66,7 +66,7 @@ class LossyGear(AbstractStageMesh):
         table = np.asarray(spec.loss_table, dtype=float)
         return cls(speeds=table[:, 0], input_efficiencies=table[:, 1], output_efficiencies=table[:, 2],
                    input_bearing_torques=table[:, 3], output_bearing_torques=table[:, 4],
-                   ratio=spec.resolved("speed_ratio"), section=spec.name, prefix=spec.resolved("mesh_prefix"),
+                   ratio=spec.resolved("speed_ratio"), section=spec.name, prefix=f"{spec.name}_mesh",
                    driving=spec.between[0], beyond=spec.resolved("beyond"), varies=table.shape[0] > 1)
 
     # ------------------------------------------------------------------ the table's law

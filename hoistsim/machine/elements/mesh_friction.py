@@ -52,7 +52,7 @@ class MeshFriction(AbstractStageMesh):
         """A lossy gear stage's mesh: the input shaft's losses, pressed by what the shafts beyond take."""
         efficiency, backdrive = spec.efficiencies
         return cls(efficiency=efficiency, backdrive_efficiency=backdrive, ratio=spec.resolved("speed_ratio"),
-                   section=spec.name, prefix=spec.resolved("mesh_prefix"), driving=spec.between[0],
+                   section=spec.name, prefix=f"{spec.name}_mesh", driving=spec.between[0],
                    beyond=spec.resolved("beyond"))
 
     def _per_load(self, side):

@@ -22,25 +22,22 @@ class Shaft(AbstractElement):
     initial_angle: object = 0.0  # rad
     section: str = static("")  # the shaft's name
     geared_to: str = static("")  # the first shaft of its gear train ("" : it is that shaft)
-    scaled: bool = static(True)  # its speed at the start is one of the machine's speed scales
-    observed: bool = static(True)  # its speed is an output
     angled: bool = static(False)  # its angle is given: a state and an output (<name>_angle) whatever reads it
 
     @classmethod
     def from_spec(cls, spec) -> Shaft:
         root, ratio, speed = spec.resolved("train")
         return cls(inertia=spec.inertia, initial_speed=speed, speed_ratio=ratio, initial_angle=spec.angle,
-                   section=spec.name,
-                   geared_to="" if root == spec.name else root, scaled=spec.resolved("scaled"),
-                   observed=spec.resolved("observed"), angled="angle" in spec.model_fields_set)
+                   section=spec.name, geared_to="" if root == spec.name else root,
+                   angled="angle" in spec.model_fields_set)
 
     @property
     def columns(self) -> dict:
-        return {f"{self.section}_speed": ("rad/s", f"speed of shaft {self.section}")} if self.observed else {}
+        return {f"{self.section}_speed": ("rad/s", f"speed of shaft {self.section}")}
 
     @property
     def summaries(self) -> dict:
-        return {f"final_{self.section}_speed": "rad/s"} if self.observed else {}
+        return {f"final_{self.section}_speed": "rad/s"}
 
     def bodies(self) -> dict:
         return {} if self.geared_to else {self.section: self.initial_speed}
@@ -60,10 +57,10 @@ class Shaft(AbstractElement):
     def speed_scale(self):
         # at least 1 rad/s: a machine started at rest (or at a speed lost in round-off) still resolves slips
         # against the speeds its torques give it, not against nothing
-        return np.maximum(np.abs(self.initial_speed), SPEED_SCALE_FLOOR) if self.scaled else None
+        return np.maximum(np.abs(self.initial_speed), SPEED_SCALE_FLOOR)
 
     def outputs(self, x) -> dict:
-        return {f"{self.section}_speed": x.speed(self.section)} if self.observed else {}
+        return {f"{self.section}_speed": x.speed(self.section)}
 
     def summary(self, x) -> dict:
-        return {f"final_{self.section}_speed": x.speed(self.section)} if self.observed else {}
+        return {f"final_{self.section}_speed": x.speed(self.section)}

@@ -9,7 +9,7 @@ import jax.numpy as jnp
 
 from ..._pytree import static
 from ..core.element import AbstractElement
-from ._names import NamedOutputs, names_of
+from ._names import NamedOutputs
 
 
 class SliderCrank(NamedOutputs, AbstractElement):
@@ -29,14 +29,13 @@ class SliderCrank(NamedOutputs, AbstractElement):
     rod_length: object  # m
     shaft: str = static("motor")
     section: str = static("")  # its name
-    names: tuple = static(())  # (pattern, name) of each output its drawing names otherwise (NamedOutputs)
 
     inertia_varies: ClassVar[bool] = True
 
     @classmethod
     def from_spec(cls, spec) -> "SliderCrank":
         return cls(mass=spec.mass, crank_radius=spec.crank_radius, rod_length=spec.rod_length, shaft=spec.shaft,
-                   section=spec.name, names=names_of(spec))
+                   section=spec.name)
 
     @property
     def columns(self) -> dict:
