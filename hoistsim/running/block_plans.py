@@ -13,8 +13,9 @@ key's values builds it otherwise (:func:`reached_positions`): whatever the
 part reads of the scenario, a hoist's or a drawn drivetrain's.  Each block's
 middle and last runs are also built the full way and compared leaf by leaf:
 on any difference the block is built the full way, as it is wherever this does
-not apply (a swept ``simulation.`` key, steady-lift starting speeds, a key in
-a section the sweep adds).  Full output is built so too: its
+not apply (a swept ``simulation.`` key, a key in a section the sweep adds).
+A hoist started at its steady lift has its starting speeds worked out again
+for each run's values, as its lowering does.  Full output is built so too: its
 runs share the output grid as they share the simulation.
 """
 
@@ -33,6 +34,7 @@ from ..machine.core.plan import Plan
 from ..machine.core.schedule import scheduled_times
 from ..machine.elements import REGISTRY, element_class, elements_for
 from ..scenario.lowering import lower, lowered_again
+from ..scenario.steady_lift import with_steady_lift
 from ..scenario.sweep_spec import with_validated_value
 from ..scenario.swept_values import SweptValues
 
@@ -78,7 +80,7 @@ def applies(runs) -> bool:
     base = getattr(runs, "base", None)
     if base is None or not runs.keys or any(key not in base.provenance.swept for key in runs.keys):
         return False
-    if any(key.startswith("simulation.") for key in runs.keys) or base.initial.steady_lift:
+    if any(key.startswith("simulation.") for key in runs.keys):
         return False
     # a key in a section the sweep adds has no value validated alone: each run is validated whole
     return not any(isinstance(kept, list) and None in kept
@@ -274,7 +276,7 @@ def _stacked_columns(runs, indices, template, scenario, parts, positions) -> dic
     rebuilt = {}
     for k in positions:
         try:
-            part = lowered_again(parts[k], scenario)
+            part = lowered_again(parts[k], with_steady_lift(scenario))
             element = element_class(part).from_spec(part.spec)
             if _statics(element) != _statics(template.elements[k]):
                 return None
@@ -302,6 +304,7 @@ def _listed_columns(runs, indices, template, template_scenario, parts, positions
         scenario = template_scenario
         for key, p in zip(runs.keys, runs.positions(i)):
             scenario = with_validated_value(scenario, key, validated[key][p])
+        scenario = with_steady_lift(scenario)  # a hoist's starting speeds, where it starts at its steady lift
         for k, elements in built.items():
             part = lowered_again(parts[k], scenario)
             element = element_class(part).from_spec(part.spec)

@@ -2,9 +2,10 @@
 
 The hoist's keys are read and checked as they are (:mod:`.schema`); each section is then the drawn
 drivetrain's part of its kind (:data:`TEMPLATE`), on the template's shafts (``motor``, ``pinion``, ``drum``),
-with what the hoist's part has beside (a clutch's halves' inertias) and its outputs under the names the hoist's
-users know (``slip_speed``, ``lockup_time``, ``ripple_torque``, ...).  Made from values checked already (no
-validation again: a sweep's values may be a column of runs).
+with what the hoist's part has beside (a clutch's halves' inertias); and the names the hoist's users know its
+outputs by (``slip_speed``, ``lockup_time``, ``ripple_torque``, ...), applied where its results are written (the
+machine runs under the drawn parts' own).  Made from values checked already (no validation again: a sweep's
+values may be a column of runs).
 """
 
 from __future__ import annotations

@@ -19,6 +19,7 @@ FORCES = SCENARIOS / "force_sweep_engage_at_speed.yaml"
 BRAKE = SCENARIOS / "engage_at_speed_with_brake.yaml"
 WINDOW = SCENARIOS / "clutch_force_window.yaml"
 COUPLED = SCENARIOS / "coupled_clutches.yaml"
+STEADY = SCENARIOS / "exercise6_constant_speed.yaml"
 
 SWEEPS = [
     (FORCES, ["clutch.engagement_force=3 kN:12 kN:7"]),
@@ -35,6 +36,9 @@ SWEEPS = [
     (WINDOW, ["clutch_heating.max_temperature=70 degC,90 degC"]),
     # the start: each run's starting state its own
     (FORCES, ["initial.motor_speed=100 rpm:300 rpm:3"]),
+    # a hoist started at its steady lift: each run's starting speeds its own
+    (STEADY, ["load.mass=100 kg:400 kg:4"]),
+    (STEADY, ["motor.stall_torque=500 N*m,600 N*m", "drum.inertia=20 kg*m^2,30 kg*m^2"]),
     # a drawn drivetrain's parts, by name and by a list's index
     (COUPLED, ["drivetrain.shafts.J1.inertia=0.5 kg*m^2:2 kg*m^2:4"]),
     (COUPLED, ["drivetrain.clutches.clutch2.kinetic_friction=0.3:0.5:3", "drivetrain.shafts.J4.speed=0 rad/s,1 rad/s"]),
