@@ -39,10 +39,9 @@ from ..scenario.sweep_spec import with_validated_value
 from ..scenario.swept_values import SweptValues
 
 
-def reached_positions(scenario, changed: list) -> set[int]:
-    """The positions of the elements of ``scenario`` that another value of its keys reaches: those built
-    otherwise from any scenario of ``changed`` (the same scenario, a key or two set to other values)."""
-    elements = elements_for(scenario)
+def reached_positions(elements: tuple, changed: list) -> set[int]:
+    """The positions of a scenario's ``elements`` that another value of its keys reaches: those built otherwise
+    from any scenario of ``changed`` (the same scenario, a key or two set to other values)."""
     reached = set()
     for other in changed:
         others = elements_for(other)
@@ -249,7 +248,7 @@ def block_plans(runs, indices: list[int], summary_only: bool = True) -> BlockPla
     template, grid = build_plan(template_scenario, summary_only=summary_only)
     parts = lower(template_scenario, REGISTRY).parts
     # worked out for each block (the scenario lowered again for each key swept over it), not kept on the runs
-    positions = sorted(reached_positions(template_scenario, swept_changes(runs, indices, template_scenario)))
+    positions = sorted(reached_positions(template.elements, swept_changes(runs, indices, template_scenario)))
     for columns in (_stacked_columns, _listed_columns):
         rebuilt = columns(runs, indices, template, template_scenario, parts, positions)
         if rebuilt is None:

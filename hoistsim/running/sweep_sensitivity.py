@@ -20,6 +20,7 @@ from .. import _jax
 from .._pytree import static_values
 from ..errors import ScenarioError
 from ..machine.assemble import build_plan
+from ..machine.elements import elements_for
 from ..machine.core.readout import BatchReadout
 from ..results.run_summaries import summary_columns
 from ..results.summaries import Summaries
@@ -146,9 +147,10 @@ def _unreached_keys(runs: SweepRuns, first: Scenario, wrt: list[str]) -> set[str
     ``initial.`` key)."""
     if not applies(runs):
         return set()
-    swept = reached_positions(first, swept_changes(runs, list(range(len(runs))), first))
+    elements = elements_for(first)
+    swept = reached_positions(elements, swept_changes(runs, list(range(len(runs))), first))
     return {key for key in wrt if not key.startswith(("simulation.", "initial.")) and key not in runs.keys
-            and not reached_positions(first, [_nudged(first, key)]) & swept}
+            and not reached_positions(elements, [_nudged(first, key)]) & swept}
 
 
 def _nudged(scenario: Scenario, key: str) -> Scenario:

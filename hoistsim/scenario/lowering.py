@@ -14,6 +14,7 @@ from typing import NamedTuple
 
 from .hoist_template import TEMPLATE, TemplatePart, section_of
 from .steady_lift import with_steady_lift
+from .sweep_spec import held_at
 
 
 class Part(NamedTuple):
@@ -28,19 +29,18 @@ class Part(NamedTuple):
 
 
 class Lowered(NamedTuple):
-    """A scenario lowered: the scenario its parts are written out from, the parts, and the names its results
-    are written under where they are not the parts' own (:func:`output_names`)."""
+    """A scenario lowered: the scenario its parts are written out from, and the parts (the names its results are
+    written under where they are not the parts' own: :func:`output_names`)."""
 
     scenario: object  # the scenario as loaded, a hoist started at its steady lift (initial.steady_lift)
     parts: list
-    names: dict  # a part's output's name -> the scenario's (None: not written)
 
 
 def lower(scenario, paths) -> Lowered:
     """``scenario`` lowered to its parts (:func:`lowered_parts`), a hoist's started at its steady lifting speed
     where ``initial.steady_lift`` asks (:func:`.steady_lift.with_steady_lift`)."""
     scenario = with_steady_lift(scenario)
-    return Lowered(scenario, lowered_parts(scenario, paths), output_names(scenario))
+    return Lowered(scenario, lowered_parts(scenario, paths))
 
 
 def output_names(scenario) -> dict:
@@ -70,7 +70,7 @@ def lowered_parts(scenario, paths) -> list[Part]:
 
 def lowered_again(part: Part, scenario) -> Part:
     """``part`` written out again from another scenario (a sweep's run: its own values in the same sections)."""
-    section = _at(scenario, part.source)
+    section = held_at(scenario, ".".join(part.source))
     spec = _lowered(section, scenario) if part.template is None else part.template.as_drawn(section, scenario)
     return _part(part.section, part.source, part.path, spec, part.template)
 
@@ -79,15 +79,6 @@ def _part(section: str, source: tuple, path: str, spec, template) -> Part:
     parts = path.split(".")
     held = getattr(spec, parts[-1]) if within_part(parts) else spec
     return Part(section, spec, path, held, source, template)
-
-
-def _at(scenario, source: tuple):
-    """What ``source`` names in the scenario: sections by name, parts by name (a dict's key), a list's index."""
-    holder = scenario
-    for name in source:
-        holder = holder[name] if isinstance(holder, dict) else holder[int(name)] if isinstance(
-            holder, (list, tuple)) else getattr(holder, name)
-    return holder
 
 
 def _lowered(spec, scenario):

@@ -51,7 +51,7 @@ def check_sweep(scenario: Scenario, raw: dict, key: str, values: list, tree: Any
                 raise ScenarioError(f"sweep.{key}", f"value {i + 1} ({_format_value(value)}): {detail}",
                                     source=source, line=line_of(tree, ("sweep", key, i)) or where["line"]) from None
             numbers[i] = swept_number(run, key)
-            yield swept_field(run, key)
+            yield held_at(run, key)
 
     return numbers, swept_values.collect(each_validated())  # as columns: a million runs' values in a few MB
 
@@ -163,15 +163,9 @@ def _field_adapter(model: type[BaseModel], name: str) -> TypeAdapter:
     return TypeAdapter(Annotated[(field.annotation, *field.metadata)] if field.metadata else field.annotation)
 
 
-def swept_field(scenario: Scenario, key: str) -> Any:
-    """What a dotted key holds in a validated scenario, a drawn part's by its name (None where something on its
-    path is absent)."""
-    return held_at(scenario, key)
-
-
 def swept_number(scenario: Scenario, key: str) -> float:
     """The SI value of a swept key in one run (a constant force table counts as its force; NaN if not a number)."""
-    value = swept_field(scenario, key)
+    value = held_at(scenario, key)
     if hasattr(value, "forces"):
         return value.forces[0] if len(set(value.forces)) == 1 else math.nan
     return float(value) if isinstance(value, (int, float)) else math.nan

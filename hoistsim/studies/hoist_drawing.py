@@ -16,7 +16,7 @@ from ruamel.yaml import YAML
 
 from ..errors import ScenarioError
 from ..scenario import units as u
-from ..scenario.lowering import lower
+from ..scenario.lowering import lower, output_names
 from ..scenario.signals import TimeSignal
 from ..scenario.tables import ForceTable
 
@@ -36,7 +36,7 @@ def hoist_as_drivetrain(scenario) -> tuple[dict, dict[str, str]]:
     scenario = lowered.scenario  # started at its steady lift where it asks
     drawn: dict = {kind: {} for kind in ("shafts", "motors", "clutches", "gears", "rotors", "slider_cranks",
                                          "brakes", "ratchets")}
-    renamed = {hoist: name for name, hoist in lowered.names.items() if hoist is not None}
+    renamed = {hoist: name for name, hoist in output_names(scenario).items() if hoist is not None}
     inertias: dict[str, float] = {}  # each shaft's, with the clutch's halves on it (a drawn clutch's are its shafts')
     for part in lowered.parts:
         if part.path.startswith("drivetrain."):

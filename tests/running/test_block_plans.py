@@ -83,7 +83,7 @@ def test_a_sweep_of_the_simulation_is_built_run_by_run():
 
 
 def test_a_missed_dependency_is_caught_and_the_block_built_run_by_run(monkeypatch):
-    monkeypatch.setattr(bp, "reached_positions", lambda scenario, changed: set())
+    monkeypatch.setattr(bp, "reached_positions", lambda elements, changed: set())
     runs = SweepRuns(load_scenario(FORCES, sweeps=["clutch.engagement_force=3 kN:12 kN:5"]))
     assert bp.block_plans(runs, list(range(5))) is None
 

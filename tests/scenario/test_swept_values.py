@@ -7,7 +7,7 @@ import pickle
 from helpers import SWEEP_FILE
 
 from hoistsim import load_scenario
-from hoistsim.scenario.sweep_spec import swept_field, with_swept_value
+from hoistsim.scenario.sweep_spec import held_at, with_swept_value
 from hoistsim.scenario.swept_values import BATCH, SweptValues, collect
 
 
@@ -19,7 +19,7 @@ def test_a_force_range_is_kept_as_columns_and_gives_back_each_value_as_validated
     assert kept.stacked.forces.shape == (count, 1) and kept.stacked.forces.nbytes == 8 * count
     values = s.provenance.swept["clutch.engagement_force"].values
     for i in (0, 1, BATCH - 1, BATCH, count // 2, count - 1, -1):
-        alone = swept_field(with_swept_value(s, "clutch.engagement_force", values[i]), "clutch.engagement_force")
+        alone = held_at(with_swept_value(s, "clutch.engagement_force", values[i]), "clutch.engagement_force")
         assert kept[i] == alone and type(kept[i]) is type(alone)
         assert type(kept[i].forces) is tuple and type(kept[i].forces[0]) is float
     assert pickle.loads(pickle.dumps(kept))[count // 2] == kept[count // 2]  # as sent to a cluster's workers
