@@ -114,8 +114,8 @@ NAMED = {
     "scenarios/compliant_hoist.yaml": _compliant_hoist,
     "scenarios/modelica/Backlash.yaml": _backlash,
     "scenarios/coupled_clutches.yaml": _drawn_drivetrain(
-        "clutch1 locks 0.791 s, lets go 0.831 s, locks 0.907 s, lets go 1.000 s, opens 1.251 s"),
-    "scenarios/two_speed_hoist.yaml": _drawn_drivetrain("low_clutch locked from the start, lets go 1.263 s, "
+        "clutch1 locks at 0.791 s, lets go 0.831 s, locks 0.907 s, lets go 1.000 s, opens 1.251 s"),
+    "scenarios/two_speed_hoist.yaml": _drawn_drivetrain("low_clutch locked from the start, lets go at 1.263 s, "
                                                         "opens 1.300 s"),
 }
 

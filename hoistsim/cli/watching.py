@@ -67,6 +67,7 @@ class Watch:
         True where new results were written.
         """
         from ..running.simulation import SimulationError, simulate
+        from ..scenario.lowering import output_names
 
         started = time.perf_counter()
         self._read = self._contents()  # before loading: a save from here on is a change the run did not see
@@ -81,7 +82,7 @@ class Watch:
             self.echo(f"hoistsim: error: {last}{kept}")
             return False
         # the answer first: the file and the figure take some tenths of a second more
-        said = "; ".join(_headline(result.summary, result.events))
+        said = "; ".join(_headline(result.summary, result.events, output_names(scenario)))
         self.echo(f"{time.strftime('%H:%M:%S')} {scenario.name}: {said} ({time.perf_counter() - started:.2f} s)")
         drawn = None
         if self.figure is not None and result.periodic is None:  # drawn from the run, written beside the file
@@ -116,8 +117,10 @@ class Watch:
         """The runs' figure drawn now, its file written by a thread (returned) while the results are written."""
         from ..figures.files import draw_runs_figure, runs_columns
         from ..results.run_dicts import run_dicts
+        from ..scenario.lowering import output_names
 
-        return draw_runs_figure(run_dicts(results, columns=runs_columns()), self.figure, frames=self._kept_frames(),
+        columns = runs_columns(output_names(results[0].scenario))
+        return draw_runs_figure(run_dicts(results, columns=columns), self.figure, frames=self._kept_frames(),
                                 png_compression=PNG_COMPRESSION)
 
     def _load(self):
@@ -136,12 +139,13 @@ class Watch:
             self._scratch.cleanup()
 
 
-def _headline(summary: dict, events: dict | None = None) -> list[str]:
-    """The run's headline, as its figure's title says it: with its events (columns), each clutch's story."""
+def _headline(summary: dict, events: dict | None = None, names: dict | None = None) -> list[str]:
+    """The run's headline, as its figure's title says it: with its events (columns), each clutch's story;
+    ``names``: its names table (:func:`hoistsim.scenario.lowering.output_names`)."""
     from ..display import headline
 
     rows = None if events is None else [dict(zip(events, row)) for row in zip(*events.values())]
-    said = headline(summary if rows is None else {**summary, "events": rows})
+    said = headline(summary if rows is None else {**summary, "events": rows}, names)
     return said or [f"energy residual {summary.get('energy_relative_residual', float('nan')):.1e}"]
 
 

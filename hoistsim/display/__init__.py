@@ -9,7 +9,6 @@ from __future__ import annotations
 
 from .bearings import DRUM_SHAFT_LOADS
 from .clutch_heating import CLUTCH_HEATING
-from .cone_clutch import CONE_CLUTCH
 from .eddy_current_brake import EDDY_CURRENT_BRAKE
 from .friction_brake import FRICTION_BRAKE
 from .friction_clutch import FRICTION_CLUTCH
@@ -21,6 +20,7 @@ from .load import LOAD
 from .mesh_friction import MESH_FRICTION
 from .motor import MOTOR
 from .panel import Display as Display
+from .part_names import under_part_names
 from .periodic_regime import PERIODIC_REGIME
 from .ratchet import RATCHET
 from .rope import ROPE
@@ -28,14 +28,16 @@ from .shaft import SHAFT
 from .shaft_torque import SHAFT_TORQUE
 from .spring_damper import SPRING_DAMPER
 
-DISPLAYS: tuple[Display, ...] = (MOTOR, GEAR_PAIR, MESH_FRICTION, CONE_CLUTCH, CLUTCH_HEATING, LOAD, ROPE, GROUND,
-                                 HOLDING_BRAKE, FRICTION_BRAKE, RATCHET, DRUM_SHAFT_LOADS, PERIODIC_REGIME, SHAFT,
-                                 SHAFT_TORQUE, FRICTION_CLUTCH, LINKAGE, SPRING_DAMPER, EDDY_CURRENT_BRAKE)
+DISPLAYS: tuple[Display, ...] = (MOTOR, GEAR_PAIR, MESH_FRICTION, FRICTION_CLUTCH, CLUTCH_HEATING, LOAD, ROPE,
+                                 GROUND, HOLDING_BRAKE, FRICTION_BRAKE, RATCHET, DRUM_SHAFT_LOADS, PERIODIC_REGIME,
+                                 SHAFT, SHAFT_TORQUE, LINKAGE, SPRING_DAMPER, EDDY_CURRENT_BRAKE)
 
 
-def headline(summary: dict) -> list[str]:
+def headline(summary: dict, names: dict | None = None) -> list[str]:
     """What each part of a run says of it in a few words (when the clutch locks, its heat, where the load
-    went, the peak rope force), each part the run has."""
+    went, the peak rope force), each part the run has; ``names``: the run's names table (its parts' names ->
+    those its summary keeps them under, :mod:`.part_names`)."""
+    summary = under_part_names(summary, names or {})
     said = []
     for display in DISPLAYS:
         if display.headline is None:

@@ -85,7 +85,8 @@ class SummaryPanel:
     """A summary value against the swept value, in the sweep's summary figure.
 
     ``partial`` names what the value means for a run that never locks (heat up
-    to the end of the run, say): such points are drawn open and the legend says so.
+    to the end of the run, say), ``partial_of`` the summary that says it never
+    locked: such points are drawn open and the legend says so.
     """
 
     name: str
@@ -94,6 +95,7 @@ class SummaryPanel:
     scale: float = 1.0
     zero_line: bool = False
     partial: str | None = None
+    partial_of: str | None = None  # the summary that is NaN in a run whose value is partial (its lock-up time)
     offset: float = 0.0  # added after the scale: kelvin to degrees Celsius
     # a line across the panel: (its label, the dotted scenario key that gives it in SI; none where the
     # scenario does not give it, nor where that key is swept: the line would be one run's)
@@ -137,18 +139,20 @@ class Display:
     headline: Callable[[dict], str | None] | None = None
     panels_for: Callable[[dict], tuple] | None = None
     reads: Callable[[str], bool] | None = None
+    # of parts the user named: the phases of a run (read back) and the summary panels and outcomes of a summary
+    # row, beside the fixed ``shading``, ``summary_panels`` and ``outcomes``
+    shading_for: Callable[[dict], tuple] | None = None
+    summary_panels_for: Callable[[dict], tuple] | None = None
+    outcomes_for: Callable[[dict], tuple] | None = None
     # a hoist part's display, whose columns its name names: in a drawn drivetrain's run it draws only where the
-    # drivetrain has that part, (kind, name) (a clutch the user named "brake" is no brake); "hoist": never (a
-    # drawn part of its kind has a display of its own)
-    names_part: tuple[str, str] | str | None = None
+    # drivetrain has that part, (kind, name) (a clutch the user named "brake" is no brake)
+    names_part: tuple[str, str] | None = None
 
     def shows(self, run: dict) -> bool:
         """Whether it draws in this run (read back: ``run["parameters"]`` the resolved scenario)."""
         drawn = (run.get("parameters") or {}).get("drivetrain")
         if drawn is None or self.names_part is None:
             return True
-        if self.names_part == "hoist":
-            return False
         kind, name = self.names_part
         return name in (drawn.get(kind) or {})
 
@@ -156,6 +160,18 @@ class Display:
         if not self.shows(run):
             return ()
         return self.panels if self.panels_for is None else self.panels_for(run)
+
+    def shading_of(self, run: dict) -> tuple:
+        if not self.shows(run):
+            return ()
+        return self.shading + (self.shading_for(run) if self.shading_for else ())
+
+    def summary_panels_of(self, row: dict) -> tuple:
+        """Its summary panels for a sweep whose runs' summaries are as ``row`` (under the parts' own names)."""
+        return self.summary_panels + (self.summary_panels_for(row) if self.summary_panels_for else ())
+
+    def outcomes_of(self, row: dict) -> tuple:
+        return self.outcomes + (self.outcomes_for(row) if self.outcomes_for else ())
 
     def reads_column(self, column: str) -> bool:
         return self.reads is not None and self.reads(column)

@@ -13,7 +13,9 @@ from pathlib import Path
 import numpy as np
 
 from ..display import DISPLAYS
+from ..display.part_names import part_names_of
 from ..results.atomic import atomic_path
+from ..results.part_names import names_table
 from ..results.reading import read_runs, read_summary, read_swept_keys
 from .base import DISPLAY_UNITS
 
@@ -59,7 +61,9 @@ def draw_figures(path, plt, frames):
 
     summaries = read_summary(path)
     swept = swept_axis(path, summaries)
-    runs = read_runs(path, columns=runs_columns(), attributes=("label", "name", *read_swept_keys(path)))
+    parameters = scenario_parameters(path)
+    runs = read_runs(path, columns=runs_columns(names_table(parameters)),
+                     attributes=("label", "name", *read_swept_keys(path)))
     if runs:
         yield "", runs_figure(runs, plt, swept, frames)
     periodic = [run for run in runs if "turning_moment" in run]
@@ -68,8 +72,7 @@ def draw_figures(path, plt, frames):
 
         yield "_periodic", periodic_figure(periodic[0], plt)
     if len(summaries) > 1 or not runs:
-        yield "_summary" if runs else "", summary_figure(summaries, swept, plt, scenario_name(path),
-                                                          scenario_parameters(path))
+        yield "_summary" if runs else "", summary_figure(summaries, swept, plt, scenario_name(path), parameters)
 
 
 def draw_runs_figure(runs, output, *, frames=None, png_compression: int = 6) -> "FigureWriting":
@@ -130,9 +133,11 @@ class FigureWriting:
 
 class _Read:
     """The columns the run figure reads: those the parts' panels, marks and shading name, and those a
-    part named by the user claims (``reads``); the rest of a file is not loaded."""
+    part named by the user claims (``reads``: under its part's name, a hoist's ``slip_speed`` the clutch's
+    ``clutch_slip``); the rest of a file is not loaded."""
 
-    def __init__(self):
+    def __init__(self, names: dict):
+        self.part_names = part_names_of(names)
         self.names = {"time", "motor_angle"}
         for display in DISPLAYS:
             for panel in display.panels:
@@ -141,11 +146,14 @@ class _Read:
             self.names.update(phase.column for phase in display.shading)
 
     def __contains__(self, name: str) -> bool:
-        return name in self.names or any(display.reads_column(name) for display in DISPLAYS)
+        name_read = self.part_names.get(name, name)
+        return name in self.names or any(display.reads_column(name_read) for display in DISPLAYS)
 
 
-def runs_columns() -> _Read:
-    return _Read()
+def runs_columns(names: dict | None = None) -> _Read:
+    """The columns the run figure reads of a run whose names table is ``names`` (:mod:`hoistsim.display.part_names`;
+    none: a drawn drivetrain's)."""
+    return _Read(names or {})
 
 
 def scenario_parameters(path) -> dict:

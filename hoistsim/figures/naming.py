@@ -86,10 +86,13 @@ def name_events(fig, ax, labels) -> float:
     return max(name.get_window_extent(renderer).height for name in names) / fig.dpi + ABOVE / 72.0
 
 
+NO_BREAK = "\u00a0"  # within a clause of a headline: textwrap breaks at plain spaces only
+
+
 def wrap_title(name: str, said: list[str]) -> str:
     """``name: headline; headline; ...`` on one line, or where it is longer than a line, as many headlines a
     line as fit (a part's headline of several, a drivetrain's clutches, split between them; one longer than a
-    line wrapped at its spaces)."""
+    line wrapped between its clauses: "locks at 0.791 s" is never split)."""
     parts = [part for text in said for part in text.split("; ")]
     if not parts:
         return name
@@ -101,5 +104,6 @@ def wrap_title(name: str, said: list[str]) -> str:
             lines.append(current + ";")
             current = part
     lines.append(current)
-    return "\n".join(piece for line in lines for piece in textwrap.wrap(line, TITLE_CHARACTERS,
-                                                                         subsequent_indent="    "))
+    kept = [", ".join(clause.replace(" ", NO_BREAK) for clause in line.split(", ")) for line in lines]
+    return "\n".join(piece.replace(NO_BREAK, " ") for line in kept
+                     for piece in textwrap.wrap(line, TITLE_CHARACTERS, subsequent_indent="    "))

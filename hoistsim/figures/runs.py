@@ -23,6 +23,7 @@ from .frames import FrameSpec, FreshFrames
 from .marks import draw_marks, time_limits
 from .naming import name_events, wrap_title
 from .placing import align_ylabels, place_panels
+from .read_back import parameters_of, prepared
 from .zoom import SHARE as ZOOM_SHARE
 from .zoom import burst_window
 from .zoom import time_axis as zoom_time_axis
@@ -43,12 +44,12 @@ _LEGEND = dict(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon
 
 def runs_figure(runs, plt, swept, frames=None):
     """The figure of ``runs``; ``frames`` gives its frame (:mod:`.frames`: afresh, or kept by ``watch``)."""
-    for run in runs:  # what traces read beside the columns (a limit the scenario gives)
-        _parameters(run)
+    for run in runs:  # what traces read beside the columns (a limit the scenario gives), under the parts' names
+        prepared(run)
     present = set(runs[0])
     panels = _panels(present, runs[0])
-    shading = list({id(phase): phase for display in DISPLAYS if display.shows(runs[0]) for phase in display.shading
-                    if phase.column in present}.values())
+    shading = list(dict.fromkeys(phase for display in DISPLAYS for phase in display.shading_of(runs[0])
+                                 if phase.column in present))
 
     heights = [panel.height for panel in panels]
     mode = "one" if len(runs) == 1 else "few" if len(runs) <= FEW else "family"
@@ -295,26 +296,9 @@ def _right_scale(panel, run) -> tuple[str, float] | None:
         return None
     label, factor_of = panel.right_axis
     try:
-        return label, float(factor_of(_parameters(run)))
+        return label, float(factor_of(parameters_of(run)))
     except (KeyError, TypeError, ValueError):
         return None  # the scene has not the part that gives this scale
-
-
-def _parameters(run) -> dict:
-    """The run's scenario in SI numbers: the file's base, with this run's swept values put in."""
-    import json
-
-    if "parameters" not in run:
-        parameters = json.loads(run["attrs"]["parameters"])
-        for key, value in run["attrs"].items():  # a swept scalar: "clutch_heating.max_temperature"
-            *sections, last = key.split(".")
-            holder = parameters
-            for section in sections:
-                holder = holder.get(section) if isinstance(holder, dict) else None
-            if sections and isinstance(holder, dict) and np.ndim(value) == 0 and np.isfinite(value):
-                holder[last] = float(value)
-        run["parameters"] = parameters
-    return run["parameters"]
 
 
 def _title(runs, swept) -> str:
@@ -324,7 +308,7 @@ def _title(runs, swept) -> str:
         return f"{name}: {len(runs)} runs, coloured by {swept_label(swept)}"
     said = headline({**attrs, "events": runs[0]["events"]})  # the events: each clutch's story
     if not said:  # no part has a story to tell (two inertias on springs): what the scene is, as its file says
-        description = " ".join(str(_parameters(runs[0]).get("description") or "").split())
+        description = " ".join(str(parameters_of(runs[0]).get("description") or "").split())
         said = [description] if description else []
     return wrap_title(name, said)
 

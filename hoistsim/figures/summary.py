@@ -13,6 +13,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..display import DISPLAYS
+from ..display.part_names import under_part_names
+from ..results.part_names import names_table
 from .base import swept_label
 
 POINTS = 60  # up to this many runs, each is a marked point
@@ -20,11 +22,15 @@ MARKER = 6  # pt: the marker of a kind of run (never locks)
 
 
 def summary_figure(summaries, swept, plt, name: str = "", parameters: dict | None = None):
+    # the summaries under their parts' own names too (a hoist's lockup_time is its clutch's clutch_lockup_time)
+    table = names_table(parameters or {})
+    summaries = [under_part_names(row, table) for row in summaries]
     names = set(summaries[0])
     # variants of one part (a load on a rigid or an elastic rope) share their panels: each is drawn once
-    panels = sorted(dict.fromkeys(p for display in DISPLAYS for p in display.summary_panels if p.name in names),
-                    key=lambda p: p.order)
-    outcomes = [(o, _applies(o, summaries)) for o in dict.fromkeys(o for display in DISPLAYS for o in display.outcomes)]
+    panels = sorted(dict.fromkeys(p for display in DISPLAYS for p in display.summary_panels_of(summaries[0])
+                                  if p.name in names), key=lambda p: p.order)
+    outcomes = [(o, _applies(o, summaries)) for o in dict.fromkeys(o for display in DISPLAYS
+                                                                   for o in display.outcomes_of(summaries[0]))]
     outcomes = [(o, mask) for o, mask in outcomes if mask is not None and mask.any()]
     from matplotlib.transforms import offset_copy
 
@@ -35,11 +41,11 @@ def summary_figure(summaries, swept, plt, name: str = "", parameters: dict | Non
     fig, axes = plt.subplots(rows, columns, sharex=True, squeeze=False, layout="constrained",
                              figsize=(5.4 * columns, 0.9 + 2.6 * rows))
     few = len(summaries) <= POINTS
-    never_locks = next((mask for o, mask in outcomes if o.label == "never locks"), np.zeros(len(x), bool))
 
     for ax, panel in zip(axes.flat, panels):
         y = np.asarray([row[panel.name] for row in summaries], dtype=float) * panel.scale + panel.offset
-        partial = never_locks if panel.partial else np.zeros(len(x), bool)
+        partial = (np.isnan(np.asarray([row[panel.partial_of] for row in summaries], dtype=float))
+                   if panel.partial and panel.partial_of in names else np.zeros(len(x), bool))
         ax.plot(x[order], y[order], color="#1f4e79", lw=1.4, zorder=2)
         if few:
             ax.plot(x[~partial], y[~partial], "o", color="#1f4e79", ms=4, zorder=3)

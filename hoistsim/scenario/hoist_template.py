@@ -12,7 +12,6 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
-
 from .period import machine_period
 from .schema import PeriodicSpec
 from .schema_clutch import ConeSpec
@@ -47,8 +46,8 @@ def section_of(scenario, parts: tuple):
     """What a dotted section's parts name within the scenario (a section within a section: motor.ripple),
     None where it is absent."""
     holder = scenario
-    for part in parts:
-        holder = getattr(holder, part, None)
+    for part in parts:  # a scenario, or its resolved values read back from a results file (dicts)
+        holder = holder.get(part) if isinstance(holder, dict) else getattr(holder, part, None)
         if holder is None:
             return None
     return holder
@@ -62,6 +61,7 @@ class TemplatePart(NamedTuple):
     path: str
     as_drawn: object  # (section, scenario) -> the drawn part's spec (for a key within a part: the part)
     names: dict = {}  # a drawn output's name -> the hoist's (None: not written)
+    name: str = ""  # the drawn part's name, where it is a whole part of a kind (drivetrain.<kind>.*)
 
 
 def _shaft(name: str, inertia: float, speed: float, geared_to: str = "", ratio: float = 1.0) -> ShaftSpec:
@@ -198,24 +198,25 @@ def periodic_as_drawn(spec: PeriodicSpec, scenario) -> PeriodicSpec:
 # Each hoist section (dotted within another) -> the drawn parts it stands for, in the order of the machine's
 # bodies, states and columns.
 TEMPLATE: dict[str, tuple[TemplatePart, ...]] = {
-    "motor": (TemplatePart("drivetrain.shafts.*", motor_shaft_as_drawn),
-              TemplatePart("drivetrain.motors.*", motor_as_drawn)),
+    "motor": (TemplatePart("drivetrain.shafts.*", motor_shaft_as_drawn, name="motor"),
+              TemplatePart("drivetrain.motors.*", motor_as_drawn, name="motor")),
     "motor.ripple": (TemplatePart("drivetrain.motors.*.ripple", motor_ripple_as_drawn, MOTOR_RIPPLE_NAMES),),
-    "gears": (TemplatePart("drivetrain.shafts.*", pinion_shaft_as_drawn, PINION_NAMES),
-              TemplatePart("drivetrain.shafts.*", drum_shaft_as_drawn)),
+    "gears": (TemplatePart("drivetrain.shafts.*", pinion_shaft_as_drawn, PINION_NAMES, "pinion"),
+              TemplatePart("drivetrain.shafts.*", drum_shaft_as_drawn, name="drum")),
     "gears.mesh": (TemplatePart("drivetrain.gears.*.mesh", mesh_as_drawn, MESH_NAMES),),
-    "clutch": (TemplatePart("drivetrain.clutches.*", clutch_as_drawn, CLUTCH_NAMES),),
+    "clutch": (TemplatePart("drivetrain.clutches.*", clutch_as_drawn, CLUTCH_NAMES, "clutch"),),
     "clutch_heating": (TemplatePart("drivetrain.clutches.*.heating", heating_as_drawn, HEATING_NAMES),),
-    "drum": (TemplatePart("drivetrain.rotors.*", drum_as_drawn),),
+    "drum": (TemplatePart("drivetrain.rotors.*", drum_as_drawn, name="drum"),),
     "drum.resisting_ripple": (TemplatePart("drivetrain.shafts.*.resisting_ripple", drum_ripple_as_drawn,
                                            DRUM_RIPPLE_NAMES),),
     "load": (TemplatePart("drivetrain.load", load_as_drawn),),
     "rope": (TemplatePart("drivetrain.load.rope", the_load),),
     "ground": (TemplatePart("drivetrain.load.ground", the_load),),
-    "flywheel": (TemplatePart("drivetrain.rotors.*", flywheel_as_drawn),),
-    "reciprocating": (TemplatePart("drivetrain.slider_cranks.*", slider_crank_as_drawn, SLIDER_CRANK_NAMES),),
-    "brake": (TemplatePart("drivetrain.brakes.*", brake_as_drawn),),
-    "ratchet": (TemplatePart("drivetrain.ratchets.*", ratchet_as_drawn),),
+    "flywheel": (TemplatePart("drivetrain.rotors.*", flywheel_as_drawn, name="flywheel"),),
+    "reciprocating": (TemplatePart("drivetrain.slider_cranks.*", slider_crank_as_drawn, SLIDER_CRANK_NAMES,
+                                   "reciprocating"),),
+    "brake": (TemplatePart("drivetrain.brakes.*", brake_as_drawn, name="brake"),),
+    "ratchet": (TemplatePart("drivetrain.ratchets.*", ratchet_as_drawn, name="ratchet"),),
     "bearings": (TemplatePart("drivetrain.load.bearings", the_load),),
     "periodic_regime": (TemplatePart("periodic_regime", periodic_as_drawn),),
 }

@@ -47,11 +47,26 @@ def output_names(scenario) -> dict:
     """The names a scenario's results are written under where they are not its parts' own: a hoist's, those its
     users know (``slip_speed`` for its clutch's ``clutch_slip``; None: an output the hoist does not write); none
     for a drawn drivetrain.  The machine runs under the parts' names, so a hoist and the drivetrain it stands
-    for are one program."""
-    if scenario.drivetrain is not None:
+    for are one program.  ``scenario`` may be the resolved values a results file keeps."""
+    if section_of(scenario, ("drivetrain",)) is not None:
         return {}
     return {name: hoist for _, parts, part in _TEMPLATE_PARTS if section_of(scenario, parts) is not None
             for name, hoist in part.names.items()}
+
+
+def drawn_parts(parameters: dict) -> dict:
+    """The drawn parts a run's results speak of, by kind and name (``{"clutches": {"clutch": {...}}}``), from the
+    scenario's resolved values (what a results file keeps): a drawn drivetrain's own, a hoist's as its template
+    names them, each with its hoist section's values."""
+    drawn = parameters.get("drivetrain")
+    if drawn is not None:
+        return drawn
+    parts: dict = {}
+    for _, sections, part in _TEMPLATE_PARTS:
+        spec = section_of(parameters, sections) if part.name else None
+        if spec is not None:
+            parts.setdefault(part.path.split(".")[1], {})[part.name] = spec
+    return parts
 
 
 def lowered_parts(scenario, paths) -> list[Part]:

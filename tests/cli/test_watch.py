@@ -186,5 +186,5 @@ def test_the_headline_tells_each_clutchs_story_as_the_figure_does():
     summary = {"clutch1_lockup_time": 0.791, "clutch1_slip_energy": 29.5}
     events = {"time": np.array([0.791, 0.831, 1.251]), "kind": np.array(["lock", "unlock", "disengage"], dtype=object),
               "element": np.array(["clutch1"] * 3, dtype=object)}
-    assert _headline(summary, events) == ["clutch1 locks 0.791 s, lets go 0.831 s, opens 1.251 s, 29.5 J of heat"]
+    assert _headline(summary, events) == ["clutch1 locks at 0.791 s, lets go 0.831 s, opens 1.251 s, 29.5 J of heat"]
     assert _headline(summary) == ["clutch1 first locks at 0.791 s, 29.5 J of heat"]

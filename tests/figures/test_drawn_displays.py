@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from hoistsim.figures.runs import _panels
+from hoistsim.results.part_names import with_part_names
 
 _T = np.linspace(0.0, 1.0, 5)
 
@@ -24,7 +25,7 @@ def _run(drivetrain: dict) -> dict:
     for name in drivetrain.get("planetaries", {}):
         names += [f"{name}_{word}_torque" for word in ("sun", "carrier", "ring")]
     run.update({name: np.zeros_like(_T) for name in names + [f"{s}_speed" for s in drivetrain["shafts"]]})
-    return run
+    return with_part_names(run, run["parameters"])
 
 
 def test_a_clutch_named_brake_is_drawn_as_a_clutch_not_as_the_hoists_brake():

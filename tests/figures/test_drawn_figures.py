@@ -24,6 +24,7 @@ from hoistsim.display.rope import ROPE  # noqa: E402
 from hoistsim.figures.naming import wrap_title  # noqa: E402
 from hoistsim.figures.runs import _shade, runs_figure  # noqa: E402
 from hoistsim.results.reading import events_table  # noqa: E402
+from hoistsim.scenario.lowering import output_names  # noqa: E402
 
 T = np.linspace(0.0, 2.5, 2501)
 ONE = ("run", np.zeros(1), "")
@@ -162,23 +163,27 @@ def test_the_title_tells_each_clutchs_story_and_its_heat():
     said = headline({**run["attrs"], "events": run["events"]})
     stories = dict(part.split(" ", 1) for text in said for part in text.split("; "))
     # seven switches: told by their counts
-    assert stories["low"] == "locked from the start, locks 3 times (first 1.600 s), lets go 3 times, opens once, " \
-                             "4.14 J of heat"
-    assert stories["high"] == "engages 1.200 s, locks 1.304 s, locks 2.007 s, 237 J of heat"
-    assert stories["third"] == "engages 2.000 s, 1.5 kJ of heat"
+    assert stories["low"] == "locked from the start, locks 3 times (first at 1.600 s), lets go 3 times, opens " \
+                             "once, 4.14 J of heat"
+    assert stories["high"] == "engages at 1.200 s, locks 1.304 s, locks 2.007 s, 237 J of heat"
+    assert stories["third"] == "engages at 2.000 s, 1.50 kJ of heat"
     # the summary alone (hoistsim watch): the first lock, never "locks at 0"
     alone = headline(run["attrs"])[0]
     assert alone.startswith("low locked from the start, 4.14 J of heat; high first locks at 1.304 s")
-    assert "third never locks" in alone
+    assert "third never locks (1.50 kJ of heat up to the end)" in alone
 
 
-def test_the_hoists_clutch_that_locks_again_says_how_often():
+def test_the_hoists_clutch_tells_its_story_as_a_drawn_one_under_the_names_its_file_keeps():
+    """The hoist's summary keeps its clutch's lock-up time as lockup_time: its names table gives the clutch's
+    own, and one display tells a hoist's clutch's story as a drawn one's."""
     events = _run([(1.821, "lock", "clutch", "switch"), (2.5, "unlock", "clutch", "switch"),
                    (4.9, "lock", "clutch", "switch")])["events"]
-    said = headline({"lockup_time": 1.821, "slip_energy": 13230.0, "slip_duration": 6.4, "events": events})
-    assert said[0] == "clutch locks 2 times (first at 1.821 s), 13.23 kJ of heat"
-    assert headline({"lockup_time": 1.821, "slip_energy": 13230.0, "slip_duration": 6.4})[0] == \
-        "clutch locks at 1.821 s, 13.23 kJ of heat"
+    names = output_names({"clutch": {}})
+    summary = {"lockup_time": 1.821, "slip_energy": 13230.0, "slip_duration": 6.4}
+    said = headline({**summary, "events": events}, names)
+    assert said[0] == "clutch locks at 1.821 s, lets go 2.500 s, locks 4.900 s, 13.23 kJ of heat"
+    assert headline(summary, names)[0] == "clutch first locks at 1.821 s, 13.23 kJ of heat"
+    assert headline(summary) == []  # without its names table: no part of the hoist's names is a coupling's
 
 
 def test_a_long_title_is_wrapped_between_clutches_and_stays_above_the_panels():
@@ -199,7 +204,7 @@ def test_each_clutch_torque_against_its_capacity_and_every_clutchs_heat():
     for name in ("low", "high", "third"):
         legend = [t.get_text() for t in panels[f"{name}\ntorque [N*m]"].get_legend().get_texts()]
         # the capacity's other side only where the torque goes there
-        assert legend == ["torque", "static capacity"] + (["- static capacity"] if name == "low" else [])
+        assert legend == ["transmitted", "static capacity"] + (["- static capacity"] if name == "low" else [])
     heat = panels["clutch heat [kJ]\n(so far)"]
     assert [t.get_text() for t in heat.get_legend().get_texts()] == ["low", "high", "third"]
     assert max(np.max(line.get_ydata()) for line in heat.get_lines()) == pytest.approx(1.5)  # kJ
@@ -234,7 +239,7 @@ def test_the_summary_legend_shows_the_markers_it_draws():
 
     rows = [{"label": str(i), "lockup_time": np.nan if i < 2 else 0.5, "slip_duration": 0.5, "slip_energy": 1.0,
              "peak_clutch_torque": 1.0} for i in range(5)]
-    fig = summary_figure(rows, ("clutch.engagement_force", np.arange(5.0), "N"), plt, "demo")
+    fig = summary_figure(rows, ("clutch.engagement_force", np.arange(5.0), "N"), plt, "demo", {"clutch": {}})
     legend = fig.legends[0]
     index = [t.get_text() for t in legend.get_texts()].index("never locks (2 of 5 runs)")
     from matplotlib.lines import Line2D

@@ -110,6 +110,36 @@ def test_a_hoist_and_the_drivetrain_it_stands_for_are_one_program():
     assert renamed["slip_speed"] == "clutch_slip"
 
 
+def test_the_hoists_clutch_and_its_drawn_twins_are_drawn_alike_by_one_display():
+    """One display draws every friction coupling: the hoist's clutch, read back under the names its file keeps
+    (slip_speed, lockup_time), and the same clutch in the drivetrain the hoist stands for get the same panels of
+    the same numbers, the same shading and the same story (the slip in rpm beside the hoist's speeds, in rad/s
+    beside a drawn drivetrain's)."""
+    from hoistsim.display.friction_clutch import FRICTION_CLUTCH
+    from hoistsim.figures.read_back import prepared
+    from hoistsim.results.run_dicts import run_dicts
+
+    # pressed a little less than a start without slip needs: it slips, and at 0.1 kinetic friction never locks
+    hoist = load_scenario(SCENARIOS / "exercise6_direct_start.yaml", overrides=["clutch.engagement_force=2580 N"])
+    data, _ = hoist_as_drivetrain(hoist)
+    runs = [prepared(run_dicts([simulate(scenario)])[0]) for scenario in (hoist, scenario_from_dict(data))]
+    panels = [FRICTION_CLUTCH.panels_of(run) for run in runs]
+    assert [p.name for p in panels[0]] == [p.name for p in panels[1]] == ["clutch_slips", "clutch_torque",
+                                                                           "clutch_heats"]
+    for ours, theirs in zip(*panels):
+        assert [t.label for t in ours.traces] == [t.label for t in theirs.traces]
+        for trace, twin in zip(ours.traces, theirs.traces):
+            mine, other = trace.of(runs[0]), twin.of(runs[1])
+            assert (mine is None) == (other is None)
+            if mine is not None:
+                np.testing.assert_allclose(mine, other, rtol=1e-9, atol=1e-9 * np.max(np.abs(other)))
+    assert panels[0][0].ylabel.startswith("clutch slip [rpm]") and panels[1][0].ylabel.startswith("clutch slip [rad")
+    assert [p.label for p in FRICTION_CLUTCH.shading_of(runs[0])] == ["clutch open", "clutch locked"]
+    assert FRICTION_CLUTCH.shading_of(runs[0]) == FRICTION_CLUTCH.shading_of(runs[1])
+    said = [FRICTION_CLUTCH.headline({**run["attrs"], "events": run["events"]}) for run in runs]
+    assert said[0] == said[1] and said[0].startswith("clutch never locks (") and "kJ of heat" in said[0]
+
+
 def test_a_ratchet_drawn_by_the_hoist_holds_as_a_drawn_one():
     """A ratchet (no shipped scenario has one) on the hoist and on its drawing: the same run."""
     base = load_scenario(SCENARIOS / "exercise6_direct_start.yaml")

@@ -87,7 +87,7 @@ def test_the_figures_title_tells_a_bearing_frictions_story_by_its_summarys_names
 
     layout = Layout(machine_elements(_one_shaft_with_a_bearing_friction()))
     summary = {name: 0.25 for name in layout.summaries} | {"bearing_slip_energy": 3.0}
-    assert FRICTION_CLUTCH.headline(summary) == "bearing never locks, 3 J of heat"
+    assert FRICTION_CLUTCH.headline(summary) == "bearing never locks (3 J of heat up to the end)"
 
 
 def test_an_output_named_both_a_series_and_a_summary_is_refused():
