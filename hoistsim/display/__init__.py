@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from .bearings import DRUM_SHAFT_LOADS
 from .clutch_heating import CLUTCH_HEATING
+from .dc_machine import DC_MACHINE
 from .eddy_current_brake import EDDY_CURRENT_BRAKE
 from .friction_brake import FRICTION_BRAKE
 from .friction_clutch import FRICTION_CLUTCH
@@ -26,11 +27,13 @@ from .ratchet import RATCHET
 from .rope import ROPE
 from .shaft import SHAFT
 from .shaft_torque import SHAFT_TORQUE
+from .speed_controller import SPEED_CONTROLLER
 from .spring_damper import SPRING_DAMPER
 
 DISPLAYS: tuple[Display, ...] = (MOTOR, GEAR_PAIR, MESH_FRICTION, FRICTION_CLUTCH, CLUTCH_HEATING, LOAD, ROPE,
                                  GROUND, HOLDING_BRAKE, FRICTION_BRAKE, RATCHET, DRUM_SHAFT_LOADS, PERIODIC_REGIME,
-                                 SHAFT, SHAFT_TORQUE, LINKAGE, SPRING_DAMPER, EDDY_CURRENT_BRAKE)
+                                 SHAFT, SHAFT_TORQUE, DC_MACHINE, SPEED_CONTROLLER,
+                                 LINKAGE, SPRING_DAMPER, EDDY_CURRENT_BRAKE)
 
 
 def headline(summary: dict, names: dict | None = None) -> list[str]:

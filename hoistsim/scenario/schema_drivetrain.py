@@ -25,6 +25,7 @@ from .schema_bearing_friction import BearingFrictionSpec
 from .schema_gear_groups import beyond_stage, gear_groups
 from .schema_drawn_clutches import FrictionClutchSpec, OneWayClutchSpec
 from .schema_spring import SpringSpec
+from .schema_drive import DRIVE_PARTS, DcMachineSpec, SpeedControllerSpec, check_drive_parts
 from .schema_speed_torques import SPEED_PARTS, EddyCurrentBrakeSpec, HeatCapacitorSpec, SpeedLaws, check_speed_parts
 from .schema_linkage import PlanetarySpec, check_linkages, start_speeds
 from .schema_shaft_parts import (SHAFT_PARTS, BrakeOnShaftSpec, OnShaft, RatchetOnShaftSpec, RotorSpec,
@@ -180,6 +181,8 @@ class DrivetrainSpec(Section):
     load: LoadOnShaftSpec | None = None
     eddy_current_brakes: dict[str, EddyCurrentBrakeSpec] = {}
     heat_capacitors: dict[str, HeatCapacitorSpec] = {}
+    dc_machines: dict[str, DcMachineSpec] = {}
+    speed_controllers: dict[str, SpeedControllerSpec] = {}
 
     @model_validator(mode="before")
     @classmethod
@@ -190,7 +193,7 @@ class DrivetrainSpec(Section):
             return data
         data = dict(data)
         for kind in ("shafts", "clutches", "one_way_clutches", "bearing_frictions", "springs", "gears", "motors",
-                     *SHAFT_PARTS, *SPEED_PARTS, "planetaries"):
+                     *SHAFT_PARTS, *SPEED_PARTS, *DRIVE_PARTS, "planetaries"):
             parts = data.get(kind)
             if not isinstance(parts, dict):
                 continue
@@ -309,7 +312,9 @@ class DrivetrainSpec(Section):
                     raise ScenarioError(f"drivetrain.gears.{name}.between", f"gears shaft {shafts[0]!r} to itself")
         if self.load is not None and self.load.shaft not in self.shafts:
             raise ScenarioError("drivetrain.load.shaft", f"there is no shaft {self.load.shaft!r} (shafts: {known})")
-        check_speed_parts(self, set(seen), lambda name: bool(_NAME.match(name)) and name != GROUND)
+        taken = set(seen)
+        check_speed_parts(self, taken, lambda name: bool(_NAME.match(name)) and name != GROUND)
+        check_drive_parts(self, taken, lambda name: bool(_NAME.match(name)) and name != GROUND)
         check_linkages(self, seen)
 
     def _speeds_agree(self, groups, speeds):

@@ -8,36 +8,14 @@ checked with their parts in tests/machine/test_springs.py; CoupledClutches here,
 
 from __future__ import annotations
 
-import csv
-
 import numpy as np
 import pytest
-from helpers import SCENARIOS, TESTS
+from helpers import SCENARIOS
+from modelica_reference import deviations
+from modelica_reference import events as _events
+from modelica_reference import reference as _reference
 
 from hoistsim import load_scenario, simulate
-
-
-def _reference(example: str):
-    with (TESTS / "data" / "modelica" / f"{example}.csv").open() as f:
-        rows = list(csv.reader(f))
-    table = np.asarray([[float(v) for v in row] for row in rows[1:]])
-    return {name: table[:, i] for i, name in enumerate(rows[0])}
-
-
-def _events(times):
-    """The reference's event instants: the times it repeats."""
-    return np.unique(times[1:][np.diff(times) == 0.0])
-
-
-def deviations(run, example: str, ours: dict) -> dict:
-    """Each comparison signal's worst deviation from the reference, over its range, at every reference row more
-    than 1 ms from a reference event (``ours``: signal -> our series on the run's rows)."""
-    reference = _reference(example)
-    times = reference["time"]
-    events = _events(times)
-    far = np.min(np.abs(times[:, None] - events[None, :]), axis=1) > 1e-3 if len(events) else np.ones(times.shape, bool)
-    return {signal: float(np.max(np.abs(np.interp(times, run.time, series) - reference[signal])[far])
-                          / np.ptp(reference[signal])) for signal, series in ours.items()}
 
 
 def mode_changes(example: str, element: str) -> np.ndarray:

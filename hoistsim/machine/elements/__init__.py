@@ -17,6 +17,7 @@ from .bearing_friction import BearingFriction as BearingFriction
 from .bearings import DrumShaftLoads as DrumShaftLoads
 from .clutch_heating import ClutchHeating as ClutchHeating
 from .constant_torque_motor import ConstantTorqueMotor as ConstantTorqueMotor
+from .dc_machine import DcMachine as DcMachine
 from .eddy_current_brake import EddyCurrentBrake as EddyCurrentBrake
 from .elastic_load import ElasticLoad as ElasticLoad
 from .elasto_backlash import ElastoBacklash as ElastoBacklash
@@ -46,6 +47,7 @@ from .rope import Rope as Rope
 from .shaft import Shaft as Shaft
 from .shaft_torque import ShaftTorque as ShaftTorque
 from .slider_crank import SliderCrank as SliderCrank
+from .speed_controller import SpeedController as SpeedController
 from .speed_table_torque import SpeedTableTorque as SpeedTableTorque
 from .spring_damper import SpringDamper as SpringDamper
 from .wire_rope import WireRope as WireRope
@@ -62,6 +64,8 @@ REGISTRY: dict[str, object] = {
     "drivetrain.slider_cranks.*": SliderCrank,
     "drivetrain.motors.*": Motor,
     "drivetrain.motors.*.ripple": MotorRipple,
+    "drivetrain.dc_machines.*": DcMachine,
+    "drivetrain.speed_controllers.*": SpeedController,
     "drivetrain.torques.*": {"time": ShaftTorque, "speed_table": SpeedTableTorque, "quadratic": QuadraticTorque},
     # linkages of three shafts, before the friction couplings: where stuck couplings hold one motion twice,
     # the first in order takes the torque, and these hold any

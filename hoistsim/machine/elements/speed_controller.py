@@ -1,0 +1,173 @@
+"""A speed controller driving a shaft of a drawn drivetrain with a torque (Modelica's LimPID)."""
+
+from __future__ import annotations
+
+import jax.numpy as jnp
+
+from ..._pytree import static
+from ..core.element import AbstractElement
+from ._signal import signal_at, signal_fields, signal_tables
+
+
+class SpeedController(AbstractElement):
+    """Modelica's LimPID on a speed: the error e = r - w of the measured shaft's speed w from the reference r (a
+    signal of time), the unlimited output v = k (w_p r - w + I + D) and the torque y = v limited to [y_min,
+    y_max] on the shaft it drives.  The integral's state I' = (e + (y - v) / (k N_i)) / T_i (its anti-windup:
+    what the limits cut off flows back with the time constant N_i T_i); the derivative part D = N_d (u - z) of
+    u = w_d r - w, filtered by the state z' = N_d (u - z) / T_d.  A controller without T_i has no integral, one
+    with T_d = 0 no derivative (neither state exists).
+
+    The limiter's two corners (v through y_max or y_min) are located as a switch is, and recorded as the events
+    ``<name>_saturate`` (v reaches a limit) and ``<name>_desaturate`` (it comes back within); the time it spends
+    at a limit is the summary's ``<name>_saturated_time``.  The torque's work on the shaft
+    it drives is a state and the ledger's work.
+    """
+
+
+    gain: object  # k, N*m*s/rad
+    integral_time: object  # T_i, s (a placeholder where it has no integral)
+    derivative_time: object  # T_d, s
+    max_torque: object  # y_max, N*m
+    min_torque: object  # y_min, N*m
+    anti_windup: object  # N_i
+    derivative_filter: object  # N_d
+    setpoint_weight: object  # w_p
+    derivative_setpoint_weight: object  # w_d
+    start_integral: object  # I at t = 0
+    start_filter: object  # z at t = 0: the derivative part's input there (it starts at rest)
+    reference_times: object  # s
+    reference_values: object  # rad/s
+    reference_amplitudes: object
+    reference_frequencies: object  # Hz
+    reference_phases: object  # rad
+    reference_envelope_times: object = None
+    reference_envelope_values: object = None
+    measures: str = static("")
+    drives: str = static("")
+    has_integral: bool = static(True)
+    has_derivative: bool = static(False)
+    section: str = static("")  # its key in drivetrain.speed_controllers
+
+    @classmethod
+    def from_spec(cls, spec) -> "SpeedController":
+        speed, reference = spec.resolved("start_speed"), spec.resolved("start_reference")
+        filtered = spec.derivative_setpoint_weight * reference - speed  # the derivative part at rest: D = 0
+        proportional = spec.setpoint_weight * reference - speed
+        integral = spec.integral if spec.output is None else spec.output / spec.gain - proportional
+        return cls(gain=spec.gain, integral_time=1.0 if spec.integral_time is None else spec.integral_time,
+                   derivative_time=spec.derivative_time, max_torque=spec.max_torque,
+                   min_torque=spec.lowest_torque(), anti_windup=spec.anti_windup,
+                   derivative_filter=spec.derivative_filter, setpoint_weight=spec.setpoint_weight,
+                   derivative_setpoint_weight=spec.derivative_setpoint_weight, start_integral=integral,
+                   start_filter=filtered, **signal_fields(spec.reference, "reference"), measures=spec.measures,
+                   drives=spec.drives or spec.measures, has_integral=spec.integral_time is not None,
+                   has_derivative=spec.derivative_time > 0.0, section=spec.name)
+
+    @property
+    def integral_state(self) -> str:
+        return f"{self.section}_integral"
+
+    @property
+    def filter_state(self) -> str:
+        return f"{self.section}_derivative_filter"
+
+    @property
+    def work_state(self) -> str:
+        return f"{self.section}_work"
+
+    @property
+    def observation_kinds(self) -> tuple:
+        return (f"{self.section}_upper_limit", f"{self.section}_lower_limit")
+
+    @property
+    def crossings(self) -> tuple:
+        return self.observation_kinds
+
+    @property
+    def crossing_events(self) -> dict:
+        events = (f"{self.section}_desaturate", f"{self.section}_saturate")  # rising (back within), falling
+        return {kind: events for kind in self.observation_kinds}
+
+    @property
+    def summaries(self) -> dict:
+        return {f"{self.section}_saturated_time": "s"}
+
+    @property
+    def ledger_kinds(self) -> dict:
+        return {self.work_state: "work"}
+
+    @property
+    def columns(self) -> dict:
+        name = self.section
+        out = {f"{name}_reference": ("rad/s", f"the speed controller {name} asks of shaft {self.measures}"),
+               f"{name}_error": ("rad/s", f"reference less the speed of shaft {self.measures}"),
+               f"{name}_output": ("N*m", f"torque controller {name} drives shaft {self.drives} with, within its "
+                                         "limits")}
+        if self.has_integral:
+            out[f"{name}_integral"] = ("rad/s", f"the state of controller {name}'s integral part (Modelica's I.y)")
+        return out
+
+    def tables(self) -> dict:
+        return signal_tables(self, "reference")
+
+    def reference(self, x):
+        return signal_at(self, x, "reference")
+
+    def _parts(self, x):
+        """(the error, the unlimited output v, the derivative filter's input u) at the instant."""
+        reference, speed = self.reference(x), x.speed(self.measures)
+        proportional = self.setpoint_weight * reference - speed
+        integral = x.state(self.integral_state) if self.has_integral else 0.0
+        filtered = self.derivative_setpoint_weight * reference - speed
+        derivative = (self.derivative_filter * (filtered - x.state(self.filter_state)) if self.has_derivative
+                      else 0.0)
+        return reference - speed, self.gain * (proportional + integral + derivative), filtered
+
+    def output(self, x):
+        """y, N*m: the unlimited output held within the limits."""
+        return jnp.clip(self._parts(x)[1], self.min_torque, self.max_torque)
+
+    def torques(self, x) -> tuple:
+        return ((self.drives, self.output(x)),)
+
+    def states(self) -> dict:
+        out = {self.work_state: 0.0}
+        if self.has_integral:
+            out[self.integral_state] = self.start_integral
+        if self.has_derivative:
+            out[self.filter_state] = self.start_filter
+        return out
+
+    def rates(self, x) -> dict:
+        error, unlimited, filtered = self._parts(x)
+        output = jnp.clip(unlimited, self.min_torque, self.max_torque)
+        out = {self.work_state: output * x.speed(self.drives)}
+        if self.has_integral:
+            out[self.integral_state] = (error + (output - unlimited) / (self.gain * self.anti_windup)) \
+                / self.integral_time
+        if self.has_derivative:
+            out[self.filter_state] = self.derivative_filter * (filtered - x.state(self.filter_state)) \
+                / self.derivative_time
+        return out
+
+    def observations(self, x) -> dict:
+        unlimited = self._parts(x)[1]
+        upper, lower = self.observation_kinds
+        return {upper: self.max_torque - unlimited, lower: unlimited - self.min_torque}
+
+    def extremes(self, x) -> dict:
+        unlimited = self._parts(x)[1]
+        saturated = (unlimited >= self.max_torque) | (unlimited <= self.min_torque)
+        return {f"{self.section}_saturated_time": ("duration", saturated)}
+
+    def ledger(self, x) -> dict:
+        return {self.work_state: x.state(self.work_state)}
+
+    def outputs(self, x) -> dict:
+        name = self.section
+        error, unlimited, _ = self._parts(x)
+        out = {f"{name}_reference": self.reference(x), f"{name}_error": error,
+               f"{name}_output": jnp.clip(unlimited, self.min_torque, self.max_torque)}
+        if self.has_integral:
+            out[f"{name}_integral"] = x.state(self.integral_state)
+        return out

@@ -1,0 +1,154 @@
+"""The schema of a drive's parts with dynamics of their own (values in SI): a permanent-magnet DC machine
+(Modelica's DC_PermanentMagnet), its armature supplied with a voltage given as a signal of time, and a speed
+controller (Modelica's LimPID) driving a shaft with a torque.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from pydantic import Field, model_validator
+
+from ..errors import ScenarioError
+from . import units as u
+from .schema_base import Section
+from .signals import signal
+from .units import Dimension, Text
+
+SPEED_GAIN = Dimension("torque per speed", "N*m*s/rad", "'100 N*m*s/rad'", radians=-1)  # a controller's gain
+VOLTAGE = Dimension("voltage", "V", "'400 V'")
+CURRENT = Dimension("current", "A", "'100 A'")
+RESISTANCE = Dimension("resistance", "ohm", "'0.05 ohm'")
+INDUCTANCE = Dimension("inductance", "H", "'1.5 mH'")
+# a DC machine's flux constant: volts per rad/s of its speed, newton metres per ampere of its current
+FLUX = Dimension("flux constant", "V*s", "'0.6366 V*s'")
+
+DRIVE_PARTS = ("dc_machines", "speed_controllers")  # the drivetrain's keys of these kinds
+
+
+class NominalPointSpec(Section):
+    """A DC machine's nameplate: its armature voltage, current and speed at the nominal point, where the
+    induced voltage, voltage less the resistance's drop, is the flux constant times the speed."""
+
+    voltage: u.quantity(VOLTAGE, gt=0.0) = Field(description="the armature voltage at the nominal point")
+    current: u.quantity(CURRENT, gt=0.0) = Field(description="the armature current at the nominal point")
+    speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) = Field(description="the speed at the nominal point")
+
+
+class DcMachineSpec(Section):
+    """A permanent-magnet DC machine on a shaft (Modelica's DC_PermanentMagnet without its losses beyond the
+    armature's resistance): its armature circuit L di/dt = v - R i - k w, its air-gap torque k i on the shaft, v
+    the armature voltage (a signal of time), w the shaft's speed and k the flux constant, given or from the
+    nameplate (``nominal``: k = (V_n - R I_n) / w_n).  Its outputs: ``<name>_current`` (A), ``<name>_voltage`` (V),
+    ``<name>_torque`` (N*m, the air gap's on its shaft), ``<name>_power`` (W, electrical, in); its summary
+    ``<name>_peak_current`` (A)."""
+
+    alternatives = (("flux_constant", "nominal"),)
+    shaft: Text = Field(description="the shaft its rotor turns with")
+    armature_resistance: u.quantity(RESISTANCE, ge=0.0) = Field(description="R, the armature's resistance")
+    armature_inductance: u.quantity(INDUCTANCE, gt=0.0) = Field(description="L, the armature's inductance")
+    flux_constant: u.quantity(FLUX, gt=0.0) | None = Field(None, description="k: the induced voltage per rad/s, "
+                                                             "the torque per ampere")
+    nominal: NominalPointSpec | None = Field(None, description="the nameplate the flux constant is found from")
+    rotor_inertia: u.quantity(u.INERTIA, ge=0.0) = Field(0.0, description="the rotor's, on its shaft")
+    voltage: signal(VOLTAGE) = Field(description="v, the armature voltage: a signal of time")
+    current: u.quantity(CURRENT) = Field(0.0, description="the armature current at the start")
+    name: str = Field("", exclude=True)  # its key in drivetrain.dc_machines (set there, never written)
+
+    @model_validator(mode="after")
+    def _flux_given_once(self):
+        if (self.flux_constant is None) == (self.nominal is None):
+            raise ScenarioError(".flux_constant", "give either flux_constant (V*s) or nominal (voltage, current "
+                                "and speed at the nameplate's point), one of the two")
+        if self.nominal is not None and self.nominal.voltage <= self.armature_resistance * self.nominal.current:
+            raise ScenarioError(".nominal.voltage", f"{self.nominal.voltage:g} V is no more than the armature "
+                                f"resistance's drop at the nominal current, {self.armature_resistance:g} ohm x "
+                                f"{self.nominal.current:g} A: the machine would induce no voltage")
+        return self
+
+    def flux(self) -> float:
+        """k, V*s: given, or the nameplate's induced voltage over its speed."""
+        if self.flux_constant is not None:
+            return self.flux_constant
+        point = self.nominal
+        return (point.voltage - self.armature_resistance * point.current) / point.speed
+
+
+class SpeedControllerSpec(Section):
+    """A speed controller (Modelica's LimPID, a PI or PID controller): it measures a shaft's speed w against a
+    reference r (a signal of time) and drives a shaft with the torque y = limited(k (w_p r - w + I + D)), the
+    integral I' = (r - w + (y - v) / (k N_i)) / T_i taking back what the limits cut off of v = k (...) (its
+    anti-windup), D the derivative part of w_d r - w filtered with T_d / N_d.  The limits' corners are kinks the
+    run locates.  Its outputs: ``<name>_reference`` (rad/s), ``<name>_error`` (r - w, rad/s), ``<name>_integral``
+    (I, rad/s: Modelica's I.y), ``<name>_output`` (y, N*m)."""
+
+    alternatives = (("output", "integral"),)
+    measures: Text = Field(description="the shaft whose speed it controls")
+    drives: Text | None = Field(None, description="the shaft its torque drives (default: the one it measures)")
+    reference: signal(u.ANGULAR_SPEED) = Field(description="r, the speed it is asked for: a signal of time")
+    gain: u.quantity(SPEED_GAIN, gt=0.0) = Field(description="k, the torque per rad/s of error")
+    integral_time: u.quantity(u.TIME, gt=0.0) | None = Field(None, description="T_i (none: no integral part, a P "
+                                                             "or PD controller)")
+    derivative_time: u.quantity(u.TIME, ge=0.0) = Field(0.0, description="T_d (0: no derivative part)")
+    max_torque: u.quantity(u.TORQUE) = Field(description="y_max, the most it drives with")
+    min_torque: u.quantity(u.TORQUE) | None = Field(None, description="y_min (default -max_torque)")
+    anti_windup: u.quantity(u.DIMENSIONLESS, gt=0.0) = Field(0.9, description="N_i: N_i T_i is the time "
+                                                             "constant of the anti-windup")
+    derivative_filter: u.quantity(u.DIMENSIONLESS, gt=0.0) = Field(10.0, description="N_d: the higher, the "
+                                                                   "more ideal the derivative")
+    setpoint_weight: u.quantity(u.DIMENSIONLESS, ge=0.0) = Field(1.0, description="w_p, the reference's weight "
+                                                                 "in the proportional part")
+    derivative_setpoint_weight: u.quantity(u.DIMENSIONLESS, ge=0.0) = Field(0.0, description="w_d, in the "
+                                                                            "derivative part")
+    output: u.quantity(u.TORQUE) | None = Field(None, description="y at the start, the integral set to give it "
+                                                "(Modelica's steady state: the torque that holds the machine)")
+    integral: u.quantity(u.ANGULAR_SPEED) = Field(0.0, description="I at the start (Modelica's xi_start)")
+    name: str = Field("", exclude=True)  # its key in drivetrain.speed_controllers (set there, never written)
+
+    @model_validator(mode="after")
+    def _limits_and_start(self):
+        if self.lowest_torque() >= self.max_torque:
+            raise ScenarioError(".min_torque" if self.min_torque is not None else ".max_torque",
+                                f"the limits must leave room: y_min {self.lowest_torque():g} N*m is not below y_max "
+                                f"{self.max_torque:g} N*m")
+        if self.output is not None and "integral" in self.model_fields_set:
+            raise ScenarioError(".output", "give either output (y at the start) or integral (I at the start), "
+                                "not both")
+        if self.output is not None and not self.lowest_torque() <= self.output <= self.max_torque:
+            raise ScenarioError(".output", f"{self.output:g} N*m is outside the limits [{self.lowest_torque():g}, "
+                                f"{self.max_torque:g}] N*m")
+        if self.output is not None and self.integral_time is None:
+            raise ScenarioError(".output", "a controller without an integral part (no integral_time) has no state "
+                                "to start at an output")
+        return self
+
+    def lowest_torque(self) -> float:
+        return -self.max_torque if self.min_torque is None else self.min_torque
+
+    def lowered(self, scenario) -> "SpeedControllerSpec":
+        """With its measured shaft's speed at the start written in (rad/s), and the reference's there."""
+        shaft = scenario.drivetrain.shafts[self.measures]
+        signal_ = self.reference
+        harmonics = sum(a * math.sin(p) for a, p in zip(signal_.amplitudes, signal_.phases))
+        if signal_.envelope_times is not None:
+            harmonics *= float(np.interp(0.0, signal_.envelope_times, signal_.envelope_values))
+        return self.with_resolved(start_speed=shaft.train(scenario)[2],
+                                  start_reference=float(np.interp(0.0, signal_.times, signal_.values)) + harmonics)
+
+
+def check_drive_parts(drivetrain, names_taken: set, is_name) -> None:
+    """Each machine and controller names shafts there are; names are words (``is_name``) not taken by another
+    part."""
+    for kind in DRIVE_PARTS:
+        for name, part in getattr(drivetrain, kind).items():
+            if not is_name(name) or name in names_taken:
+                raise ScenarioError(f"drivetrain.{kind}.{name}", "a name is a word of letters, digits and "
+                                    "underscores starting with a letter, not 'ground' and not the name of "
+                                    "another part (they name the outputs)")
+            names_taken.add(name)
+            for key in ("shaft", "measures", "drives"):
+                shaft = getattr(part, key, None)
+                if shaft is not None and shaft not in drivetrain.shafts:
+                    raise ScenarioError(f"drivetrain.{kind}.{name}.{key}", f"there is no shaft {shaft!r} "
+                                        f"(shafts: {', '.join(drivetrain.shafts)})")
