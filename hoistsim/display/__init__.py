@@ -16,6 +16,7 @@ from .friction_clutch import FRICTION_CLUTCH
 from .gear_pair import GEAR_PAIR
 from .ground import GROUND
 from .holding_brake import HOLDING_BRAKE
+from .induction_machine import INDUCTION_MACHINE
 from .linkage import LINKAGE
 from .load import LOAD
 from .mesh_friction import MESH_FRICTION
@@ -32,7 +33,7 @@ from .spring_damper import SPRING_DAMPER
 
 DISPLAYS: tuple[Display, ...] = (MOTOR, GEAR_PAIR, MESH_FRICTION, FRICTION_CLUTCH, CLUTCH_HEATING, LOAD, ROPE,
                                  GROUND, HOLDING_BRAKE, FRICTION_BRAKE, RATCHET, DRUM_SHAFT_LOADS, PERIODIC_REGIME,
-                                 SHAFT, SHAFT_TORQUE, DC_MACHINE, SPEED_CONTROLLER,
+                                 SHAFT, SHAFT_TORQUE, DC_MACHINE, INDUCTION_MACHINE, SPEED_CONTROLLER,
                                  LINKAGE, SPRING_DAMPER, EDDY_CURRENT_BRAKE)
 
 

@@ -6,6 +6,7 @@ controller (Modelica's LimPID) driving a shaft with a torque.
 from __future__ import annotations
 
 import math
+from typing import Literal
 
 import numpy as np
 from pydantic import Field, model_validator
@@ -24,7 +25,7 @@ INDUCTANCE = Dimension("inductance", "H", "'1.5 mH'")
 # a DC machine's flux constant: volts per rad/s of its speed, newton metres per ampere of its current
 FLUX = Dimension("flux constant", "V*s", "'0.6366 V*s'")
 
-DRIVE_PARTS = ("dc_machines", "speed_controllers")  # the drivetrain's keys of these kinds
+DRIVE_PARTS = ("dc_machines", "induction_machines", "speed_controllers")  # the drivetrain's keys of these kinds
 
 
 class NominalPointSpec(Section):
@@ -73,6 +74,65 @@ class DcMachineSpec(Section):
             return self.flux_constant
         point = self.nominal
         return (point.voltage - self.armature_resistance * point.current) / point.speed
+
+
+class SupplySpec(Section):
+    """An induction machine's three-phase supply: its line voltage (RMS) and frequency, each a signal of time (a
+    voltage/frequency inverter ramps both; the mains holds them), switched on at ``on_at``, phase 1's voltage
+    sqrt(2) V sin(phase + the angle its frequency has turned since t = 0).  The windings connected in star (each
+    sees V / sqrt(3)), in delta (each sees V, 30 degrees ahead), or in star then delta (``delta_at``): a
+    star-delta starter."""
+
+    voltage: signal(VOLTAGE) = Field(description="V, the line-to-line voltage (RMS)")
+    frequency: signal(u.FREQUENCY) = Field(description="f, its frequency")
+    connection: Literal["star", "delta", "star_delta"] = Field("delta", description="how the windings are "
+                                                             "connected to it")
+    delta_at: u.quantity(u.TIME, gt=0.0) | None = Field(None, description="star_delta: when it switches from star "
+                                                        "to delta")
+    on_at: u.quantity(u.TIME, ge=0.0) = Field(0.0, description="when it is switched on (before: no voltage, no "
+                                              "current)")
+    phase: u.quantity(u.ANGLE) = Field(0.0, description="phase 1's voltage's phase at t = 0")
+
+    @model_validator(mode="after")
+    def _delta_at_with_star_delta(self):
+        if (self.connection == "star_delta") != (self.delta_at is not None):
+            raise ScenarioError(".delta_at", "a star-delta starter (connection: star_delta) switches at delta_at; "
+                                "give delta_at with it, and only with it")
+        if self.delta_at is not None and self.delta_at <= self.on_at:
+            raise ScenarioError(".delta_at", f"{self.delta_at:g} s is not after the supply is switched on "
+                                f"(on_at {self.on_at:g} s)")
+        return self
+
+
+class InductionMachineSpec(Section):
+    """A squirrel-cage induction machine on a shaft (Modelica's IM_SquirrelCage, three phases, its space-phasor
+    model in the stator's frame, no losses beyond its resistances): the stator's and the rotor's flux linkages
+    are its states, psi_s' = v_s - R_s i_s and psi_r' = -R_r i_r + j p w psi_r, psi_s = (L_ss + L_m) i_s +
+    L_m i_r, psi_r = L_m i_s + (L_rs + L_m) i_r, its air-gap torque 3/2 p Im(conj(psi_s) i_s).  Its outputs:
+    ``<name>_current`` (A, the stator current's space-phasor magnitude: a phase current's amplitude),
+    ``<name>_torque`` (N*m, the air gap's on its shaft), ``<name>_power`` (W, electrical, in),
+    ``<name>_voltage`` (V, the winding voltage's space-phasor magnitude)."""
+
+    shaft: Text = Field(description="the shaft its rotor turns with")
+    pole_pairs: u.whole("pole pairs") = Field(2, description="p")
+    stator_resistance: u.quantity(RESISTANCE, ge=0.0) = Field(description="R_s, a phase's")
+    stator_leakage: u.quantity(INDUCTANCE, ge=0.0) = Field(description="L_ss, a phase's stray inductance")
+    main_inductance: u.quantity(INDUCTANCE, gt=0.0) = Field(description="L_m, the main field's, a phase's")
+    rotor_leakage: u.quantity(INDUCTANCE, ge=0.0) = Field(description="L_rs, the rotor's stray inductance (its "
+                                                          "equivalent three-phase winding's)")
+    rotor_resistance: u.quantity(RESISTANCE, gt=0.0) = Field(description="R_r, the rotor's (the same winding's)")
+    rotor_inertia: u.quantity(u.INERTIA, ge=0.0) = Field(0.0, description="the rotor's, on its shaft")
+    supply: SupplySpec = Field(description="the three-phase supply its stator is connected to")
+    name: str = Field("", exclude=True)  # its key in drivetrain.induction_machines (set there, never written)
+
+    @model_validator(mode="after")
+    def _physical(self):
+        for key in ("stator_leakage", "rotor_leakage"):
+            if getattr(self, key) >= self.main_inductance:
+                raise ScenarioError(f".{key}", f"{getattr(self, key):g} H is not less than the main field's "
+                                    f"inductance ({self.main_inductance:g} H): no machine leaks more than its main "
+                                    "field carries")
+        return self
 
 
 class SpeedControllerSpec(Section):

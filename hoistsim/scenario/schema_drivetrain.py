@@ -25,7 +25,8 @@ from .schema_bearing_friction import BearingFrictionSpec
 from .schema_gear_groups import beyond_stage, gear_groups
 from .schema_drawn_clutches import FrictionClutchSpec, OneWayClutchSpec
 from .schema_spring import SpringSpec
-from .schema_drive import DRIVE_PARTS, DcMachineSpec, SpeedControllerSpec, check_drive_parts
+from .schema_drive import (DRIVE_PARTS, DcMachineSpec, InductionMachineSpec, SpeedControllerSpec,
+                           check_drive_parts)
 from .schema_speed_torques import SPEED_PARTS, EddyCurrentBrakeSpec, HeatCapacitorSpec, SpeedLaws, check_speed_parts
 from .schema_linkage import PlanetarySpec, check_linkages, start_speeds
 from .schema_shaft_parts import (SHAFT_PARTS, BrakeOnShaftSpec, OnShaft, RatchetOnShaftSpec, RotorSpec,
@@ -182,6 +183,7 @@ class DrivetrainSpec(Section):
     eddy_current_brakes: dict[str, EddyCurrentBrakeSpec] = {}
     heat_capacitors: dict[str, HeatCapacitorSpec] = {}
     dc_machines: dict[str, DcMachineSpec] = {}
+    induction_machines: dict[str, InductionMachineSpec] = {}
     speed_controllers: dict[str, SpeedControllerSpec] = {}
 
     @model_validator(mode="before")

@@ -28,6 +28,7 @@ from .ground import Ground as Ground
 from .heat_capacitor import HeatCapacitor as HeatCapacitor
 from .holding_brake import HoldingBrake as HoldingBrake
 from .housed_gear import HousedGear as HousedGear
+from .induction_machine import InductionMachine as InductionMachine
 from .level_load import LevelLoad as LevelLoad
 from .linear_motor import LinearMotor as LinearMotor
 from .load_drag import LoadDrag as LoadDrag
@@ -65,6 +66,7 @@ REGISTRY: dict[str, object] = {
     "drivetrain.motors.*": Motor,
     "drivetrain.motors.*.ripple": MotorRipple,
     "drivetrain.dc_machines.*": DcMachine,
+    "drivetrain.induction_machines.*": InductionMachine,
     "drivetrain.speed_controllers.*": SpeedController,
     "drivetrain.torques.*": {"time": ShaftTorque, "speed_table": SpeedTableTorque, "quadratic": QuadraticTorque},
     # linkages of three shafts, before the friction couplings: where stuck couplings hold one motion twice,
