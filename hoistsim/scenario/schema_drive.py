@@ -139,9 +139,11 @@ class SpeedControllerSpec(Section):
     """A speed controller (Modelica's LimPID, a PI or PID controller): it measures a shaft's speed w against a
     reference r (a signal of time) and drives a shaft with the torque y = limited(k (w_p r - w + I + D)), the
     integral I' = (r - w + (y - v) / (k N_i)) / T_i taking back what the limits cut off of v = k (...) (its
-    anti-windup), D the derivative part of w_d r - w filtered with T_d / N_d.  The limits' corners are kinks the
-    run locates.  Its outputs: ``<name>_reference`` (rad/s), ``<name>_error`` (r - w, rad/s), ``<name>_integral``
-    (I, rad/s: Modelica's I.y), ``<name>_output`` (y, N*m)."""
+    anti-windup), D the derivative part of w_d r - w filtered with T_d / N_d; the torque on the shaft follows y
+    through a first-order lag T_c where one is given (the inverter's current loop).  The limits' corners are
+    located as switches are.  Its outputs: ``<name>_reference`` (rad/s), ``<name>_error`` (r - w, rad/s),
+    ``<name>_integral`` (I, rad/s: Modelica's I.y), ``<name>_output`` (y, N*m), ``<name>_torque`` (N*m, on the
+    shaft: y lagged); its summary ``<name>_saturated_time`` (s at a limit)."""
 
     alternatives = (("output", "integral"),)
     measures: Text = Field(description="the shaft whose speed it controls")
@@ -161,6 +163,8 @@ class SpeedControllerSpec(Section):
                                                                  "in the proportional part")
     derivative_setpoint_weight: u.quantity(u.DIMENSIONLESS, ge=0.0) = Field(0.0, description="w_d, in the "
                                                                             "derivative part")
+    torque_lag: u.quantity(u.TIME, ge=0.0) = Field(0.0, description="T_c: the torque follows y as a first-order "
+                                                   "lag (the inverter's current loop; 0: at once)")
     output: u.quantity(u.TORQUE) | None = Field(None, description="y at the start, the integral set to give it "
                                                 "(Modelica's steady state: the torque that holds the machine)")
     integral: u.quantity(u.ANGULAR_SPEED) = Field(0.0, description="I at the start (Modelica's xi_start)")

@@ -59,7 +59,7 @@ def test_it_starts_steady_holding_its_load(pid_controller):
     assert np.max(np.abs(run["PI_output"][before] + 10.0)) < 1e-9
 
 
-def _rigid_loop(derivative_time: float) -> str:
+def _rigid_loop(derivative_time: float, torque_lag: float = 0.0) -> str:
     return f"""
 name: pid-on-an-inertia
 drivetrain:
@@ -75,6 +75,7 @@ drivetrain:
       derivative_filter: 8
       derivative_setpoint_weight: 0.5
       max_torque: 1000 N*m
+      torque_lag: {torque_lag} s
 simulation:
   duration: 1.5 s
   output_interval: 1 ms
@@ -83,14 +84,20 @@ simulation:
 """
 
 
-@pytest.mark.parametrize("derivative_time", [0.0, 0.05])
-def test_a_loop_on_an_inertia_within_its_limits_is_the_matrix_exponential(derivative_time):
-    """J w' = k (r - w + I + D), I' = (r - w) / T_i, D = N_d (w_d r - w - z), z' = N_d (w_d r - w - z) / T_d: with
-    r constant a linear system, its exact solution expm(M t) z0; without D, the error's decay is the roots of
-    s^2 + (k/J) s + k/(J T_i)."""
-    run = simulate(scenario_from_text(_rigid_loop(derivative_time)))
+@pytest.mark.parametrize("derivative_time, torque_lag", [(0.0, 0.0), (0.05, 0.0), (0.0, 0.02)],
+                         ids=["PI", "PID", "PI with a torque lag"])
+def test_a_loop_on_an_inertia_within_its_limits_is_the_matrix_exponential(derivative_time, torque_lag):
+    """J w' = k (r - w + I + D), I' = (r - w) / T_i, D = N_d (w_d r - w - z), z' = N_d (w_d r - w - z) / T_d (and
+    the torque lagging, T_c tau' = y - tau): with r constant a linear system, its exact solution expm(M t) z0;
+    without D, the error's decay is the roots of s^2 + (k/J) s + k/(J T_i)."""
+    run = simulate(scenario_from_text(_rigid_loop(derivative_time, torque_lag)))
     inertia, k, ti, nd, wd, r = 2.0, 40.0, 0.25, 8.0, 0.5, 3.0
-    if derivative_time == 0.0:  # (w, I, 1)
+    if torque_lag > 0.0:  # (w, I, tau, 1): T_c tau' = k (r - w + I) - tau, tau starting at y(0) = k r
+        tc = torque_lag
+        m = np.array([[0.0, 0.0, 1 / inertia, 0.0], [-1 / ti, 0.0, 0.0, r / ti],
+                      [-k / tc, k / tc, -1 / tc, k * r / tc], [0.0, 0.0, 0.0, 0.0]])
+        start = np.array([0.0, 0.0, k * r, 1.0])
+    elif derivative_time == 0.0:  # (w, I, 1)
         m = np.array([[-k / inertia, k / inertia, k * r / inertia], [-1 / ti, 0.0, r / ti], [0.0, 0.0, 0.0]])
         start = np.array([0.0, 0.0, 1.0])
     else:  # (w, I, z, 1), z starting at rest: z0 = w_d r - w0, the derivative part 0
@@ -104,7 +111,9 @@ def test_a_loop_on_an_inertia_within_its_limits_is_the_matrix_exponential(deriva
     np.testing.assert_allclose(run["drive_speed"], exact[:, 0], rtol=0, atol=1e-8 * r)
     np.testing.assert_allclose(run["speed_integral"], exact[:, 1], rtol=0, atol=1e-8 * r)
     assert run.summary["speed_saturated_time"] == 0.0 and run.summary["energy_relative_residual"] < 1e-10
-    if derivative_time == 0.0:
+    if torque_lag > 0.0:
+        np.testing.assert_allclose(run["speed_torque"], exact[:, 2], rtol=0, atol=1e-8 * k * r)
+    elif derivative_time == 0.0:
         roots = np.roots([1.0, k / inertia, k / (inertia * ti)])
         assert sorted(np.linalg.eigvals(m[:2, :2]).real) == pytest.approx(sorted(roots.real), rel=1e-12)
 

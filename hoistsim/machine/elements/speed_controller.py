@@ -19,7 +19,8 @@ class SpeedController(AbstractElement):
 
     The limiter's two corners (v through y_max or y_min) are located as a switch is, and recorded as the events
     ``<name>_saturate`` (v reaches a limit) and ``<name>_desaturate`` (it comes back within); the time it spends
-    at a limit is the summary's ``<name>_saturated_time``.  The torque's work on the shaft
+    at a limit is the summary's ``<name>_saturated_time``.  With a torque lag T_c (the inverter's current loop) the
+    torque on the shaft is a state following y, T_c tau' = y - tau, started at y.  The torque's work on the shaft
     it drives is a state and the ledger's work.
     """
 
@@ -35,6 +36,8 @@ class SpeedController(AbstractElement):
     derivative_setpoint_weight: object  # w_d
     start_integral: object  # I at t = 0
     start_filter: object  # z at t = 0: the derivative part's input there (it starts at rest)
+    torque_lag: object  # T_c, s (a placeholder where it has none)
+    start_output: object  # y at t = 0: the lagged torque's start
     reference_times: object  # s
     reference_values: object  # rad/s
     reference_amplitudes: object
@@ -46,6 +49,7 @@ class SpeedController(AbstractElement):
     drives: str = static("")
     has_integral: bool = static(True)
     has_derivative: bool = static(False)
+    has_lag: bool = static(False)
     section: str = static("")  # its key in drivetrain.speed_controllers
 
     @classmethod
@@ -54,14 +58,17 @@ class SpeedController(AbstractElement):
         filtered = spec.derivative_setpoint_weight * reference - speed  # the derivative part at rest: D = 0
         proportional = spec.setpoint_weight * reference - speed
         integral = spec.integral if spec.output is None else spec.output / spec.gain - proportional
+        output = min(max(spec.gain * (proportional + (integral if spec.integral_time is not None else 0.0)),
+                         spec.lowest_torque()), spec.max_torque)
         return cls(gain=spec.gain, integral_time=1.0 if spec.integral_time is None else spec.integral_time,
                    derivative_time=spec.derivative_time, max_torque=spec.max_torque,
                    min_torque=spec.lowest_torque(), anti_windup=spec.anti_windup,
                    derivative_filter=spec.derivative_filter, setpoint_weight=spec.setpoint_weight,
                    derivative_setpoint_weight=spec.derivative_setpoint_weight, start_integral=integral,
-                   start_filter=filtered, **signal_fields(spec.reference, "reference"), measures=spec.measures,
+                   start_filter=filtered, torque_lag=spec.torque_lag if spec.torque_lag > 0.0 else 1.0,
+                   start_output=output, **signal_fields(spec.reference, "reference"), measures=spec.measures,
                    drives=spec.drives or spec.measures, has_integral=spec.integral_time is not None,
-                   has_derivative=spec.derivative_time > 0.0, section=spec.name)
+                   has_derivative=spec.derivative_time > 0.0, has_lag=spec.torque_lag > 0.0, section=spec.name)
 
     @property
     def integral_state(self) -> str:
@@ -70,6 +77,10 @@ class SpeedController(AbstractElement):
     @property
     def filter_state(self) -> str:
         return f"{self.section}_derivative_filter"
+
+    @property
+    def torque_state(self) -> str:
+        return f"{self.section}_torque"
 
     @property
     def work_state(self) -> str:
@@ -101,8 +112,9 @@ class SpeedController(AbstractElement):
         name = self.section
         out = {f"{name}_reference": ("rad/s", f"the speed controller {name} asks of shaft {self.measures}"),
                f"{name}_error": ("rad/s", f"reference less the speed of shaft {self.measures}"),
-               f"{name}_output": ("N*m", f"torque controller {name} drives shaft {self.drives} with, within its "
-                                         "limits")}
+               f"{name}_output": ("N*m", f"torque controller {name} asks for, within its limits"),
+               f"{name}_torque": ("N*m", f"torque controller {name} drives shaft {self.drives} with (its output, "
+                                         "lagged where it has a torque lag)")}
         if self.has_integral:
             out[f"{name}_integral"] = ("rad/s", f"the state of controller {name}'s integral part (Modelica's I.y)")
         return out
@@ -127,11 +139,17 @@ class SpeedController(AbstractElement):
         """y, N*m: the unlimited output held within the limits."""
         return jnp.clip(self._parts(x)[1], self.min_torque, self.max_torque)
 
+    def torque(self, x):
+        """N*m on the shaft it drives: its output, or the lag's state where it has one."""
+        return x.state(self.torque_state) if self.has_lag else self.output(x)
+
     def torques(self, x) -> tuple:
-        return ((self.drives, self.output(x)),)
+        return ((self.drives, self.torque(x)),)
 
     def states(self) -> dict:
         out = {self.work_state: 0.0}
+        if self.has_lag:
+            out[self.torque_state] = self.start_output
         if self.has_integral:
             out[self.integral_state] = self.start_integral
         if self.has_derivative:
@@ -141,7 +159,9 @@ class SpeedController(AbstractElement):
     def rates(self, x) -> dict:
         error, unlimited, filtered = self._parts(x)
         output = jnp.clip(unlimited, self.min_torque, self.max_torque)
-        out = {self.work_state: output * x.speed(self.drives)}
+        out = {self.work_state: self.torque(x) * x.speed(self.drives)}
+        if self.has_lag:
+            out[self.torque_state] = (output - x.state(self.torque_state)) / self.torque_lag
         if self.has_integral:
             out[self.integral_state] = (error + (output - unlimited) / (self.gain * self.anti_windup)) \
                 / self.integral_time
@@ -167,7 +187,7 @@ class SpeedController(AbstractElement):
         name = self.section
         error, unlimited, _ = self._parts(x)
         out = {f"{name}_reference": self.reference(x), f"{name}_error": error,
-               f"{name}_output": jnp.clip(unlimited, self.min_torque, self.max_torque)}
+               f"{name}_output": jnp.clip(unlimited, self.min_torque, self.max_torque), f"{name}_torque": self.torque(x)}
         if self.has_integral:
             out[f"{name}_integral"] = x.state(self.integral_state)
         return out
