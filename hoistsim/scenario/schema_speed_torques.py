@@ -37,29 +37,44 @@ class QuadraticSpeedSpec(Section):
                                                     "same whichever way it turns")
 
 
+class LinearSpeedSpec(Section):
+    """tau = nominal_torque w / nominal_speed, its direction reversing with the turning (Modelica's
+    LinearSpeedDependentTorque, TorqueDirection = false), or nominal_torque |w| / nominal_speed the same both
+    ways where ``fixed`` (TorqueDirection = true); positive in the shaft's positive sense."""
+
+    nominal_torque: u.quantity(u.TORQUE) = Field(description="tau at nominal_speed (negative: it resists turning "
+                                                 "forwards)")
+    nominal_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) = Field(description="where the torque is nominal_torque")
+    direction: Literal["reverses", "fixed"] = Field("reverses", description="reverses: times w's sign, a damper; "
+                                                    "fixed: the same whichever way it turns")
+
+
 class SpeedLaws(Section):
     """A torque entry's laws of its shaft's speed, each in place of ``torque`` (a signal of time): a table
     ``torque_by_speed`` [[speed, torque], ...] (speeds rising; piecewise linear, held beyond its ends) or
-    ``quadratic``."""
+    ``quadratic`` or ``linear``."""
 
-    alternatives = (("torque", "torque_by_speed", "quadratic"),)
+    alternatives = (("torque", "torque_by_speed", "quadratic", "linear"),)
     torque_by_speed: tables.TorqueSpeedTable | None = Field(None, description="a law of its shaft's speed, "
                                                             "piecewise linear, held beyond its ends")
     quadratic: QuadraticSpeedSpec | None = Field(None, description="tau = nominal_torque (w / nominal_speed)^2")
+    linear: LinearSpeedSpec | None = Field(None, description="tau = nominal_torque w / nominal_speed")
 
     @model_validator(mode="after")
     def _one_law(self):
-        given = [key for key in ("torque", "torque_by_speed", "quadratic") if getattr(self, key) is not None]
+        given = [key for key in ("torque", "torque_by_speed", "quadratic", "linear") if getattr(self, key) is not None]
         if len(given) != 1:
             raise ScenarioError(f".{given[1] if given else 'torque'}", "give one of torque (a signal of time), "
-                                "torque_by_speed (a table [[speed, torque], ...]) or quadratic "
+                                "torque_by_speed (a table [[speed, torque], ...]), quadratic or linear "
                                 "{nominal_torque, nominal_speed}" + (", not both" if given else ""))
         return self
 
     @property
     def characteristic(self) -> str:
-        """Which variant: ``time`` (a signal), ``speed_table`` or ``quadratic``."""
-        return "speed_table" if self.torque_by_speed is not None else "quadratic" if self.quadratic else "time"
+        """Which variant: ``time`` (a signal), ``speed_table``, ``quadratic`` or ``linear``."""
+        if self.torque_by_speed is not None:
+            return "speed_table"
+        return "quadratic" if self.quadratic else "linear" if self.linear else "time"
 
 
 class HeatCapacitorSpec(Section):

@@ -293,3 +293,30 @@ def test_every_knot_a_speed_crosses_is_stepped_over_exactly_even_turning_back_th
     # against 20 % where steps run on past the knots and 28 % where the pair is not moved on past one)
     assert run.stats["rejected_steps"] < 0.15 * run.stats["steps"], run.stats
     _closes(run)
+
+
+# -------------------------------------------------------------------------- a torque linear in the shaft's speed
+
+
+def test_a_linear_torque_that_reverses_is_a_damper_to_the_ground():
+    """tau = -4 N*m w / (10 rad/s) on 2 kg*m^2 from 10 rad/s: w = 10 e^(-0.2 t)."""
+    run = simulate(_drawn("3 s", "10 ms", shafts={"a": {"inertia": "2 kg*m^2", "speed": "10 rad/s"}}, torques=[
+        {"shaft": "a", "linear": {"nominal_torque": "-4 N*m", "nominal_speed": "10 rad/s"}}]))
+    np.testing.assert_allclose(run["a_speed"], 10 * np.exp(-0.2 * run.time), rtol=0, atol=1e-10)
+    np.testing.assert_allclose(run["torque1"], -0.4 * run["a_speed"], rtol=1e-14)
+    _closes(run)
+
+
+def test_a_fixed_linear_torques_kink_at_rest_is_located():
+    """tau = 4 N*m |w| / (10 rad/s) and 1 N*m on 0.2 kg*m^2 from -10 rad/s: w' = 5 - 2 w below rest, to
+    w = 2.5 - 12.5 e^(-2 t), through rest at t0 = ln(5) / 2, then w' = 5 + 2 w: w = 2.5 (e^(2 (t - t0)) - 1).
+    The kink is a row of its own (the speed through zero, located), so the rows meet the closed form to 1e-9."""
+    run = simulate(_drawn("1.5 s", "10 ms", shafts={"a": {"inertia": "0.2 kg*m^2", "speed": "-10 rad/s"}}, torques=[
+        {"shaft": "a", "torque": "1 N*m"},
+        {"shaft": "a", "linear": {"nominal_torque": "4 N*m", "nominal_speed": "10 rad/s", "direction": "fixed"}}]))
+    t0 = 0.5 * np.log(5.0)
+    exact = np.where(run.time < t0, 2.5 - 12.5 * np.exp(-2 * run.time), 2.5 * (np.exp(2 * (run.time - t0)) - 1))
+    np.testing.assert_allclose(run["a_speed"], exact, rtol=0, atol=1e-8)
+    rest = run.instants["time"][run.instants["kind"] == "torque2_at_rest"]
+    assert len(rest) == 1 and rest[0] == pytest.approx(t0, abs=1e-10)
+    _closes(run)

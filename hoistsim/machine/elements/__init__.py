@@ -31,6 +31,7 @@ from .housed_gear import HousedGear as HousedGear
 from .induction_machine import InductionMachine as InductionMachine
 from .level_load import LevelLoad as LevelLoad
 from .linear_motor import LinearMotor as LinearMotor
+from .linear_torque import LinearTorque as LinearTorque
 from .load_drag import LoadDrag as LoadDrag
 from .lossy_gear import LossyGear as LossyGear
 from .mesh_friction import MeshFriction as MeshFriction
@@ -68,7 +69,8 @@ REGISTRY: dict[str, object] = {
     "drivetrain.dc_machines.*": DcMachine,
     "drivetrain.induction_machines.*": InductionMachine,
     "drivetrain.speed_controllers.*": SpeedController,
-    "drivetrain.torques.*": {"time": ShaftTorque, "speed_table": SpeedTableTorque, "quadratic": QuadraticTorque},
+    "drivetrain.torques.*": {"time": ShaftTorque, "speed_table": SpeedTableTorque, "quadratic": QuadraticTorque,
+                             "linear": LinearTorque},
     # linkages of three shafts, before the friction couplings: where stuck couplings hold one motion twice,
     # the first in order takes the torque, and these hold any
     "drivetrain.gears.*.housing": HousedGear,  # a stage whose housing turns
