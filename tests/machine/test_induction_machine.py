@@ -147,3 +147,50 @@ def test_bad_input_names_its_key(change, key, says, tmp_path):
     result = CliRunner().invoke(main, ["run", str(path), "-o", str(out)])
     assert result.exit_code == 2 and len(result.output.strip().splitlines()) == 1 and key in result.output
     assert not out.exists()
+
+
+@pytest.mark.slow  # a program of its own (the signals' rows) and the independent integration: some 20 s
+def test_a_voltage_frequency_inverter_start_against_an_independent_integration():
+    """IMC_DOL's machine and load fed by a V/f inverter: 0 to 100 V and 0 to 50 Hz over 1 s, held after (the
+    supply's angle the integral of 2 pi f: 2 pi 25 t^2 on the ramp).  The same equations by scipy: the speed
+    within 1e-8 of its range, the current within 1e-8 of its peak, and no start's torque swing: an inverter's
+    start stays within a fraction of a direct-on-line start's peak current."""
+    from ruamel.yaml import YAML
+
+    data = YAML(typ="safe").load(DOL.read_text(encoding="utf-8"))
+    data["drivetrain"]["induction_machines"]["aimc"]["supply"] = {
+        "voltage": [["0 s", "0 V"], ["1 s", "100 V"]], "frequency": [["0 s", "0 Hz"], ["1 s", "50 Hz"]],
+        "connection": "delta"}
+    from hoistsim import scenario_from_dict
+
+    run = simulate(scenario_from_dict(data))
+
+    def angle(t):
+        return 2 * math.pi * (25 * t * t if t < 1 else 25 + 50 * (t - 1))
+
+    def voltage(t):
+        return math.sqrt(2) * 100 * min(t, 1.0) * np.exp(1j * (angle(t) - math.pi / 2))
+
+    inductance = np.array([[LSS + LM, LM], [LM, LRS + LM]])
+
+    def rates(t, y):
+        i_s, i_r, w = y[0] + 1j * y[1], y[2] + 1j * y[3], y[4]
+        d_i = np.linalg.solve(inductance, np.array([voltage(t) - RS * i_s,
+                                                    -RR * i_r + 1j * P * w * (LM * i_s + (LRS + LM) * i_r)]))
+        torque = 1.5 * P * LM * np.imag(np.conj(i_r) * i_s)
+        return [d_i[0].real, d_i[0].imag, d_i[1].real, d_i[1].imag,
+                (torque - LOAD * (w / LOAD_SPEED) ** 2 * np.sign(w)) / J]
+
+    times = np.unique(run.time)
+    parts = [solve_ivp(rates, span, y0, method="DOP853", rtol=1e-12, atol=1e-12, t_eval=times[(times >= span[0])
+                                                                                             & (times <= span[1])])
+             for span, y0 in [((0.0, 1.0), np.zeros(5))]]
+    after = solve_ivp(rates, (1.0, 1.5), parts[0].y[:, -1], method="DOP853", rtol=1e-12, atol=1e-12,
+                      t_eval=times[times > 1.0])
+    states = np.concatenate([parts[0].y, after.y], axis=1)
+    speed = np.interp(times, run.time, run["loadInertia_speed"])
+    current = np.interp(times, run.time, run["aimc_current"])
+    assert np.max(np.abs(speed - states[4])) < 1e-8 * np.max(np.abs(states[4]))
+    assert np.max(np.abs(current - np.abs(states[0] + 1j * states[1]))) < 1e-8 * np.max(current)
+    assert run.summary["aimc_peak_current"] < 0.5 * 922.8  # IMC_DOL's direct-on-line peak
+    assert run.summary["energy_relative_residual"] < 1e-8
