@@ -97,6 +97,30 @@ def drawn(name: str, duration="1 s", interval="1 ms", rtol=1e-11, atol=1e-13, **
         "duration": duration, "output_interval": interval, "rtol": rtol, "atol": atol}}, name=name)
 
 
+# -------------------------------------------------------------------------------- a bad scenario refused
+def refused_in_one_line(path, change, key: str, says: str, tmp_path) -> None:
+    """The scenario file ``path`` with ``change(data)`` made to its plain data is refused naming ``key`` (its
+    message saying ``says``): by the loader, and by ``hoistsim run`` in one line, exit 2, nothing written."""
+    import pytest
+    from click.testing import CliRunner
+    from ruamel.yaml import YAML
+
+    from hoistsim.cli import main
+    from hoistsim.errors import ScenarioError
+
+    data = YAML(typ="safe").load(Path(path).read_text(encoding="utf-8"))
+    change(data)
+    bad, out = tmp_path / "bad.yaml", tmp_path / "out.h5"
+    with bad.open("w", encoding="utf-8") as f:
+        YAML().dump(data, f)
+    with pytest.raises(ScenarioError) as raised:
+        load_scenario(bad)
+    assert raised.value.key == key and says in str(raised.value), str(raised.value)
+    result = CliRunner().invoke(main, ["run", str(bad), "-o", str(out)])
+    assert result.exit_code == 2 and len(result.output.strip().splitlines()) == 1 and key in result.output
+    assert not out.exists()
+
+
 # ----------------------------------------------------------------------------------- property searches
 def property_settings(examples: int, **more) -> settings:
     """``examples`` random scenes a property in CI; HOISTSIM_PROPERTY_EXAMPLES=400 for a deeper search by hand.

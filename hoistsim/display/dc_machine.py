@@ -3,20 +3,12 @@ shaft (its air gap's), beside the external torques."""
 
 from __future__ import annotations
 
-from .panel import Display, Panel, Trace
+from ._machines import machine_panels, reads_machine_column
+from .panel import Display
 
 
 def _panels_for(run: dict) -> tuple:
-    machines = (run.get("parameters", {}).get("drivetrain") or {}).get("dc_machines") or {}
-    if not machines:
-        return ()
-    return (Panel("shaft_torques", "external torque [N*m]", 5,
-                  tuple(Trace(f"{name} (air gap)", f"{name}_torque") for name in machines), zero_line=True,
-                  height=0.8),
-            Panel("machine_currents", "armature\ncurrent [A]", 6,
-                  tuple(Trace(name, f"{name}_current") for name in machines), zero_line=True, height=0.8),
-            Panel("machine_voltages", "armature\nvoltage [V]", 7,
-                  tuple(Trace(name, f"{name}_voltage") for name in machines), height=0.8))
+    return machine_panels(run, "dc_machines", "armature\ncurrent [A]", "armature\nvoltage [V]")
 
 
 def _headline(summary: dict) -> str | None:
@@ -27,5 +19,4 @@ def _headline(summary: dict) -> str | None:
     return "; ".join(f"{name} draws up to {peak:.4g} A" for name, peak in peaks) or None
 
 
-DC_MACHINE = Display(panels_for=_panels_for, headline=_headline,
-                     reads=lambda column: column.endswith(("_current", "_voltage", "_torque")))
+DC_MACHINE = Display(panels_for=_panels_for, headline=_headline, reads=reads_machine_column)

@@ -4,20 +4,12 @@ torques (panels shared with the DC machines')."""
 
 from __future__ import annotations
 
-from .panel import Display, Panel, Trace
+from ._machines import machine_panels, reads_machine_column
+from .panel import Display
 
 
 def _panels_for(run: dict) -> tuple:
-    machines = (run.get("parameters", {}).get("drivetrain") or {}).get("induction_machines") or {}
-    if not machines:
-        return ()
-    return (Panel("shaft_torques", "external torque [N*m]", 5,
-                  tuple(Trace(f"{name} (air gap)", f"{name}_torque") for name in machines), zero_line=True,
-                  height=0.8),
-            Panel("machine_currents", "stator current\namplitude [A]", 6,
-                  tuple(Trace(name, f"{name}_current") for name in machines), zero_line=True, height=0.8),
-            Panel("machine_voltages", "winding voltage\namplitude [V]", 7,
-                  tuple(Trace(name, f"{name}_voltage") for name in machines), height=0.6))
+    return machine_panels(run, "induction_machines", "stator current\namplitude [A]", "winding voltage\namplitude [V]")
 
 
 def _headline(summary: dict) -> str | None:
@@ -32,5 +24,4 @@ def _headline(summary: dict) -> str | None:
     return "; ".join(said) or None
 
 
-INDUCTION_MACHINE = Display(panels_for=_panels_for, headline=_headline,
-                            reads=lambda column: column.endswith(("_current", "_voltage", "_torque")))
+INDUCTION_MACHINE = Display(panels_for=_panels_for, headline=_headline, reads=reads_machine_column)

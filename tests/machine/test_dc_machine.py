@@ -15,14 +15,11 @@ import math
 
 import numpy as np
 import pytest
-from click.testing import CliRunner
-from helpers import SCENARIOS
+from helpers import SCENARIOS, refused_in_one_line
 from modelica_reference import deviations
 from scipy.linalg import expm
 
 from hoistsim import load_scenario, scenario_from_text, simulate
-from hoistsim.cli import main
-from hoistsim.errors import ScenarioError
 
 DCPM = SCENARIOS / "modelica" / "DCPM_Start.yaml"
 R, L, J = 0.05, 1.5e-3, 0.3  # ohm, H, kg*m^2: the record's armature and the rotor's and the load's inertia
@@ -121,18 +118,9 @@ def test_the_nameplate_gives_the_flux_constant():
      "drivetrain.dc_machines.dcpm.nominal.voltage", "induce no voltage"),
 ])
 def test_bad_input_names_its_key(change, key, says, tmp_path):
-    from ruamel.yaml import YAML
+    def changed(data):
+        part = data["drivetrain"]["dc_machines"]["dcpm"]
+        for name, value in change.items():
+            part.pop(name) if value is None else part.update({name: value})
 
-    data = YAML(typ="safe").load(DCPM.read_text(encoding="utf-8"))
-    machine = data["drivetrain"]["dc_machines"]["dcpm"]
-    for name, value in change.items():
-        machine.pop(name) if value is None else machine.update({name: value})
-    path, out = tmp_path / "bad.yaml", tmp_path / "out.h5"
-    with path.open("w", encoding="utf-8") as f:
-        YAML().dump(data, f)
-    with pytest.raises(ScenarioError) as raised:
-        load_scenario(path)
-    assert raised.value.key == key and says in str(raised.value), str(raised.value)
-    result = CliRunner().invoke(main, ["run", str(path), "-o", str(out)])
-    assert result.exit_code == 2 and len(result.output.strip().splitlines()) == 1 and key in result.output
-    assert not out.exists()
+    refused_in_one_line(DCPM, changed, key, says, tmp_path)

@@ -13,13 +13,10 @@ import math
 
 import numpy as np
 import pytest
-from click.testing import CliRunner
-from helpers import SCENARIOS
+from helpers import SCENARIOS, refused_in_one_line
 from scipy.integrate import solve_ivp
 
 from hoistsim import load_scenario, simulate
-from hoistsim.cli import main
-from hoistsim.errors import ScenarioError
 
 DOL, YD = SCENARIOS / "modelica" / "IMC_DOL.yaml", SCENARIOS / "modelica" / "IMC_YD.yaml"
 P, RS, RR = 2, 0.03, 0.04
@@ -134,19 +131,8 @@ def test_its_peaks_are_exact_and_its_ledger_closes(dol):
      "drivetrain.induction_machines.aimc.supply.delta_at", "star-delta"),
 ])
 def test_bad_input_names_its_key(change, key, says, tmp_path):
-    from ruamel.yaml import YAML
-
-    data = YAML(typ="safe").load(DOL.read_text(encoding="utf-8"))
-    data["drivetrain"]["induction_machines"]["aimc"].update(change)
-    path, out = tmp_path / "bad.yaml", tmp_path / "out.h5"
-    with path.open("w", encoding="utf-8") as f:
-        YAML().dump(data, f)
-    with pytest.raises(ScenarioError) as raised:
-        load_scenario(path)
-    assert raised.value.key == key and says in str(raised.value), str(raised.value)
-    result = CliRunner().invoke(main, ["run", str(path), "-o", str(out)])
-    assert result.exit_code == 2 and len(result.output.strip().splitlines()) == 1 and key in result.output
-    assert not out.exists()
+    refused_in_one_line(DOL, lambda data: data["drivetrain"]["induction_machines"]["aimc"].update(change), key, says,
+                        tmp_path)
 
 
 @pytest.mark.slow  # a program of its own (the signals' rows) and the independent integration: some 20 s

@@ -13,14 +13,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from click.testing import CliRunner
-from helpers import SCENARIOS
+from helpers import SCENARIOS, refused_in_one_line
 from modelica_reference import deviations, reference
 from scipy.linalg import expm
 
 from hoistsim import load_scenario, scenario_from_text, simulate
-from hoistsim.cli import main
-from hoistsim.errors import ScenarioError
 
 PID = SCENARIOS / "modelica" / "PID_Controller.yaml"
 
@@ -134,18 +131,9 @@ def test_the_ledger_takes_the_controllers_torque_as_work(pid_controller):
     ({"measures": "motor"}, "drivetrain.speed_controllers.PI.measures", "no shaft 'motor'"),
 ])
 def test_bad_input_names_its_key(change, key, says, tmp_path):
-    from ruamel.yaml import YAML
+    def changed(data):
+        part = data["drivetrain"]["speed_controllers"]["PI"]
+        for name, value in change.items():
+            part.pop(name) if value is None else part.update({name: value})
 
-    data = YAML(typ="safe").load(PID.read_text(encoding="utf-8"))
-    controller = data["drivetrain"]["speed_controllers"]["PI"]
-    for name, value in change.items():
-        controller.pop(name) if value is None else controller.update({name: value})
-    path, out = tmp_path / "bad.yaml", tmp_path / "out.h5"
-    with path.open("w", encoding="utf-8") as f:
-        YAML().dump(data, f)
-    with pytest.raises(ScenarioError) as raised:
-        load_scenario(path)
-    assert raised.value.key == key and says in str(raised.value), str(raised.value)
-    result = CliRunner().invoke(main, ["run", str(path), "-o", str(out)])
-    assert result.exit_code == 2 and len(result.output.strip().splitlines()) == 1 and key in result.output
-    assert not out.exists()
+    refused_in_one_line(PID, changed, key, says, tmp_path)

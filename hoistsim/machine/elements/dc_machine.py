@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 from ..._pytree import static
-from ..core.element import AbstractElement
+from ._electrical import AbstractElectricalMachine
 from ._signal import signal_at, signal_fields, signal_tables
 
 
-class DcMachine(AbstractElement):
+class DcMachine(AbstractElectricalMachine):
     """Its armature circuit, L di/dt = v - R i - k w, driven by the armature voltage v (a signal of time), and
     its air-gap torque k i on its shaft, k the flux constant (V*s, N*m/A) and w the shaft's speed: a motor where
     k i drives the shaft, a generator where it brakes it.
@@ -43,22 +43,6 @@ class DcMachine(AbstractElement):
     @property
     def current_state(self) -> str:
         return f"{self.section}_current"
-
-    @property
-    def input_state(self) -> str:
-        return f"{self.section}_electrical_energy"
-
-    @property
-    def copper_state(self) -> str:
-        return f"{self.section}_copper_loss"
-
-    @property
-    def magnetic_term(self) -> str:
-        return f"{self.section}_magnetic_energy"
-
-    @property
-    def ledger_kinds(self) -> dict:
-        return {self.input_state: "work", self.copper_state: "loss", self.magnetic_term: "potential"}
 
     @property
     def columns(self) -> dict:
@@ -107,8 +91,7 @@ class DcMachine(AbstractElement):
 
     def ledger(self, x) -> dict:
         current = x.state(self.current_state)
-        return {self.input_state: x.state(self.input_state), self.copper_state: x.state(self.copper_state),
-                self.magnetic_term: 0.5 * self.armature_inductance * current * current}
+        return self.electrical_ledger(x, 0.5 * self.armature_inductance * current * current)
 
     def observations(self, x) -> dict:
         # i di/dt falls through zero where the current's magnitude peaks: a row, so the summary's peak is exact

@@ -8,7 +8,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from ..._pytree import static
-from ..core.element import AbstractElement
+from ._electrical import AbstractElectricalMachine
 from ._signal import signal_at, signal_fields, signal_tables
 
 PHASES = 3
@@ -17,7 +17,7 @@ DELTA_LEAD = math.pi / 6.0  # a delta winding's voltage leads a star winding's b
 SINE = -math.pi / 2.0  # phase 1's voltage is a sine: its space phasor lags the cosine's by 90 degrees
 
 
-class InductionMachine(AbstractElement):
+class InductionMachine(AbstractElectricalMachine):
     """Its space-phasor model in the stator's frame, the stator's and the rotor's flux linkages its states:
     psi_s' = v_s - R_s i_s, psi_r' = -R_r i_r + j p w psi_r (the cage shorted, w the shaft's speed), the currents
     from the fluxes through the inductance matrix [[L_ss + L_m, L_m], [L_m, L_rs + L_m]], and the air-gap torque
@@ -90,22 +90,6 @@ class InductionMachine(AbstractElement):
     @property
     def angle_state(self) -> str:
         return f"{self.section}_supply_angle"
-
-    @property
-    def input_state(self) -> str:
-        return f"{self.section}_electrical_energy"
-
-    @property
-    def copper_state(self) -> str:
-        return f"{self.section}_copper_loss"
-
-    @property
-    def magnetic_term(self) -> str:
-        return f"{self.section}_magnetic_energy"
-
-    @property
-    def ledger_kinds(self) -> dict:
-        return {self.input_state: "work", self.copper_state: "loss", self.magnetic_term: "potential"}
 
     @property
     def observation_kinds(self) -> tuple:
@@ -213,9 +197,7 @@ class InductionMachine(AbstractElement):
     def ledger(self, x) -> dict:
         psi_s, psi_r = self.fluxes(x)
         i_s, i_r = self.currents(x)
-        magnetic = 0.5 * HALF_PHASES * jnp.real(psi_s * jnp.conj(i_s) + psi_r * jnp.conj(i_r))
-        return {self.input_state: x.state(self.input_state), self.copper_state: x.state(self.copper_state),
-                self.magnetic_term: magnetic}
+        return self.electrical_ledger(x, 0.5 * HALF_PHASES * jnp.real(psi_s * jnp.conj(i_s) + psi_r * jnp.conj(i_r)))
 
     def outputs(self, x) -> dict:
         name = self.section
