@@ -24,7 +24,7 @@ def _panels_for(run: dict) -> tuple:
         return ()
     references = tuple(Trace(f"{name} reference", f"{name}_reference", style="--") for name in controllers)
     outputs = tuple(trace for name in controllers for trace in (
-        Trace(name, f"{name}_output"),
+        Trace(name, f"{name}_torque"),
         Trace(f"{name} limits", f"{name}_output", style=":", limit=True, value=_limit(name, "max_torque")),
         Trace(f"{name} limits", f"{name}_output", style=":", limit=True, value=_limit(name, "min_torque", -1.0))))
     return (Panel("shaft_speeds", "shaft speed [rad/s]", 0, references, height=1.5),
@@ -45,7 +45,32 @@ def _headline(summary: dict) -> str | None:
         first = None if events is None else next((float(row["time"]) for row in events
                                                    if _text(row["kind"]) == f"{name}_saturate"), None)
         said.append(f"{name} at its limit {time:.3f} s" + (f" (from {first:.3f} s)" if first is not None else ""))
-    return "; ".join(said) or None
+    return "; ".join(said + _sequence(summary)) or None
+
+
+def _distance(metres: float) -> str:
+    return f"{metres * 1000:.3g} mm" if abs(metres) < 0.1 else f"{metres:.3g} m"
+
+
+def _sequence(summary: dict) -> list:
+    """A brake sequence's story: when the brake let go and on what torque, how far the load ran back, how long
+    and how far an emergency stop took."""
+    said = []
+    for key in summary:
+        if key.endswith("_proven_torque"):
+            name = key[: -len("_proven_torque")]
+            release, torque = float(summary[f"{name}_release_time"]), float(summary[key])
+            said.append(f"brake released at {release:.3f} s on {torque:.4g} N*m" if release == release
+                        else "brake never released")
+    if "rollback_distance" in summary:
+        back = float(summary["rollback_distance"])
+        said.append(f"load ran back {_distance(back)}" if back > 1e-6 else "no rollback")
+    if "stopping_time" in summary:
+        stop = float(summary["stopping_time"])
+        distance = summary.get("stopping_distance")
+        said.append("emergency stop: " + (f"held after {stop:.3f} s" if stop == stop else "not held by the end")
+                    + (f", {_distance(float(distance))} of rope" if distance is not None else ""))
+    return said
 
 
 def _text(value) -> str:
@@ -53,4 +78,4 @@ def _text(value) -> str:
 
 
 SPEED_CONTROLLER = Display(panels_for=_panels_for, headline=_headline,
-                           reads=lambda column: column.endswith(("_reference", "_output", "_integral")))
+                           reads=lambda column: column.endswith(("_reference", "_output", "_integral", "_torque")))

@@ -135,6 +135,32 @@ class InductionMachineSpec(Section):
         return self
 
 
+class BrakeSequenceSpec(Section):
+    """A hoist drive's brake sequence: the brake released once the drive's torque is proven (its magnitude at
+    ``prove_torque``) and the brake's opening time has passed; after the stop command, closed once the speed
+    it controls is below ``close_speed`` and the brake's closing time has passed; on an emergency stop (the
+    controller's ``emergency_stop_at``) the drive's torque taken away at once and the brake closed after its
+    closing time."""
+
+    brake: Text = Field(description="the friction brake it works (drivetrain.brakes, operated_by this controller)")
+    prove_torque: u.quantity(u.TORQUE, ge=0.0) = Field(description="the torque the drive proves before the brake "
+                                                       "is released (its magnitude)")
+    release_delay: u.quantity(u.TIME, ge=0.0) = Field(description="the brake's opening time, from the proof")
+    stop_at: u.quantity(u.TIME, gt=0.0) | None = Field(None, description="the stop command: from then the brake "
+                                                       "closes once the speed is below close_speed")
+    close_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) = Field(0.1, description="below this (its magnitude) after "
+                                                             "the stop command, the brake is commanded closed")
+    close_delay: u.quantity(u.TIME, gt=0.0) = Field(description="the brake's closing time, from its command")
+
+    @model_validator(mode="after")
+    def _opens_before_it_closes(self):
+        if self.stop_at is not None and self.stop_at <= self.release_delay:
+            raise ScenarioError(".stop_at", f"{self.stop_at:g} s is not after the brake can have opened (its "
+                                f"release_delay, {self.release_delay:g} s from the proof): the sequence would close "
+                                "the brake before it opens")
+        return self
+
+
 class SpeedControllerSpec(Section):
     """A speed controller (Modelica's LimPID, a PI or PID controller): it measures a shaft's speed w against a
     reference r (a signal of time) and drives a shaft with the torque y = limited(k (w_p r - w + I + D)), the
@@ -168,6 +194,10 @@ class SpeedControllerSpec(Section):
     output: u.quantity(u.TORQUE) | None = Field(None, description="y at the start, the integral set to give it "
                                                 "(Modelica's steady state: the torque that holds the machine)")
     integral: u.quantity(u.ANGULAR_SPEED) = Field(0.0, description="I at the start (Modelica's xi_start)")
+    brake_sequence: BrakeSequenceSpec | None = Field(None, description="the brake it releases and applies: a "
+                                                     "hoist drive's sequence")
+    emergency_stop_at: u.quantity(u.TIME, gt=0.0) | None = Field(None, description="the drive switched off at "
+                                                                 "this time, its brake closing (brake_sequence)")
     name: str = Field("", exclude=True)  # its key in drivetrain.speed_controllers (set there, never written)
 
     @model_validator(mode="after")
@@ -182,6 +212,12 @@ class SpeedControllerSpec(Section):
         if self.output is not None and not self.lowest_torque() <= self.output <= self.max_torque:
             raise ScenarioError(".output", f"{self.output:g} N*m is outside the limits [{self.lowest_torque():g}, "
                                 f"{self.max_torque:g}] N*m")
+        if self.emergency_stop_at is not None and self.brake_sequence is None:
+            raise ScenarioError(".emergency_stop_at", "an emergency stop closes the drive's brake: give the "
+                                "brake_sequence that works it")
+        if self.emergency_stop_at is not None and self.emergency_stop_at <= self.brake_sequence.release_delay:
+            raise ScenarioError(".emergency_stop_at", f"{self.emergency_stop_at:g} s is not after the brake can "
+                                f"have opened (release_delay {self.brake_sequence.release_delay:g} s from the proof)")
         if self.output is not None and self.integral_time is None:
             raise ScenarioError(".output", "a controller without an integral part (no integral_time) has no state "
                                 "to start at an output")
@@ -198,7 +234,18 @@ class SpeedControllerSpec(Section):
         if signal_.envelope_times is not None:
             harmonics *= float(np.interp(0.0, signal_.envelope_times, signal_.envelope_values))
         return self.with_resolved(start_speed=shaft.train(scenario)[2],
-                                  start_reference=float(np.interp(0.0, signal_.times, signal_.values)) + harmonics)
+                                  start_reference=float(np.interp(0.0, signal_.times, signal_.values)) + harmonics,
+                                  rope_per_radian=self._rope_per_radian(scenario))
+
+    def _rope_per_radian(self, scenario) -> float | None:
+        """m of rope the drum pays out per rad of the shaft it controls, where a load hangs from a shaft geared
+        to it (None: no load, or one on a shaft of its own: the rollback and stopping distances are not told)."""
+        load = scenario.drivetrain.load
+        if load is None or load.path == "level":
+            return None
+        root, ratio = scenario.drivetrain.shafts[self.measures].train(scenario)[:2]
+        load_root, load_ratio = scenario.drivetrain.shafts[load.shaft].train(scenario)[:2]
+        return load.rope_radius * load_ratio / ratio if root == load_root else None
 
 
 def check_drive_parts(drivetrain, names_taken: set, is_name) -> None:
@@ -216,3 +263,25 @@ def check_drive_parts(drivetrain, names_taken: set, is_name) -> None:
                 if shaft is not None and shaft not in drivetrain.shafts:
                     raise ScenarioError(f"drivetrain.{kind}.{name}.{key}", f"there is no shaft {shaft!r} "
                                         f"(shafts: {', '.join(drivetrain.shafts)})")
+    _check_brake_sequences(drivetrain)
+
+
+def _check_brake_sequences(drivetrain) -> None:
+    """Each brake sequence works a brake operated by its controller; each operated brake has its sequence; one
+    sequence a drivetrain (its rollback and stopping distances are the scene's)."""
+    sequenced = {name: c.brake_sequence for name, c in drivetrain.speed_controllers.items() if c.brake_sequence}
+    if len(sequenced) > 1:
+        raise ScenarioError(f"drivetrain.speed_controllers.{list(sequenced)[1]}.brake_sequence", "one drive "
+                            "sequences a brake: the drivetrain has one brake sequence")
+    for name, sequence in sequenced.items():
+        brake = drivetrain.brakes.get(sequence.brake)
+        if brake is None or brake.operated_by != name:
+            raise ScenarioError(f"drivetrain.speed_controllers.{name}.brake_sequence.brake", f"there is no brake "
+                                f"{sequence.brake!r} operated_by {name!r} (brakes: {', '.join(drivetrain.brakes)})")
+        if sequence.stop_at is not None and drivetrain.speed_controllers[name].emergency_stop_at is not None:
+            raise ScenarioError(f"drivetrain.speed_controllers.{name}.emergency_stop_at", "a run ends with a stop "
+                                "or an emergency stop: give stop_at or emergency_stop_at, not both")
+    for name, brake in drivetrain.brakes.items():
+        if brake.operated_by is not None and brake.operated_by not in sequenced:
+            raise ScenarioError(f"drivetrain.brakes.{name}.operated_by", f"there is no speed controller "
+                                f"{brake.operated_by!r} with a brake_sequence working it")

@@ -87,7 +87,7 @@ class BrakeSpec(Section):
         if self.kinetic_torque is not None and self.kinetic_torque > self.static_torque:
             raise ScenarioError(".kinetic_torque", f"must not exceed static_torque ({self.static_torque:g} "
                                 f"N*m), got {self.kinetic_torque:g} N*m")
-        if self.apply_time is not None and self.apply_time <= self.release_time:
+        if self.apply_time is not None and self.release_time is not None and self.apply_time <= self.release_time:
             raise ScenarioError(".apply_time", f"must be after release_time ({self.release_time:g} s), "
                                 f"got {self.apply_time:g} s")
         if self.apply_time is not None and self.static_torque is None:

@@ -7,9 +7,10 @@ its (``brake_torque``).
 
 from __future__ import annotations
 
-from pydantic import Field
+from pydantic import Field, model_validator
 
 from ..errors import ScenarioError
+from . import units as u
 from .schema_parts import BrakeSpec, FlywheelSpec, RatchetSpec, ReciprocatingSpec
 from .units import Text
 
@@ -39,10 +40,37 @@ class SliderCrankSpec(OnShaft, ReciprocatingSpec):
 
 class BrakeOnShaftSpec(OnShaft, BrakeSpec):
     """A brake from a shaft to the ground: holding (any torque) or friction (static and kinetic torques),
-    released and applied at times."""
+    released and applied at times, or by a drive's brake sequence (``operated_by``: a speed controller's)."""
 
     shaft: Text = Field(description="the shaft it sits on")
+    release_time: u.quantity(u.TIME, ge=0.0) | None = Field(None, description="the brake frees its shaft at this "
+                                                            "time (or operated_by)")
+    operated_by: Text | None = Field(None, description="the speed controller whose brake_sequence releases and "
+                                     "applies it (a friction brake: static_torque given)")
     name: str = Field("", exclude=True)
+
+    @model_validator(mode="after")
+    def _released_by_time_or_by_a_drive(self):
+        if (self.release_time is None) == (self.operated_by is None):
+            raise ScenarioError(".release_time", "give either release_time (released at a time) or operated_by (a "
+                                "speed controller's brake_sequence releases and applies it), one of the two")
+        if self.operated_by is not None and (self.static_torque is None or self.apply_time is not None):
+            key = ".static_torque" if self.static_torque is None else ".apply_time"
+            raise ScenarioError(key, "a brake a drive operates is a friction brake (static_torque) applied by its "
+                                "sequence, not at a time")
+        return self
+
+    def lowered(self, scenario) -> "BrakeOnShaftSpec":
+        """A brake a drive operates with its sequence's opening and closing times written in (s)."""
+        if self.operated_by is None:
+            return self
+        sequence = scenario.drivetrain.speed_controllers[self.operated_by].brake_sequence
+        return self.with_resolved(release_delay=sequence.release_delay, close_delay=sequence.close_delay)
+
+    @property
+    def characteristic(self) -> str:
+        """Which variant: ``holding``, ``friction`` or ``operated`` (a friction brake a drive's sequence works)."""
+        return "operated" if self.operated_by is not None else super().characteristic
 
 
 class RatchetOnShaftSpec(OnShaft, RatchetSpec):

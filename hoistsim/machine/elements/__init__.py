@@ -39,6 +39,7 @@ from .motor import Motor as Motor
 from .motor_ripple import MotorRipple as MotorRipple
 from .motor_table import TableMotor as TableMotor
 from .one_way_clutch import OneWayClutch as OneWayClutch
+from .operated_brake import OperatedBrake as OperatedBrake
 from .periodic_regime import PeriodicRegime as PeriodicRegime
 from .planetary import Planetary as Planetary
 from .quadratic_torque import QuadraticTorque as QuadraticTorque
@@ -87,7 +88,7 @@ REGISTRY: dict[str, object] = {
     "drivetrain.load.drag": LoadDrag,
     "drivetrain.load.rope": {"stiffness": Rope, "modulus": WireRope},
     "drivetrain.load.ground": Ground,
-    "drivetrain.brakes.*": {"holding": HoldingBrake, "friction": FrictionBrake},
+    "drivetrain.brakes.*": {"holding": HoldingBrake, "friction": FrictionBrake, "operated": OperatedBrake},
     "drivetrain.ratchets.*": Ratchet,
     "drivetrain.load.bearings": DrumShaftLoads,
     "drivetrain.eddy_current_brakes.*": EddyCurrentBrake,

@@ -6,6 +6,7 @@ import jax.numpy as jnp
 
 from ..._pytree import static
 from ..core.element import AbstractElement
+from . import _brake_sequence as sequence
 from ._signal import signal_at, signal_fields, signal_tables
 
 
@@ -21,9 +22,9 @@ class SpeedController(AbstractElement):
     ``<name>_saturate`` (v reaches a limit) and ``<name>_desaturate`` (it comes back within); the time it spends
     at a limit is the summary's ``<name>_saturated_time``.  With a torque lag T_c (the inverter's current loop) the
     torque on the shaft is a state following y, T_c tau' = y - tau, started at y.  The torque's work on the shaft
-    it drives is a state and the ledger's work.
+    it drives is a state and the ledger's work.  With a brake sequence (:mod:`._brake_sequence`) it releases and
+    applies its brake, and an emergency stop takes its torque away (a table's step).
     """
-
 
     gain: object  # k, N*m*s/rad
     integral_time: object  # T_i, s (a placeholder where it has no integral)
@@ -45,6 +46,21 @@ class SpeedController(AbstractElement):
     reference_phases: object  # rad
     reference_envelope_times: object = None
     reference_envelope_values: object = None
+    # its brake sequence (placeholders where it has none)
+    prove_torque: object = 0.0  # N*m
+    release_delay: object = 0.0  # s
+    close_delay: object = 0.0  # s
+    close_speed: object = 0.0  # rad/s
+    rope_per_radian: object = 0.0  # m of rope a rad of the shaft it measures
+    emergency_stop_at: object = 0.0  # s
+    stopping_times: object = None  # s: the stop command, a step of a table of time
+    stopping_values: object = None
+    emergency_times: object = None  # s: the emergency stop, another
+    emergency_values: object = None
+    brake: str = static("")  # the brake its sequence works ("": none)
+    has_rope: bool = static(False)  # a load hangs from a shaft geared to the one it measures
+    has_stop: bool = static(False)  # its sequence has a stop command
+    has_emergency_stop: bool = static(False)
     measures: str = static("")
     drives: str = static("")
     has_integral: bool = static(True)
@@ -68,7 +84,22 @@ class SpeedController(AbstractElement):
                    start_filter=filtered, torque_lag=spec.torque_lag if spec.torque_lag > 0.0 else 1.0,
                    start_output=output, **signal_fields(spec.reference, "reference"), measures=spec.measures,
                    drives=spec.drives or spec.measures, has_integral=spec.integral_time is not None,
-                   has_derivative=spec.derivative_time > 0.0, has_lag=spec.torque_lag > 0.0, section=spec.name)
+                   has_derivative=spec.derivative_time > 0.0, has_lag=spec.torque_lag > 0.0, section=spec.name,
+                   **cls._sequence_fields(spec))
+
+    @staticmethod
+    def _sequence_fields(spec) -> dict:
+        brake = spec.brake_sequence
+        if brake is None:
+            return {}
+        rope = spec.resolved("rope_per_radian")
+        stopping, emergency = sequence.step_table(brake.stop_at), sequence.step_table(spec.emergency_stop_at)
+        return dict(prove_torque=brake.prove_torque, release_delay=brake.release_delay, close_delay=brake.close_delay,
+                    close_speed=brake.close_speed, rope_per_radian=0.0 if rope is None else rope,
+                    emergency_stop_at=spec.emergency_stop_at or 0.0, stopping_times=stopping[0],
+                    stopping_values=stopping[1], emergency_times=emergency[0], emergency_values=emergency[1],
+                    brake=brake.brake, has_rope=rope is not None, has_stop=brake.stop_at is not None,
+                    has_emergency_stop=spec.emergency_stop_at is not None)
 
     @property
     def integral_state(self) -> str:
@@ -87,8 +118,12 @@ class SpeedController(AbstractElement):
         return f"{self.section}_work"
 
     @property
-    def observation_kinds(self) -> tuple:
+    def limit_kinds(self) -> tuple:
         return (f"{self.section}_upper_limit", f"{self.section}_lower_limit")
+
+    @property
+    def observation_kinds(self) -> tuple:
+        return self.limit_kinds + (sequence.guard_kinds(self) if self.brake else ())
 
     @property
     def crossings(self) -> tuple:
@@ -97,11 +132,11 @@ class SpeedController(AbstractElement):
     @property
     def crossing_events(self) -> dict:
         events = (f"{self.section}_desaturate", f"{self.section}_saturate")  # rising (back within), falling
-        return {kind: events for kind in self.observation_kinds}
+        return {kind: events for kind in self.limit_kinds}
 
     @property
     def summaries(self) -> dict:
-        return {f"{self.section}_saturated_time": "s"}
+        return {f"{self.section}_saturated_time": "s", **(sequence.summaries(self) if self.brake else {})}
 
     @property
     def ledger_kinds(self) -> dict:
@@ -119,8 +154,27 @@ class SpeedController(AbstractElement):
             out[f"{name}_integral"] = ("rad/s", f"the state of controller {name}'s integral part (Modelica's I.y)")
         return out
 
+    @property
+    def event_kinds(self) -> tuple:
+        name = self.section
+        return ((f"{name}_stop",) if self.has_stop else ()) + \
+            ((f"{name}_emergency_stop",) if self.has_emergency_stop else ())
+
+    def boundaries(self) -> tuple:  # the stop command and the emergency stop: the steps of their tables
+        return ((self.stopping_times[-1],) if self.has_stop else ()) + \
+            ((self.emergency_stop_at,) if self.has_emergency_stop else ())
+
+    def boundary_events(self, t) -> tuple:
+        name = self.section
+        return (((f"{name}_stop", t == self.stopping_times[-1]),) if self.has_stop else ()) + \
+            (((f"{name}_emergency_stop", t == self.emergency_stop_at),) if self.has_emergency_stop else ())
+
     def tables(self) -> dict:
-        return signal_tables(self, "reference")
+        out = signal_tables(self, "reference")
+        if self.brake:
+            out.update({f"{self.section}.stopping": ("stopping_times", "stopping_values"),
+                        f"{self.section}.emergency": ("emergency_times", "emergency_values")})
+        return out
 
     def reference(self, x):
         return signal_at(self, x, "reference")
@@ -133,15 +187,20 @@ class SpeedController(AbstractElement):
         filtered = self.derivative_setpoint_weight * reference - speed
         derivative = (self.derivative_filter * (filtered - x.state(self.filter_state)) if self.has_derivative
                       else 0.0)
-        return reference - speed, self.gain * (proportional + integral + derivative), filtered
+        unlimited = self.gain * (proportional + integral + derivative)
+        if self.has_emergency_stop:  # switched off: it asks for nothing (and its integral rests)
+            unlimited = unlimited * (1.0 - x.table(f"{self.section}.emergency"))
+        return reference - speed, unlimited, filtered
 
     def output(self, x):
         """y, N*m: the unlimited output held within the limits."""
         return jnp.clip(self._parts(x)[1], self.min_torque, self.max_torque)
 
     def torque(self, x):
-        """N*m on the shaft it drives: its output, or the lag's state where it has one."""
-        return x.state(self.torque_state) if self.has_lag else self.output(x)
+        """N*m on the shaft it drives: its output, or the lag's state where it has one; none after an emergency
+        stop."""
+        torque = x.state(self.torque_state) if self.has_lag else self.output(x)
+        return torque * (1.0 - x.table(f"{self.section}.emergency")) if self.has_emergency_stop else torque
 
     def torques(self, x) -> tuple:
         return ((self.drives, self.torque(x)),)
@@ -154,6 +213,8 @@ class SpeedController(AbstractElement):
             out[self.integral_state] = self.start_integral
         if self.has_derivative:
             out[self.filter_state] = self.start_filter
+        if self.brake:
+            out.update({count: 0.0 for count in sequence.counts(self.section)[:2 + 3 * self.has_rope]})
         return out
 
     def rates(self, x) -> dict:
@@ -164,21 +225,28 @@ class SpeedController(AbstractElement):
             out[self.torque_state] = (output - x.state(self.torque_state)) / self.torque_lag
         if self.has_integral:
             out[self.integral_state] = (error + (output - unlimited) / (self.gain * self.anti_windup)) \
-                / self.integral_time
+                / self.integral_time * (1.0 - x.table(f"{self.section}.emergency") if self.has_emergency_stop else 1.0)
         if self.has_derivative:
             out[self.filter_state] = self.derivative_filter * (filtered - x.state(self.filter_state)) \
                 / self.derivative_time
+        if self.brake:
+            out.update(sequence.rates(self, x, self.torque(x)))
         return out
 
     def observations(self, x) -> dict:
         unlimited = self._parts(x)[1]
-        upper, lower = self.observation_kinds
-        return {upper: self.max_torque - unlimited, lower: unlimited - self.min_torque}
+        upper, lower = self.limit_kinds
+        out = {upper: self.max_torque - unlimited, lower: unlimited - self.min_torque}
+        return {**out, **sequence.guards(self, x, self.torque(x))} if self.brake else out
 
     def extremes(self, x) -> dict:
         unlimited = self._parts(x)[1]
         saturated = (unlimited >= self.max_torque) | (unlimited <= self.min_torque)
-        return {f"{self.section}_saturated_time": ("duration", saturated)}
+        out = {f"{self.section}_saturated_time": ("duration", saturated)}
+        return {**out, **sequence.extremes(self, x, self.torque(x))} if self.brake else out
+
+    def summary(self, x) -> dict:
+        return sequence.final(self, x) if self.brake else {}
 
     def ledger(self, x) -> dict:
         return {self.work_state: x.state(self.work_state)}
@@ -191,3 +259,4 @@ class SpeedController(AbstractElement):
         if self.has_integral:
             out[f"{name}_integral"] = x.state(self.integral_state)
         return out
+
