@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .panel import Display, Panel, Trace
+from .panel import Display, Panel, SummaryPanel, Trace
 
 
 def _limit(name: str, key: str, default_sign: float = 1.0):
@@ -78,4 +78,7 @@ def _text(value) -> str:
 
 
 SPEED_CONTROLLER = Display(panels_for=_panels_for, headline=_headline,
+                           summary_panels=(SummaryPanel("rollback_distance", "rollback [mm]", 50, scale=1e3),
+                                           SummaryPanel("stopping_distance", "emergency stop:\ndistance [m]", 51),
+                                           SummaryPanel("stopping_time", "emergency stop:\ntime [s]", 52)),
                            reads=lambda column: column.endswith(("_reference", "_output", "_integral", "_torque")))

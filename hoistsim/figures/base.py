@@ -40,3 +40,21 @@ def row_text(row, name: str) -> str:
     """A text field of an event row (its kind, element, category), "" where the file has none."""
     value = row[name] if name in (row.dtype.names or ()) else ""
     return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def flat_where_round_off(ax, drawn) -> None:
+    """A panel of a quantity constant to round-off (a steady lift's speed, a locked clutch's slip, a rollback of
+    nothing) is drawn flat, not as 1e-14 wiggles on an offset scale: a range below a millionth of the values,
+    or values all below 1e-9 in the panel's units, is round-off.  ``drawn``: the arrays of its curves."""
+    values = np.concatenate([np.asarray(v, dtype=float).ravel() for v in drawn]) if drawn else np.zeros(1)
+    values = values[np.isfinite(values)]
+    if values.size == 0:
+        return
+    low, high = float(values.min()), float(values.max())
+    centre = 0.5 * (low + high)
+    if max(abs(low), abs(high)) < 1e-9:
+        ax.set_ylim(-1.0, 1.0)
+    elif high - low < 1e-6 * max(abs(low), abs(high)):
+        pad = 0.05 * abs(centre)
+        ax.set_ylim(centre - pad, centre + pad)
+    ax.ticklabel_format(axis="y", useOffset=False)

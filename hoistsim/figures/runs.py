@@ -18,7 +18,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..display import DISPLAYS, headline
-from .base import colour_scale, row_text, swept_label
+from .base import colour_scale, flat_where_round_off, row_text, swept_label
 from .frames import FrameSpec, FreshFrames
 from .marks import draw_marks, time_limits
 from .naming import name_events, wrap_title
@@ -267,27 +267,13 @@ def _draw_events(axes, runs, run_colours, mode):
 
 
 def _no_round_off_zoom(ax):
-    """A quantity constant to round-off (a steady lift's speed, a locked clutch's slip) is shown flat.
-
-    Not as 1e-14 rpm wiggles on an offset scale: a range below a millionth of
-    the values, or values all below 1e-9 in the panel's units, is round-off.
-    """
+    """A quantity constant to round-off (a steady lift's speed, a locked clutch's slip) is shown flat
+    (:func:`.base.flat_where_round_off`)."""
     from matplotlib.collections import LineCollection
 
     drawn = [line.get_ydata() for line in ax.get_lines() if line.get_gid() == _CURVE]
     drawn += [c.get_datalim(ax.transData).intervaly for c in ax.collections if isinstance(c, LineCollection)]
-    values = np.concatenate([np.asarray(v, dtype=float).ravel() for v in drawn]) if drawn else np.zeros(1)
-    values = values[np.isfinite(values)]
-    if values.size == 0:
-        return
-    low, high = float(values.min()), float(values.max())
-    centre = 0.5 * (low + high)
-    if max(abs(low), abs(high)) < 1e-9:
-        ax.set_ylim(-1.0, 1.0)
-    elif high - low < 1e-6 * max(abs(low), abs(high)):
-        pad = 0.05 * abs(centre)
-        ax.set_ylim(centre - pad, centre + pad)
-    ax.ticklabel_format(axis="y", useOffset=False)
+    flat_where_round_off(ax, drawn)
 
 
 def _right_scale(panel, run) -> tuple[str, float] | None:

@@ -15,7 +15,7 @@ import numpy as np
 from ..display import DISPLAYS
 from ..display.part_names import under_part_names
 from ..results.part_names import names_table
-from .base import swept_label
+from .base import flat_where_round_off, swept_label
 
 POINTS = 60  # up to this many runs, each is a marked point
 MARKER = 6  # pt: the marker of a kind of run (never locks)
@@ -74,6 +74,7 @@ def summary_figure(summaries, swept, plt, name: str = "", parameters: dict | Non
             value = limit * panel.scale + panel.offset
             ax.axhline(value, color="0.25", ls=":", lw=1.0, zorder=1,
                        label=f"{panel.limit[0]} ({value:.4g} {panel.ylabel.rsplit('[', 1)[-1].rstrip(']')})")
+        flat_where_round_off(ax, [y])
         ax.set_ylabel(panel.ylabel)
         ax.grid(True, lw=0.4, alpha=0.6)
     for ax in axes.flat[len(panels):]:
