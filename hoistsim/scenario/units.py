@@ -375,7 +375,8 @@ def range_ends(start: object, stop: object) -> tuple[float, float, str]:
     last = last.to(first.units)
     if not (math.isfinite(first.magnitude) and math.isfinite(last.magnitude)):
         raise UnitError(f"the range ends must be finite, got {start!r} and {stop!r}")
-    return float(first.magnitude), float(last.magnitude), f"{first.units:~}"
+    written = _NUMBER_UNIT.fullmatch(str(start))  # the unit as the user wrote it ("N*m", not pint's "m * N")
+    return float(first.magnitude), float(last.magnitude), written.group(2) if written else f"{first.units:~}"
 
 
 def _both_in_units(first, last) -> str:
