@@ -137,3 +137,18 @@ def test_bad_input_names_its_key(change, key, says, tmp_path):
             part.pop(name) if value is None else part.update({name: value})
 
     refused_in_one_line(PID, changed, key, says, tmp_path)
+
+@pytest.mark.parametrize("distance, speed, acceleration, shape", [
+    (np.pi / 2, 1.0, 1.0, "trapezoid"), (0.5, 1.0, 1.0, "triangle"), (-3.0, 1.0, 0.5, "trapezoid")])
+def test_a_kinematic_ptp_reference_moves_its_distance_within_its_limits(distance, speed, acceleration, shape):
+    """Modelica's KinematicPTP integrated: the speed's integral is the distance; no faster than max_speed, no
+    steeper than max_acceleration; a triangle where the distance leaves no time at the most speed."""
+    from hoistsim.scenario.schema_drive import KinematicPtpSpec
+
+    times, speeds = map(np.asarray, KinematicPtpSpec(distance=distance, max_speed=speed,
+                                                     max_acceleration=acceleration, start=0.5).table())
+    assert np.trapezoid(speeds, times) == pytest.approx(distance, rel=1e-14)
+    assert np.max(np.abs(speeds)) <= speed * (1 + 1e-15)
+    slopes = np.diff(speeds)[np.diff(times) > 0] / np.diff(times)[np.diff(times) > 0]
+    assert np.max(np.abs(slopes)) == pytest.approx(acceleration, rel=1e-14)
+    assert (times[2] == times[3]) == (shape == "triangle") and times[1] == 0.5
