@@ -6,7 +6,7 @@ controller (Modelica's LimPID) driving a shaft with a torque.
 from __future__ import annotations
 
 import math
-from typing import Annotated, Literal
+from typing import Annotated, ClassVar, Literal
 
 import numpy as np
 from pydantic import BeforeValidator, Field, ValidationError, model_validator
@@ -193,8 +193,50 @@ class KinematicPtpSpec(Section):
         return times, (0.0, 0.0, sign * peak, sign * peak, 0.0)
 
 
+JERK = Dimension("angular jerk", "rad/s^3", "'5 rad/s^3'", radians=1)
+
+
+class SCurveSpec(Section):
+    """A jerk-limited speed profile (an S-curve): from ``start`` the speed rises to ``speed`` with the acceleration
+    ramped at ``jerk`` up to ``acceleration`` (less where the speed is reached first), held for ``hold``, and
+    brought back to rest the same way.  Its acceleration is piecewise linear in time (a table, its corners
+    segment boundaries); the speed is its integral, a state of the controller, exact."""
+
+    speed: u.quantity(u.ANGULAR_SPEED) = Field(description="the cruising speed (negative: backwards)")
+    acceleration: u.quantity(ANGULAR_ACCELERATION, gt=0.0) = Field(description="the most acceleration")
+    jerk: u.quantity(JERK, gt=0.0) = Field(description="the acceleration's most rate of change")
+    start: u.quantity(u.TIME, ge=0.0) = Field(0.0, description="when it starts")
+    hold: u.quantity(u.TIME, ge=0.0) = Field(0.0, description="how long it cruises at speed")
+
+    def table(self) -> tuple:
+        """(times, accelerations): eight rows whatever its shape (a corner twice where no acceleration is held)."""
+        size, sign = abs(self.speed), math.copysign(1.0, self.speed)
+        peak = min(self.acceleration, math.sqrt(size * self.jerk))  # where the speed comes before the most
+        ramp = peak / self.jerk
+        held = size / peak - ramp if size > 0 else 0.0
+        marks = [0.0, ramp, ramp + held, 2 * ramp + held]
+        up = [self.start + m for m in marks]
+        down = [up[-1] + self.hold + m for m in marks]
+        return tuple(up + down), tuple(sign * a for a in (0.0, peak, peak, 0.0, 0.0, -peak, -peak, 0.0))
+
+
+class AccelerationSignal(TimeSignal):
+    """A speed given by its acceleration (an S-curve's table): the element integrates it, from rest."""
+
+    integrated: ClassVar[bool] = True
+
+
 def _speed_reference(value):
-    """A speed reference: any signal of a speed, or ``{kinematic_ptp: {...}}`` (:class:`KinematicPtpSpec`)."""
+    """A speed reference: any signal of a speed, ``{kinematic_ptp: {...}}`` (:class:`KinematicPtpSpec`) or
+    ``{s_curve: {...}}`` (:class:`SCurveSpec`: its acceleration, which the controller integrates)."""
+    if isinstance(value, dict) and set(value) == {"s_curve"}:
+        try:
+            times, accelerations = SCurveSpec.model_validate(value["s_curve"]).table()
+            return AccelerationSignal(times=times, values=accelerations)
+        except ValidationError as exc:
+            error = exc.errors()[0]
+            raise u.UnitError(f"s_curve.{'.'.join(str(p) for p in error['loc'])}: "
+                              f"{error['msg'].removeprefix('Value error, ')}") from None
     if isinstance(value, dict) and set(value) == {"kinematic_ptp"}:
         try:
             times, speeds = KinematicPtpSpec.model_validate(value["kinematic_ptp"]).table()
@@ -229,7 +271,8 @@ class SpeedControllerSpec(Section):
     drives: Text | None = Field(None, description="the shaft its torque drives (default: the one it measures)")
     reference: Annotated[TimeSignal, BeforeValidator(_speed_reference), u.ANGULAR_SPEED] = Field(
         description="r, the speed it is asked for: a signal of time, or {kinematic_ptp: {distance, max_speed, "
-        "max_acceleration, start}} (Modelica's KinematicPTP integrated)")
+        "max_acceleration, start}} (Modelica's KinematicPTP integrated), or {s_curve: {speed, acceleration, jerk, "
+        "start, hold}} (jerk-limited)")
     gain: u.quantity(SPEED_GAIN, gt=0.0) = Field(description="k, the torque per rad/s of error")
     integral_time: u.quantity(u.TIME, gt=0.0) | None = Field(None, description="T_i (none: no integral part, a P "
                                                              "or PD controller)")
@@ -284,6 +327,9 @@ class SpeedControllerSpec(Section):
     def lowered(self, scenario) -> "SpeedControllerSpec":
         """With its measured shaft's speed at the start written in (rad/s), and the reference's there."""
         shaft = scenario.drivetrain.shafts[self.measures]
+        if getattr(self.reference, "integrated", False):  # an S-curve: a profile from rest
+            return self.with_resolved(start_speed=shaft.train(scenario)[2], start_reference=0.0,
+                                      rope_per_radian=self._rope_per_radian(scenario))
         signal_ = self.reference
         harmonics = sum(a * math.sin(p) for a, p in zip(signal_.amplitudes, signal_.phases))
         if signal_.envelope_times is not None:

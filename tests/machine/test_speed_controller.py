@@ -152,3 +152,29 @@ def test_a_kinematic_ptp_reference_moves_its_distance_within_its_limits(distance
     slopes = np.diff(speeds)[np.diff(times) > 0] / np.diff(times)[np.diff(times) > 0]
     assert np.max(np.abs(slopes)) == pytest.approx(acceleration, rel=1e-14)
     assert (times[2] == times[3]) == (shape == "triangle") and times[1] == 0.5
+
+
+def test_an_s_curve_reference_is_its_acceleration_integrated_exactly():
+    """{s_curve: {speed 10 rad/s, acceleration 5 rad/s^2, jerk 20 rad/s^3, from 0.2 s, 1 s at speed}}: the
+    acceleration a table of time (its corners segment boundaries), the speed its integral, a state: at every row
+    the piecewise-quadratic closed form to 1e-12, the speed reached and no acceleration or jerk above its limits."""
+    from hoistsim.scenario.schema_drive import SCurveSpec
+
+    text = _rigid_loop(0.0).replace("reference: [[0 s, 3 rad/s], [1 s, 3 rad/s]]", "reference: {s_curve: {speed: "
+                                    "10 rad/s, acceleration: 5 rad/s^2, jerk: 20 rad/s^3, start: 0.2 s, hold: 1 s}}")
+    run = simulate(scenario_from_text(text.replace("duration: 1.5 s", "duration: 6 s")))
+    times, accelerations = map(np.asarray, SCurveSpec(speed=10, acceleration=5, jerk=20, start=0.2, hold=1).table())
+
+    def speed(t):
+        out = 0.0
+        for t0, t1, a0, a1 in zip(times[:-1], times[1:], accelerations[:-1], accelerations[1:]):
+            if t > t0 and t1 > t0:
+                h = min(t, t1) - t0
+                out += a0 * h + 0.5 * (a1 - a0) / (t1 - t0) * h * h
+        return out
+
+    exact = np.array([speed(t) for t in run.time])
+    np.testing.assert_allclose(run["speed_reference"], exact, rtol=0, atol=1e-12 * 10)
+    assert np.max(exact) == pytest.approx(10.0, rel=1e-14) and exact[-1] == pytest.approx(0.0, abs=1e-12)
+    slopes = np.diff(accelerations)[np.diff(times) > 0] / np.diff(times)[np.diff(times) > 0]
+    assert np.max(np.abs(accelerations)) == 5.0 and np.max(np.abs(slopes)) == pytest.approx(20.0, rel=1e-14)

@@ -66,6 +66,7 @@ class SpeedController(AbstractElement):
     has_integral: bool = static(True)
     has_derivative: bool = static(False)
     has_lag: bool = static(False)
+    integrates_reference: bool = static(False)  # its table is the reference's acceleration (an S-curve)
     section: str = static("")  # its key in drivetrain.speed_controllers
 
     @classmethod
@@ -82,7 +83,8 @@ class SpeedController(AbstractElement):
                    derivative_filter=spec.derivative_filter, setpoint_weight=spec.setpoint_weight,
                    derivative_setpoint_weight=spec.derivative_setpoint_weight, start_integral=integral,
                    start_filter=filtered, torque_lag=spec.torque_lag if spec.torque_lag > 0.0 else 1.0,
-                   start_output=output, **signal_fields(spec.reference, "reference"), measures=spec.measures,
+                   start_output=output, **signal_fields(spec.reference, "reference"),
+                   integrates_reference=getattr(spec.reference, "integrated", False), measures=spec.measures,
                    drives=spec.drives or spec.measures, has_integral=spec.integral_time is not None,
                    has_derivative=spec.derivative_time > 0.0, has_lag=spec.torque_lag > 0.0, section=spec.name,
                    **cls._sequence_fields(spec))
@@ -176,8 +178,13 @@ class SpeedController(AbstractElement):
                         f"{self.section}.emergency": ("emergency_times", "emergency_values")})
         return out
 
+    @property
+    def reference_state(self) -> str:
+        return f"{self.section}_reference_speed"
+
     def reference(self, x):
-        return signal_at(self, x, "reference")
+        """r, rad/s: its signal, or an S-curve's speed (the integral of its acceleration's table, a state)."""
+        return x.state(self.reference_state) if self.integrates_reference else signal_at(self, x, "reference")
 
     def _parts(self, x):
         """(the error, the unlimited output v, the derivative filter's input u) at the instant."""
@@ -207,6 +214,8 @@ class SpeedController(AbstractElement):
 
     def states(self) -> dict:
         out = {self.work_state: 0.0}
+        if self.integrates_reference:
+            out[self.reference_state] = 0.0
         if self.has_lag:
             out[self.torque_state] = self.start_output
         if self.has_integral:
@@ -221,6 +230,8 @@ class SpeedController(AbstractElement):
         error, unlimited, filtered = self._parts(x)
         output = jnp.clip(unlimited, self.min_torque, self.max_torque)
         out = {self.work_state: self.torque(x) * x.speed(self.drives)}
+        if self.integrates_reference:
+            out[self.reference_state] = signal_at(self, x, "reference")
         if self.has_lag:
             out[self.torque_state] = (output - x.state(self.torque_state)) / self.torque_lag
         if self.has_integral:
