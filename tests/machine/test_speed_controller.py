@@ -143,7 +143,7 @@ def test_bad_input_names_its_key(change, key, says, tmp_path):
 def test_a_kinematic_ptp_reference_moves_its_distance_within_its_limits(distance, speed, acceleration, shape):
     """Modelica's KinematicPTP integrated: the speed's integral is the distance; no faster than max_speed, no
     steeper than max_acceleration; a triangle where the distance leaves no time at the most speed."""
-    from hoistsim.scenario.schema_drive import KinematicPtpSpec
+    from hoistsim.scenario.schema_speed_reference import KinematicPtpSpec
 
     times, speeds = map(np.asarray, KinematicPtpSpec(distance=distance, max_speed=speed,
                                                      max_acceleration=acceleration, start=0.5).table())
@@ -158,7 +158,7 @@ def test_an_s_curve_reference_is_its_acceleration_integrated_exactly():
     """{s_curve: {speed 10 rad/s, acceleration 5 rad/s^2, jerk 20 rad/s^3, from 0.2 s, 1 s at speed}}: the
     acceleration a table of time (its corners segment boundaries), the speed its integral, a state: at every row
     the piecewise-quadratic closed form to 1e-12, the speed reached and no acceleration or jerk above its limits."""
-    from hoistsim.scenario.schema_drive import SCurveSpec
+    from hoistsim.scenario.schema_speed_reference import SCurveSpec
 
     text = _rigid_loop(0.0).replace("reference: [[0 s, 3 rad/s], [1 s, 3 rad/s]]", "reference: {s_curve: {speed: "
                                     "10 rad/s, acceleration: 5 rad/s^2, jerk: 20 rad/s^3, start: 0.2 s, hold: 1 s}}")
