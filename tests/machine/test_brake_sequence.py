@@ -66,7 +66,8 @@ def sequence():
 
 def test_the_brake_opens_after_the_proof_and_closes_after_the_stop(sequence):
     """Proven at once (its 50 N*m pre-torque above the 45 N*m it proves): released at the opening time, 0.3 s;
-    the stop command at 4 s finds the motor below 10 rpm: applied at 4.2 s, and the brake then holds."""
+    the stop command at 4 s finds the motor below 10 rpm: applied at 4.2 s; the drive then lets go of the load
+    and the brake holds it."""
     run = sequence
     kinds, times = list(run.instants["kind"]), run.instants["time"]
     assert times[kinds.index("brake_release")] == pytest.approx(0.3, abs=1e-12)
@@ -75,6 +76,10 @@ def test_the_brake_opens_after_the_proof_and_closes_after_the_stop(sequence):
     held = run.time > 4.25
     assert np.all(run["brake_engaged"][held] == 1) and np.all(run["brake_engaged"][(run.time > 0.31)
                                                                                  & (run.time < 4.19)] == 0)
+    # the brake applied, the drive takes its torque away (through its 5 ms current loop): the brake holds the load
+    late = run.time > 4.4
+    assert np.max(np.abs(run["drive_torque"][late])) < 1e-9 * LOAD
+    np.testing.assert_allclose(run["brake_torque"][late], LOAD, rtol=1e-9)
     assert run.summary["drive_proven_torque"] == pytest.approx(50.0, rel=1e-12)
     # the load ran back while the drive's 50 N*m fell short of its 65.4 N*m: a millimetre, then lifted
     assert 0.0005 < run.summary["rollback_distance"] < 0.002

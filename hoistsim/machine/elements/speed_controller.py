@@ -23,7 +23,8 @@ class SpeedController(AbstractElement):
     at a limit is the summary's ``<name>_saturated_time``.  With a torque lag T_c (the inverter's current loop) the
     torque on the shaft is a state following y, T_c tau' = y - tau, started at y.  The torque's work on the shaft
     it drives is a state and the ledger's work.  With a brake sequence (:mod:`._brake_sequence`) it releases and
-    applies its brake, and an emergency stop takes its torque away (a table's step).
+    applies its brake and takes its torque away once the brake is applied (through its torque lag, where it has
+    one), and an emergency stop takes its torque away at once (a table's step).
     """
 
     gain: object  # k, N*m*s/rad
@@ -197,6 +198,8 @@ class SpeedController(AbstractElement):
         unlimited = self.gain * (proportional + integral + derivative)
         if self.has_emergency_stop:  # switched off: it asks for nothing (and its integral rests)
             unlimited = unlimited * (1.0 - x.table(f"{self.section}.emergency"))
+        if self.brake:  # its brake applied (a stop's end): it takes its torque away, the brake holds the load
+            unlimited = jnp.where(x.state(sequence.counts(self.section)[1]) >= self.close_delay, 0.0, unlimited)
         return reference - speed, unlimited, filtered
 
     def output(self, x):
