@@ -15,7 +15,7 @@ def _headline(summary: dict) -> str | None:
     """Each machine's peak armature current: what its supply and its commutator must carry."""
     peaks = [(key[: -len("_peak_current")], float(value)) for key, value in summary.items()
              if key.endswith("_peak_current")  # not an induction machine's (its headline says its torque too)
-             and f"{key[: -len('_peak_current')]}_least_torque" not in summary]
+             and f"{key[: -len('_peak_current')]}_min_torque" not in summary]
     return "; ".join(f"{name} draws up to {peak:.4g} A" for name, peak in peaks) or None
 
 

@@ -17,9 +17,9 @@ def _headline(summary: dict) -> str | None:
     current."""
     said = []
     for key in summary:
-        if key.endswith("_least_torque"):
-            name = key[: -len("_least_torque")]
-            said.append(f"{name} torque {float(summary[key]):.4g} to {float(summary[f'{name}_peak_torque']):.4g} N*m, "
+        if key.endswith("_min_torque"):
+            name = key[: -len("_min_torque")]
+            said.append(f"{name} torque {float(summary[key]):.4g} to {float(summary[f'{name}_max_torque']):.4g} N*m, "
                         f"current up to {float(summary[f'{name}_peak_current']):.4g} A")
     return "; ".join(said) or None
 

@@ -60,6 +60,11 @@ _NAMED = {
                                     "NaN: never settled"),
     "inertia_tredgold": ("inertia at the motor shaft by Tredgold's approximation", "NaN: never settled"),
     "switches_per_period": ("mean switches of the couplings in a period, settled regime", "NaN: never settled"),
+    # a drive's brake sequence (the scene has one)
+    "rollback_distance": ("rope the drum pays out backwards from the brake's release until the drive has the load "
+                          "going its way", "0: no rollback"),
+    "stopping_time": ("time from the emergency stop until the brake holds the drum", "NaN: not held by the end"),
+    "stopping_distance": ("rope the drum pays out from the emergency stop until the brake holds it", ""),
 }
 
 # a part's own names, its name filled in: pattern -> (long_name, comment), first match wins
@@ -68,6 +73,14 @@ _PATTERNS = [
     (r"(?P<part>.+)_slip_duration", "time {part} spends slipping", _NEVER_SLIPPED),
     (r"(?P<part>.+)_slip_energy", "heat dissipated in {part} over the run", _NEVER_SLIPPED),
     (r"(?P<part>.+)_peak_torque", "largest torque {part} passes (magnitude)", ""),
+    (r"(?P<part>.+)_max_torque", "largest torque of {part} (signed: its most forwards)", ""),
+    (r"(?P<part>.+)_min_torque", "least torque of {part} (signed: its most backwards)", ""),
+    (r"(?P<part>.+)_peak_current", "largest current of {part} (magnitude; an induction machine's stator space "
+                                   "phasor's)", ""),
+    (r"(?P<part>.+)_saturated_time", "time controller {part} spends at a limit of its output", "0: never"),
+    (r"(?P<part>.+)_proven_torque", "torque drive {part} had proven when its brake let go",
+     "NaN: never released"),
+    (r"(?P<part>.+)_release_time", "time drive {part}'s brake lets go", "NaN: never released"),
     (r"(?P<part>.+)_peak_slip_speed", "largest slip speed of {part} (magnitude)", _NEVER_SLIPPED),
     (r"(?P<part>.+)_overheat_time", "time {part} first reaches its limit temperature", "NaN: never reached"),
     (r"peak_(?P<part>.+)_temperature", "highest temperature of {part}", ""),

@@ -44,7 +44,8 @@ def conditions(controller, x, torque) -> dict:
     return {"proven": jnp.abs(torque) >= controller.prove_torque, "released": released,
             "emergency": x.table(f"{controller.section}.emergency") > 0.5,
             "stopping": x.table(f"{controller.section}.stopping") > 0.5,
-            "slow": jnp.abs(speed) < controller.close_speed, "under_way": x.state(under_way) > 0.0,
+            "slow": jnp.abs(speed) < controller.close_speed,
+            "under_way": x.state(under_way) > 0.0 if controller.has_rope else False,
             "held": (x.state(close) >= controller.close_delay) & (x.mode(controller.brake) == STUCK),
             "speed": speed}
 

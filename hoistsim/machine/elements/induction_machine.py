@@ -29,8 +29,8 @@ class InductionMachine(AbstractElectricalMachine):
     a star-delta starter switches (another).  The electrical energy it takes in, 3/2 Re(v conj(i_s)), and its
     copper losses, 3/2 (R_s |i_s|^2 + R_r |i_r|^2), are states (the ledger's work and loss); the magnetic energy
     3/4 Re(psi_s conj(i_s) + psi_r conj(i_r)) is stored.  Each peak of the stator current's magnitude and each
-    turn of the torque is a row (an observation), so the summary's ``<name>_peak_current``, ``_peak_torque`` and
-    ``_least_torque`` are exact.
+    turn of the torque is a row (an observation), so the summary's ``<name>_peak_current``, ``_max_torque`` and
+    ``_min_torque`` are exact.
     """
 
     stator_resistance: object  # R_s, ohm
@@ -102,7 +102,7 @@ class InductionMachine(AbstractElectricalMachine):
     @property
     def summaries(self) -> dict:
         name = self.section
-        return {f"{name}_peak_current": "A", f"{name}_peak_torque": "N*m", f"{name}_least_torque": "N*m"}
+        return {f"{name}_peak_current": "A", f"{name}_max_torque": "N*m", f"{name}_min_torque": "N*m"}
 
     @property
     def columns(self) -> dict:
@@ -191,8 +191,8 @@ class InductionMachine(AbstractElectricalMachine):
 
     def extremes(self, x) -> dict:
         name, torque = self.section, self.air_gap_torque(x)
-        return {f"{name}_peak_current": ("max", jnp.abs(self.currents(x)[0])), f"{name}_peak_torque": ("max", torque),
-                f"{name}_least_torque": ("min", torque)}
+        return {f"{name}_peak_current": ("max", jnp.abs(self.currents(x)[0])), f"{name}_max_torque": ("max", torque),
+                f"{name}_min_torque": ("min", torque)}
 
     def ledger(self, x) -> dict:
         psi_s, psi_r = self.fluxes(x)
