@@ -98,6 +98,15 @@ def drawn(name: str, duration="1 s", interval="1 ms", rtol=1e-11, atol=1e-13, **
 
 
 # -------------------------------------------------------------------------------- a bad scenario refused
+def part_keys_set(kind: str, name: str, keys: dict):
+    """A change for :func:`refused_in_one_line`: drivetrain.<kind>.<name>'s ``keys`` set (None: removed)."""
+    def change(data):
+        part = data["drivetrain"][kind][name]
+        for key, value in keys.items():
+            part.pop(key) if value is None else part.update({key: value})
+    return change
+
+
 def refused_in_one_line(path, change, key: str, says: str, tmp_path) -> None:
     """The scenario file ``path`` with ``change(data)`` made to its plain data is refused naming ``key`` (its
     message saying ``says``): by the loader, and by ``hoistsim run`` in one line, exit 2, nothing written."""

@@ -5,10 +5,8 @@ controller (Modelica's LimPID) driving a shaft with a torque.
 
 from __future__ import annotations
 
-import math
 from typing import Annotated, Literal
 
-import numpy as np
 from pydantic import BeforeValidator, Field, model_validator
 
 from ..errors import ScenarioError
@@ -236,12 +234,7 @@ class SpeedControllerSpec(Section):
         if getattr(self.reference, "integrated", False):  # an S-curve: a profile from rest
             return self.with_resolved(start_speed=shaft.train(scenario)[2], start_reference=0.0,
                                       rope_per_radian=self._rope_per_radian(scenario))
-        signal_ = self.reference
-        harmonics = sum(a * math.sin(p) for a, p in zip(signal_.amplitudes, signal_.phases))
-        if signal_.envelope_times is not None:
-            harmonics *= float(np.interp(0.0, signal_.envelope_times, signal_.envelope_values))
-        return self.with_resolved(start_speed=shaft.train(scenario)[2],
-                                  start_reference=float(np.interp(0.0, signal_.times, signal_.values)) + harmonics,
+        return self.with_resolved(start_speed=shaft.train(scenario)[2], start_reference=self.reference.value_at(0.0),
                                   rope_per_radian=self._rope_per_radian(scenario))
 
     def _rope_per_radian(self, scenario) -> float | None:

@@ -14,8 +14,10 @@ same way.
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, Any
 
+import numpy as np
 from pydantic import BaseModel, BeforeValidator, ConfigDict
 
 from .tables import TableError, time_rows
@@ -38,6 +40,15 @@ class TimeSignal(BaseModel):
     @property
     def has_harmonics(self) -> bool:
         return bool(self.amplitudes)
+
+    def value_at(self, t: float) -> float:
+        """Its value at time ``t`` (s), as an element reads it: the table, plus the harmonics times their
+        envelope."""
+        harmonics = sum(a * math.sin(2.0 * math.pi * f * t + p)
+                        for a, f, p in zip(self.amplitudes, self.frequencies, self.phases))
+        if self.envelope_times is not None:
+            harmonics *= float(np.interp(t, self.envelope_times, self.envelope_values))
+        return float(np.interp(t, self.times, self.values)) + harmonics
 
 
 def _harmonics(value: dict, dimension: Dimension) -> TimeSignal:

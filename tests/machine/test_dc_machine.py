@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 import pytest
-from helpers import SCENARIOS, refused_in_one_line
+from helpers import SCENARIOS, part_keys_set, refused_in_one_line
 from modelica_reference import deviations
 from scipy.linalg import expm
 
@@ -118,9 +118,4 @@ def test_the_nameplate_gives_the_flux_constant():
      "drivetrain.dc_machines.dcpm.nominal.voltage", "induce no voltage"),
 ])
 def test_bad_input_names_its_key(change, key, says, tmp_path):
-    def changed(data):
-        part = data["drivetrain"]["dc_machines"]["dcpm"]
-        for name, value in change.items():
-            part.pop(name) if value is None else part.update({name: value})
-
-    refused_in_one_line(DCPM, changed, key, says, tmp_path)
+    refused_in_one_line(DCPM, part_keys_set("dc_machines", "dcpm", change), key, says, tmp_path)

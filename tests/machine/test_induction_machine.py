@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 import pytest
-from helpers import SCENARIOS, refused_in_one_line
+from helpers import SCENARIOS, part_keys_set, refused_in_one_line
 from scipy.integrate import solve_ivp
 
 from hoistsim import load_scenario, simulate
@@ -131,8 +131,7 @@ def test_its_peaks_are_exact_and_its_ledger_closes(dol):
      "drivetrain.induction_machines.aimc.supply.delta_at", "star-delta"),
 ])
 def test_bad_input_names_its_key(change, key, says, tmp_path):
-    refused_in_one_line(DOL, lambda data: data["drivetrain"]["induction_machines"]["aimc"].update(change), key, says,
-                        tmp_path)
+    refused_in_one_line(DOL, part_keys_set("induction_machines", "aimc", change), key, says, tmp_path)
 
 
 @pytest.mark.slow  # a program of its own (the signals' rows) and the independent integration: some 20 s

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from helpers import SCENARIOS, refused_in_one_line
+from helpers import SCENARIOS, part_keys_set, refused_in_one_line
 from modelica_reference import deviations, reference
 from scipy.linalg import expm
 
@@ -131,12 +131,7 @@ def test_the_ledger_takes_the_controllers_torque_as_work(pid_controller):
     ({"measures": "motor"}, "drivetrain.speed_controllers.PI.measures", "no shaft 'motor'"),
 ])
 def test_bad_input_names_its_key(change, key, says, tmp_path):
-    def changed(data):
-        part = data["drivetrain"]["speed_controllers"]["PI"]
-        for name, value in change.items():
-            part.pop(name) if value is None else part.update({name: value})
-
-    refused_in_one_line(PID, changed, key, says, tmp_path)
+    refused_in_one_line(PID, part_keys_set("speed_controllers", "PI", change), key, says, tmp_path)
 
 @pytest.mark.parametrize("distance, speed, acceleration, shape", [
     (np.pi / 2, 1.0, 1.0, "trapezoid"), (0.5, 1.0, 1.0, "triangle"), (-3.0, 1.0, 0.5, "trapezoid")])

@@ -209,7 +209,11 @@ class SpeedController(AbstractElement):
     def torque(self, x):
         """N*m on the shaft it drives: its output, or the lag's state where it has one; none after an emergency
         stop."""
-        torque = x.state(self.torque_state) if self.has_lag else self.output(x)
+        return self._applied(x, None if self.has_lag else self.output(x))
+
+    def _applied(self, x, output):
+        """The torque on the shaft, its output ``output`` already worked out (None where it has a lag)."""
+        torque = x.state(self.torque_state) if self.has_lag else output
         return torque * (1.0 - x.table(f"{self.section}.emergency")) if self.has_emergency_stop else torque
 
     def torques(self, x) -> tuple:
@@ -232,7 +236,8 @@ class SpeedController(AbstractElement):
     def rates(self, x) -> dict:
         error, unlimited, filtered = self._parts(x)
         output = jnp.clip(unlimited, self.min_torque, self.max_torque)
-        out = {self.work_state: self.torque(x) * x.speed(self.drives)}
+        torque = self._applied(x, output)
+        out = {self.work_state: torque * x.speed(self.drives)}
         if self.integrates_reference:
             out[self.reference_state] = signal_at(self, x, "reference")
         if self.has_lag:
@@ -244,7 +249,7 @@ class SpeedController(AbstractElement):
             out[self.filter_state] = self.derivative_filter * (filtered - x.state(self.filter_state)) \
                 / self.derivative_time
         if self.brake:
-            out.update(sequence.rates(self, x, self.torque(x)))
+            out.update(sequence.rates(self, x, torque))
         return out
 
     def observations(self, x) -> dict:
