@@ -20,6 +20,7 @@ from .induction_machine import INDUCTION_MACHINE
 from .linkage import LINKAGE
 from .load import LOAD
 from .mesh_friction import MESH_FRICTION
+from .motion_source import MOTION_SOURCE
 from .motor import MOTOR
 from .panel import Display as Display
 from .part_names import under_part_names
@@ -33,7 +34,7 @@ from .spring_damper import SPRING_DAMPER
 
 DISPLAYS: tuple[Display, ...] = (MOTOR, GEAR_PAIR, MESH_FRICTION, FRICTION_CLUTCH, CLUTCH_HEATING, LOAD, ROPE,
                                  GROUND, HOLDING_BRAKE, FRICTION_BRAKE, RATCHET, DRUM_SHAFT_LOADS, PERIODIC_REGIME,
-                                 SHAFT, SHAFT_TORQUE, DC_MACHINE, INDUCTION_MACHINE, SPEED_CONTROLLER,
+                                 SHAFT, SHAFT_TORQUE, MOTION_SOURCE, DC_MACHINE, INDUCTION_MACHINE, SPEED_CONTROLLER,
                                  LINKAGE, SPRING_DAMPER, EDDY_CURRENT_BRAKE)
 
 

@@ -12,6 +12,7 @@ from pydantic import BeforeValidator, Field, model_validator
 from ..errors import ScenarioError
 from . import units as u
 from .schema_base import Section
+from .schema_motion_source import start_driven_angles
 from .schema_speed_reference import speed_reference
 from .signals import TimeSignal, signal
 from .units import Dimension, Text
@@ -24,7 +25,7 @@ INDUCTANCE = Dimension("inductance", "H", "'1.5 mH'")
 # a DC machine's flux constant: volts per rad/s of its speed, newton metres per ampere of its current
 FLUX = Dimension("flux constant", "V*s", "'0.6366 V*s'")
 
-DRIVE_PARTS = ("dc_machines", "induction_machines", "speed_controllers")  # the drivetrain's keys of these kinds
+DRIVE_PARTS = ("dc_machines", "induction_machines", "speed_controllers", "motion_sources")  # the drivetrain's keys
 
 
 class NominalPointSpec(Section):
@@ -168,7 +169,8 @@ class SpeedControllerSpec(Section):
     through a first-order lag T_c where one is given (the inverter's current loop).  The limits' corners are
     located as switches are.  Its outputs: ``<name>_reference`` (rad/s), ``<name>_error`` (r - w, rad/s),
     ``<name>_integral`` (I, rad/s: Modelica's I.y), ``<name>_output`` (y, N*m), ``<name>_torque`` (N*m, on the
-    shaft: y lagged); its summary ``<name>_saturated_time`` (s at a limit)."""
+    shaft: y lagged), and ``<reference_block>_output`` (the reference, named as the block that gives it); its
+    summary ``<name>_saturated_time`` (s at a limit)."""
 
     alternatives = (("output", "integral"),)
     measures: Text = Field(description="the shaft whose speed it controls")
@@ -177,6 +179,9 @@ class SpeedControllerSpec(Section):
         description="r, the speed it is asked for: a signal of time, or {kinematic_ptp: {distance, max_speed, "
         "max_acceleration, start}} (Modelica's KinematicPTP integrated), or {s_curve: {speed, acceleration, jerk, "
         "start, hold}} (jerk-limited)")
+    reference_block: Text | None = Field(None, description="the signal block the reference comes from, its "
+                                         "output written as <reference_block>_output too (Modelica's "
+                                         "integrator.y)")
     gain: u.quantity(SPEED_GAIN, gt=0.0) = Field(description="k, the torque per rad/s of error")
     integral_time: u.quantity(u.TIME, gt=0.0) | None = Field(None, description="T_i (none: no integral part, a P "
                                                              "or PD controller)")
@@ -258,12 +263,20 @@ def check_drive_parts(drivetrain, names_taken: set, is_name) -> None:
                                     "underscores starting with a letter, not 'ground' and not the name of "
                                     "another part (they name the outputs)")
             names_taken.add(name)
+            block = getattr(part, "reference_block", None)
+            if block is not None:
+                if not is_name(block) or block in names_taken:
+                    raise ScenarioError(f"drivetrain.{kind}.{name}.reference_block", "a name is a word of letters, "
+                                        "digits and underscores starting with a letter, not 'ground' and not the "
+                                        "name of another part (it names an output)")
+                names_taken.add(block)
             for key in ("shaft", "measures", "drives"):
                 shaft = getattr(part, key, None)
                 if shaft is not None and shaft not in drivetrain.shafts:
                     raise ScenarioError(f"drivetrain.{kind}.{name}.{key}", f"there is no shaft {shaft!r} "
                                         f"(shafts: {', '.join(drivetrain.shafts)})")
     _check_brake_sequences(drivetrain)
+    start_driven_angles(drivetrain)
 
 
 def _check_brake_sequences(drivetrain) -> None:

@@ -29,6 +29,7 @@ from .schema_drive import (DRIVE_PARTS, DcMachineSpec, InductionMachineSpec, Spe
                            check_drive_parts)
 from .schema_speed_torques import SPEED_PARTS, EddyCurrentBrakeSpec, HeatCapacitorSpec, SpeedLaws, check_speed_parts
 from .schema_linkage import PlanetarySpec, check_linkages, start_speeds
+from .schema_motion_source import MotionSourceSpec
 from .schema_shaft_parts import (SHAFT_PARTS, BrakeOnShaftSpec, OnShaft, RatchetOnShaftSpec, RotorSpec,
                                  SliderCrankSpec, check_shaft_parts)
 from .signals import signal
@@ -185,6 +186,7 @@ class DrivetrainSpec(Section):
     dc_machines: dict[str, DcMachineSpec] = {}
     induction_machines: dict[str, InductionMachineSpec] = {}
     speed_controllers: dict[str, SpeedControllerSpec] = {}
+    motion_sources: dict[str, MotionSourceSpec] = {}
 
     @model_validator(mode="before")
     @classmethod

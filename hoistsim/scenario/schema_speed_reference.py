@@ -16,9 +16,6 @@ from .schema_base import Section
 from .signals import TimeSignal, time_signal
 from .units import Dimension
 
-ANGULAR_ACCELERATION = Dimension("angular acceleration", "rad/s^2", "'1 rad/s^2'", radians=1)
-
-
 class KinematicPtpSpec(Section):
     """Modelica's KinematicPTP integrated: the speed that moves a shaft through ``distance`` as fast as its
     ``max_speed`` and ``max_acceleration`` let it, from ``start`` (accelerating at the most, at the most speed a
@@ -26,7 +23,7 @@ class KinematicPtpSpec(Section):
 
     distance: u.quantity(u.ANGLE) = Field(description="delta q, the angle to move (negative: backwards)")
     max_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) = Field(description="qd_max")
-    max_acceleration: u.quantity(ANGULAR_ACCELERATION, gt=0.0) = Field(description="qdd_max")
+    max_acceleration: u.quantity(u.ANGULAR_ACCELERATION, gt=0.0) = Field(description="qdd_max")
     start: u.quantity(u.TIME, ge=0.0) = Field(0.0, description="when it starts moving")
 
     @model_validator(mode="after")
@@ -59,7 +56,7 @@ class SCurveSpec(Section):
     segment boundaries); the speed is its integral, a state of the controller, exact."""
 
     speed: u.quantity(u.ANGULAR_SPEED) = Field(description="the cruising speed (negative: backwards)")
-    acceleration: u.quantity(ANGULAR_ACCELERATION, gt=0.0) = Field(description="the most acceleration")
+    acceleration: u.quantity(u.ANGULAR_ACCELERATION, gt=0.0) = Field(description="the most acceleration")
     jerk: u.quantity(JERK, gt=0.0) = Field(description="the acceleration's most rate of change")
     start: u.quantity(u.TIME, ge=0.0) = Field(0.0, description="when it starts")
     hold: u.quantity(u.TIME, ge=0.0) = Field(0.0, description="how long it cruises at speed")

@@ -164,6 +164,7 @@ class Bodies:
                 self.ends.append(None)
         self.rows = _summed((len(self.ends), count), [(k, j) for k, row in enumerate(self.terms) for j, _ in row],
                             [g for row in self.terms for _, g in row])  # G, couplings x bodies
+        self.driven = [k for k, c in enumerate(layout.coupling_elements) if c.drives]  # the drives, by coupling
 
     @cached_property
     def inertia(self):
@@ -213,10 +214,12 @@ class Bodies:
         or a matrix of them a column each)."""
         return -product(self.rows.T, passed)
 
-    def align(self, values, stuck):
+    def align(self, values, stuck, held=None):
         """Make the values of bodies joined by stuck couplings agree to the last bit.
 
         ``values``: one per body, a vector or a matrix (a row per body, every column aligned alike).
+        ``held``: the relative value each stuck coupling to the ground holds its body at, a row per coupling
+        like ``values``' (a drive's speed or acceleration); None: none but zero, the ground at rest.
         Solved in floating point the constraints hold to round-off only; left so,
         two locked shafts would drift apart by ulps a step, and a held shaft would
         creep.  Bodies joined by stuck couplings between two shafts are groups,
@@ -224,7 +227,7 @@ class Bodies:
         its root (the ground, below them all, where a stuck ground coupling holds
         one of them), carried a coupling further each round, with the speed
         ratios met on the way; each body's value is then its root's times that
-        ratio (zero at the ground), picked by a mask, not computed, so a shaft
+        ratio (at the ground, what its hold holds), picked by a mask, not computed, so a shaft
         locked at ratio one has its root's value to the last bit.  A stuck
         coupling that ties three shafts, after them, gives one of its bodies not
         yet settled the value its relation leaves it: the one its row weighs most
@@ -243,7 +246,8 @@ class Bodies:
         holds = np.asarray([[end is not None and end[2] is None and end[0] == j for j in bodies] for end in self.ends],
                            dtype=bool).reshape(nc, count)
         settled = jnp.any(holds & stuck[:, None], axis=0)
-        root = jnp.where(settled, -1, root)
+        # a held body's root is the ground (-1), or with drives the hold that holds it (-1 - k: coupling k)
+        root = jnp.where(settled, -1 if held is None else -1 - jnp.argmax(holds & stuck[:, None], axis=0), root)
         pairs = [(k, *end) for k, end in enumerate(self.ends)
                  if end is not None and end[2] is not None and end[0] != end[2]]
         if pairs:
@@ -277,7 +281,13 @@ class Bodies:
         if pairs or holds.any():
             # each body's root's value by a mask: one term of the sum is not zero (none at the ground)
             picked = (root[:, None] == bodies)[:, :, None]
-            values = jnp.sum(jnp.where(picked, values, 0.0), axis=1) * ratio[:, None]
+            rooted = jnp.sum(jnp.where(picked, values, 0.0), axis=1)
+            if held is not None:  # the value a hold holds its body at: its relative value over its speed ratio
+                by_hold = (root[:, None] == -1 - np.arange(nc))[:, :, None]
+                ratio_of = _vector([end[1] if end is not None and end[2] is None else 1.0 for end in self.ends])
+                rooted = rooted + jnp.sum(jnp.where(by_hold, (held.reshape(nc, -1) / ratio_of[:, None])[None], 0.0),
+                                          axis=1)
+            values = rooted * ratio[:, None]
         for k, end in enumerate(self.ends):
             if end is not None:
                 continue
@@ -295,11 +305,12 @@ class Bodies:
 
 @pytree_dataclass
 class Response:
-    """The bodies' response while the modes hold: a = P tau + Q sigma, T = R tau + U sigma.
+    """The bodies' response while the modes hold: a = P tau + Q sigma + D h, T = R tau + U sigma + E h.
 
     tau: torques on the bodies; sigma: each coupling's sliding torque with the
-    sign of its slip (zero unless slipping); a: accelerations; T: the torque
-    each coupling passes.  Four small arrays, so that a step evaluates them as a
+    sign of its slip (zero unless slipping); h: the relative acceleration each
+    drive holds (none without drives); a: accelerations; T: the torque
+    each coupling passes.  Small arrays, so that a step evaluates them as a
     few matrix-vector products.  The rows of P and Q of bodies joined by stuck
     couplings at ratio one are equal to the last bit (zero for a body held to
     the ground), so their accelerations agree to the last bit.
@@ -309,11 +320,14 @@ class Response:
     accel_from_sliding: jax.Array  # Q, bodies x couplings
     torque_from_torque: jax.Array  # R, couplings x bodies
     torque_from_sliding: jax.Array  # U, couplings x couplings
+    accel_from_motion: jax.Array  # D, bodies x drives
+    torque_from_motion: jax.Array  # E, couplings x drives
 
 
 def solve_response(layout: Layout, stuck, y=None) -> Response:
     """The linear map of :class:`Response` for a set of stuck couplings: one masked solve whose right-hand
-    sides are a unit torque on each body and a unit sliding torque of each coupling, side by side.
+    sides are a unit torque on each body, a unit sliding torque of each coupling and a unit relative
+    acceleration held by each drive, side by side.
 
     ``y``: the state, where an inertia varies with an angle.
     """
@@ -321,16 +335,22 @@ def solve_response(layout: Layout, stuck, y=None) -> Response:
     nb, nc = len(layout.bodies), len(bodies.ends)
     stuck = jnp.asarray(stuck, dtype=bool).reshape(nc)
     slips = np.diag([1.0 if e.can_slip else 0.0 for e in layout.coupling_elements])  # others' sigma is zero
-    # the inputs a column each: a unit torque on each body, then a unit sliding torque of each coupling
-    tau = np.hstack([np.eye(nb), np.zeros((nb, nc))])
-    sigma = np.hstack([np.zeros((nc, nb)), slips])
+    nd = len(bodies.driven)
+    # the inputs a column each: a unit torque on each body, a unit sliding torque of each coupling, then a unit
+    # relative acceleration held by each drive
+    tau = np.hstack([np.eye(nb), np.zeros((nb, nc + nd))])
+    sigma = np.hstack([np.zeros((nc, nb)), slips, np.zeros((nc, nd))])
+    motion = np.hstack([np.zeros((nc, nb + nc)), np.eye(nc)[:, bodies.driven]])
     # the stuck couplings' system, its right-hand side the relative accelerations the free bodies would take
+    # less those the drives hold
     free = tau + bodies.push(sigma)
-    held = solve_stuck(bodies.schur(), product(bodies.rows, free / bodies.inertia[:, None]), stuck, bodies.order)
+    wanted = product(bodies.rows, free / bodies.inertia[:, None])
+    held = solve_stuck(bodies.schur(), wanted - motion if nd else wanted, stuck, bodies.order)
     passed = jnp.where(stuck[:, None], held, sigma)
-    accel = bodies.align((tau + bodies.push(passed)) / bodies.inertia[:, None], stuck)
-    return Response(accel_from_torque=accel[:, :nb], accel_from_sliding=accel[:, nb:],
-                    torque_from_torque=passed[:, :nb], torque_from_sliding=passed[:, nb:])
+    accel = bodies.align((tau + bodies.push(passed)) / bodies.inertia[:, None], stuck, motion if nd else None)
+    return Response(accel_from_torque=accel[:, :nb], accel_from_sliding=accel[:, nb:nb + nc],
+                    torque_from_torque=passed[:, :nb], torque_from_sliding=passed[:, nb:nb + nc],
+                    accel_from_motion=accel[:, nb + nc:], torque_from_motion=passed[:, nb + nc:])
 
 
 def response(layout: Layout, modes, y=None) -> Response:
@@ -338,16 +358,26 @@ def response(layout: Layout, modes, y=None) -> Response:
     return solve_response(layout, jnp.asarray(modes)[: len(layout.couplings)] == STUCK, y)
 
 
-def keep_momentum(layout: Layout, y, stuck):
+def keep_momentum(layout: Layout, y, stuck, held=None):
     """Speeds after the ``stuck`` couplings lock: the nearest in kinetic energy, momentum kept.
 
-    v+ = v - M^-1 G_s^T mu with (G_s M^-1 G_s^T) mu = G_s v: the impulses of the
-    locking couplings, and nothing else, change the speeds.
+    v+ = v - M^-1 G_s^T mu with (G_s M^-1 G_s^T) mu = G_s v - h: the impulses of the
+    locking couplings, and nothing else, change the speeds.  ``held`` (h): the relative speed each coupling
+    holds, a drive's its own (:meth:`Instant.held_speeds`), every other's zero; None: no drives.  A drive's
+    impulse does the work -mu (r- + r+) / 2 (r its relative speed before and after: the kinetic energy it
+    gives), added to its work state, so that a drive's speed that jumps (a step, an angle's kink) keeps the
+    ledger whole.
     """
     bodies = Bodies(layout, y)
     if not bodies.ends:
         return y
     speeds = y[: len(layout.bodies)]
-    impulse = solve_stuck(bodies.schur(), product(bodies.rows, speeds)[:, None], stuck, bodies.order)[:, 0]
-    speeds = bodies.align(speeds + bodies.push(impulse) / bodies.inertia, stuck)
-    return y.at[: len(layout.bodies)].set(speeds)
+    relative = product(bodies.rows, speeds)
+    impulse = solve_stuck(bodies.schur(), (relative if held is None else relative - held)[:, None], stuck,
+                          bodies.order)[:, 0]
+    speeds = bodies.align(speeds + bodies.push(impulse) / bodies.inertia, stuck, held)
+    y = y.at[: len(layout.bodies)].set(speeds)
+    for k in bodies.driven:
+        work = -impulse[k] * 0.5 * (relative[k] + held[k])
+        y = y.at[layout.state_index(layout.coupling_elements[k].work_state)].add(jnp.where(stuck[k], work, 0.0))
+    return y

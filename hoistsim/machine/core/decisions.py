@@ -43,6 +43,14 @@ def _record_transitions(plan, segment, c, when, t, y, before, after,
     return c
 
 
+def _driven(layout, segment, y, held):
+    """The speeds where a boundary starts, the drives at theirs: a speed that a drive's signal steps (or an angle's
+    kink) jumps, carried by the couplings that never slip and nothing else (a friction coupling carries no
+    impulse: its sides part, and the static check then finds it slipping)."""
+    rigid = [jnp.asarray(not e.can_slip) & ~jnp.asarray(e.is_open(segment)) for e in layout.coupling_elements]
+    return keep_momentum(layout, y, rigid, held)
+
+
 def decide(plan, segment, c, columns: bool):
     """At a boundary, or after a switch located where the last pass ended: the static check decides the
     couplings (one copy of it in the program for both), the scheduled events and the switches are recorded.
@@ -51,14 +59,16 @@ def decide(plan, segment, c, columns: bool):
     catch any); after a switch, those the guards that fired leave stuck or meeting.
     """
     layout = plan.layout
-    boundary_modes, boundary_candidates = static_check.candidates_at_boundary(layout, segment, c.y, plan.speed_scale)
     at = c.at_boundary
+    held = Instant(layout, c.t, c.y, table=segment.table).held_speeds()
+    y = c.y if held is None else jnp.where(at, _driven(layout, segment, c.y, held), c.y)
+    boundary_modes, boundary_candidates = static_check.candidates_at_boundary(layout, segment, y, plan.speed_scale)
     modes = jnp.where(at, boundary_modes, c.pending_modes).astype(c.modes.dtype)
     candidates = [jnp.where(at, b, c.pending_candidates[k]) for k, b in enumerate(boundary_candidates)]
-    decided, met = static_check.settle(layout, segment, c.t, c.y, modes, candidates)
+    decided, met = static_check.settle(layout, segment, c.t, y, modes, candidates)
     # at a boundary the stuck ones' sides take their common speed; after a switch the candidates' met already
-    met = jnp.where(at, keep_momentum(layout, c.y, [m == STUCK for m in decided]), met)
-    decided_y = switching.with_impacts(layout, c.y, met, c.modes, decided)
+    met = jnp.where(at, keep_momentum(layout, y, [m == STUCK for m in decided], held), met)
+    decided_y = switching.with_impacts(layout, y, met, c.modes, decided)
     when = at | c.pending
     before = c.modes
     new_modes = jnp.where(when, decided, c.modes)

@@ -63,6 +63,10 @@ class Instant:
     def table(self, name):
         return self._table(name, self.t)
 
+    def table_at(self, name, t):
+        """A table's value at another instant of the segment (a signal's derivatives are taken through it)."""
+        return self._table(name, t)
+
     def mode(self, coupling):
         return self.modes[self.layout.coupling_index(coupling)]
 
@@ -112,6 +116,11 @@ class Instant:
         sigma = jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in sigma]) if sigma else jnp.zeros(0)
         accel = product(r.accel_from_torque, tau) + product(r.accel_from_sliding, sigma)
         torque = product(r.torque_from_torque, tau) + product(r.torque_from_sliding, sigma)
+        if self.bodies.driven:  # what the drives hold moves everything along its columns of the response
+            held = jnp.stack([jnp.asarray(self.layout.coupling_elements[k].motion(self)[1], dtype=jnp.float64)
+                              for k in self.bodies.driven])
+            accel = accel + product(r.accel_from_motion, held)
+            torque = torque + product(r.torque_from_motion, held)
         pressed = [k for k, e in enumerate(self.layout.coupling_elements) if e.can_slip and e.pressed_by is not None]
         if pressed:
             # what each passes besides moves everything along its column of the response
@@ -170,6 +179,18 @@ class Instant:
     def torque_into(self, shaft):
         """The torque the rest of its body passes into a shaft (N*m at the shaft): what presses a mesh's teeth."""
         return self._into(shaft, self.accelerations, self.coupling_torques, applied=True)
+
+    def held_speeds(self):
+        """The relative speed each coupling holds while stuck: a drive's its own (the speed it has, where it
+        holds an acceleration alone), every other's zero; None without drives (:func:`keep_momentum`'s)."""
+        if not self.bodies.driven:
+            return None
+        speeds = [0.0] * len(self.layout.coupling_elements)
+        for k in self.bodies.driven:
+            coupling = self.layout.coupling_elements[k]
+            speed = coupling.motion(self)[0]
+            speeds[k] = self.relative_speed(coupling.section) if speed is None else speed
+        return jnp.stack([jnp.asarray(v, dtype=jnp.float64) for v in speeds])
 
     @property
     def accelerations(self):

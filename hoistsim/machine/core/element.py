@@ -220,6 +220,10 @@ class AbstractCoupling(AbstractElement):
     # its flight is not caught in mid-air), with the reset of a lock: a plastic impact, whose kinetic energy
     # the core adds to this state (a loss of the ledger).
     impact_state: ClassVar[str | None] = None
+    # A drive (a prescribed motion): stuck, it holds its sides' relative motion at ``motion(x)``, not at rest
+    # (held between the shaft and the ground; the core solves for the torque that takes), and the impulses that
+    # keep the speed it holds do work, which the core adds to its ``work_state``.
+    drives: ClassVar[bool] = False
 
     @abc.abstractmethod
     def joins(self) -> tuple:
@@ -259,6 +263,16 @@ class AbstractCoupling(AbstractElement):
     def is_open(self, segment):
         """Whether it carries nothing over a whole segment."""
         return False
+
+    def motion(self, x) -> tuple:
+        """A drive's (relative speed or None, relative acceleration) it holds its sides at: rad/s, rad/s^2 (None:
+        the speed they have, where it prescribes the acceleration alone)."""
+        return (0.0, 0.0)
+
+    @property
+    def work_state(self) -> str | None:
+        """A drive's state of the work it has done (J), where the core adds its impulses' work."""
+        return None
 
     def gap(self, x):
         """For a contact, how far apart its sides are (m or rad, <= 0 touching); None: its sides always touch."""

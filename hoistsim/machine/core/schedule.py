@@ -29,7 +29,9 @@ def table_at(times, values, t, xp=jnp):
     f0, f1 = values[k], values[k + 1]
     width = t1 - t0
     safe = xp.where(width > 0, width, 1.0)
-    frac = xp.clip((t - t0) / safe, 0.0, 1.0)
+    # within [0, 1) wherever it is used (the interval holds t; outside the table its ends hold), so unclipped: its
+    # derivative in t is the interval's slope, the right one at a knot (a signal's rate at a row there)
+    frac = (t - t0) / safe
     value = xp.where(width > 0, f0 + frac * (f1 - f0), f1)
     value = xp.where(t < times[0], values[0], value)
     return xp.where(t >= times[-1], values[-1], value)

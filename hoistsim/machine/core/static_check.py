@@ -199,7 +199,7 @@ def settle(layout: Layout, segment, t, y, modes, candidates):
     way be consistent (round-off at an exact tie), the one that breaks the fewest conditions is
     taken.  Returns the new modes and the met speeds.
     """
-    met = keep_momentum(layout, y, candidates)
+    met = keep_momentum(layout, y, candidates, Instant(layout, t, y, table=segment.table).held_speeds())
     couplings = layout.coupling_elements
     if not couplings:
         return modes, met

@@ -13,6 +13,8 @@ from __future__ import annotations
 from ...scenario.lowering import lower
 from ..core.element import AbstractCoupling as AbstractCoupling
 from ..core.element import AbstractElement as AbstractElement
+from .acceleration_source import AccelerationSource as AccelerationSource
+from .angle_source import AngleSource as AngleSource
 from .bearing_friction import BearingFriction as BearingFriction
 from .bearings import DrumShaftLoads as DrumShaftLoads
 from .clutch_heating import ClutchHeating as ClutchHeating
@@ -51,6 +53,7 @@ from .shaft import Shaft as Shaft
 from .shaft_torque import ShaftTorque as ShaftTorque
 from .slider_crank import SliderCrank as SliderCrank
 from .speed_controller import SpeedController as SpeedController
+from .speed_source import SpeedSource as SpeedSource
 from .speed_table_torque import SpeedTableTorque as SpeedTableTorque
 from .spring_damper import SpringDamper as SpringDamper
 from .wire_rope import WireRope as WireRope
@@ -70,6 +73,8 @@ REGISTRY: dict[str, object] = {
     "drivetrain.dc_machines.*": DcMachine,
     "drivetrain.induction_machines.*": InductionMachine,
     "drivetrain.speed_controllers.*": SpeedController,
+    # drives, before the couplings that yield: a shaft held by a drive and a hold is held by the drive
+    "drivetrain.motion_sources.*": {"speed": SpeedSource, "angle": AngleSource, "acceleration": AccelerationSource},
     "drivetrain.torques.*": {"time": ShaftTorque, "speed_table": SpeedTableTorque, "quadratic": QuadraticTorque,
                              "linear": LinearTorque},
     # linkages of three shafts, before the friction couplings: where stuck couplings hold one motion twice,

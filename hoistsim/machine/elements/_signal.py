@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import jax
 import jax.numpy as jnp
 import numpy as np
+
+from ..core.schedule import table_at
 
 
 def signal_fields(signal, prefix: str) -> dict:
@@ -42,3 +45,39 @@ def harmonics_at(t, amplitudes, frequencies, phases):
     if amplitudes.shape[0] == 0:
         return 0.0
     return jnp.sum(amplitudes * jnp.sin(2.0 * jnp.pi * frequencies * t + phases))
+
+
+class _Reading:
+    """An instant's tables read at a time ``t`` of one's choosing: what :func:`signal_at` needs of an instant."""
+
+    def __init__(self, table, t):
+        self.t = t
+        self._table = table
+
+    def table(self, name):
+        return self._table(name, self.t)
+
+
+def signal_derivatives(element, x, prefix: str, order: int) -> list:
+    """The element's signal ``prefix`` and its first ``order`` derivatives in time at the instant, exact: over a
+    segment its table is one line (its slope the first derivative, no second), its harmonics differentiated
+    as they are traced."""
+    def value(t):
+        return signal_at(element, _Reading(x.table_at, t), prefix)
+
+    found = [value]
+    for _ in range(order):
+        found.append(lambda t, f=found[-1]: jax.jvp(f, (t,), (jnp.ones_like(t),))[1])
+    t = jnp.asarray(x.t, dtype=jnp.float64)
+    return [f(t) for f in found]
+
+
+def signal_start(element, prefix: str):
+    """The element's signal ``prefix`` at t = 0, read from its fields (an initial state's value)."""
+    tables = element.tables()
+
+    def table(name, t):
+        times, values = tables[name]
+        return table_at(getattr(element, times), getattr(element, values), t)
+
+    return signal_at(element, _Reading(table, 0.0), prefix)

@@ -68,6 +68,7 @@ class SpeedController(AbstractElement):
     has_derivative: bool = static(False)
     has_lag: bool = static(False)
     integrates_reference: bool = static(False)  # its table is the reference's acceleration (an S-curve)
+    reference_block: str = static("")  # the signal block whose output the reference is ("": none named)
     section: str = static("")  # its key in drivetrain.speed_controllers
 
     @classmethod
@@ -85,7 +86,8 @@ class SpeedController(AbstractElement):
                    derivative_setpoint_weight=spec.derivative_setpoint_weight, start_integral=integral,
                    start_filter=filtered, torque_lag=spec.torque_lag if spec.torque_lag > 0.0 else 1.0,
                    start_output=output, **signal_fields(spec.reference, "reference"),
-                   integrates_reference=getattr(spec.reference, "integrated", False), measures=spec.measures,
+                   integrates_reference=getattr(spec.reference, "integrated", False),
+                   reference_block=spec.reference_block or "", measures=spec.measures,
                    drives=spec.drives or spec.measures, has_integral=spec.integral_time is not None,
                    has_derivative=spec.derivative_time > 0.0, has_lag=spec.torque_lag > 0.0, section=spec.name,
                    **cls._sequence_fields(spec))
@@ -155,6 +157,9 @@ class SpeedController(AbstractElement):
                                          "lagged where it has a torque lag)")}
         if self.has_integral:
             out[f"{name}_integral"] = ("rad/s", f"the state of controller {name}'s integral part (Modelica's I.y)")
+        if self.reference_block:
+            out[f"{self.reference_block}_output"] = ("rad/s", f"the output of signal block {self.reference_block}: "
+                                                              f"the reference of controller {name}")
         return out
 
     @property
@@ -277,5 +282,7 @@ class SpeedController(AbstractElement):
                f"{name}_output": jnp.clip(unlimited, self.min_torque, self.max_torque), f"{name}_torque": self.torque(x)}
         if self.has_integral:
             out[f"{name}_integral"] = x.state(self.integral_state)
+        if self.reference_block:
+            out[f"{self.reference_block}_output"] = out[f"{name}_reference"]
         return out
 
