@@ -139,7 +139,7 @@ class BrakeSequenceSpec(Section):
     """A hoist drive's brake sequence: the brake released once the drive's torque is proven (its magnitude at
     ``prove_torque``) and the brake's opening time has passed; after the stop command, closed once the speed
     it controls is below ``close_speed`` and the brake's closing time has passed; on an emergency stop (the
-    controller's ``emergency_stop_at``) the drive's torque taken away at once and the brake closed after its
+    controller's ``emergency_stop_at``, or its overspeed trip ``emergency_stop_above``) the drive's torque taken away at once and the brake closed after its
     closing time."""
 
     brake: Text = Field(description="the friction brake it works (drivetrain.brakes, operated_by this controller)")
@@ -205,6 +205,9 @@ class SpeedControllerSpec(Section):
                                                      "hoist drive's sequence")
     emergency_stop_at: u.quantity(u.TIME, gt=0.0) | None = Field(None, description="the drive switched off at "
                                                                  "this time, its brake closing (brake_sequence)")
+    emergency_stop_above: u.quantity(u.ANGULAR_SPEED, gt=0.0) | None = Field(
+        None, description="the drive switched off where the speed it measures first exceeds this (either way: an "
+        "overspeed trip), its brake closing (brake_sequence)")
     name: str = Field("", exclude=True)  # its key in drivetrain.speed_controllers (set there, never written)
 
     @model_validator(mode="after")
@@ -219,9 +222,10 @@ class SpeedControllerSpec(Section):
         if self.output is not None and not self.lowest_torque() <= self.output <= self.max_torque:
             raise ScenarioError(".output", f"{self.output:g} N*m is outside the limits [{self.lowest_torque():g}, "
                                 f"{self.max_torque:g}] N*m")
-        if self.emergency_stop_at is not None and self.brake_sequence is None:
-            raise ScenarioError(".emergency_stop_at", "an emergency stop closes the drive's brake: give the "
-                                "brake_sequence that works it")
+        for key in ("emergency_stop_at", "emergency_stop_above"):
+            if getattr(self, key) is not None and self.brake_sequence is None:
+                raise ScenarioError(f".{key}", "an emergency stop closes the drive's brake: give the "
+                                    "brake_sequence that works it")
         if self.emergency_stop_at is not None and self.emergency_stop_at <= self.brake_sequence.release_delay:
             raise ScenarioError(".emergency_stop_at", f"{self.emergency_stop_at:g} s is not after the brake can "
                                 f"have opened (release_delay {self.brake_sequence.release_delay:g} s from the proof)")

@@ -45,6 +45,31 @@ def test_an_emergency_stop_on_a_rigid_rope_is_two_constant_accelerations():
     assert run.summary["energy_relative_residual"] < 1e-9
 
 
+def test_an_overspeed_trip_stops_the_load_from_the_trip_speed():
+    """The drive asked for 1700 rpm lowering, its trip at 1600 rpm: where the motor's speed first passes it (a
+    located crossing, the row ``drive_overspeed``) the drive is switched off, and the stop is the two constant
+    accelerations' of the emergency stop from w0 = 1600 rpm exactly; the drive gives nothing from then on."""
+    data = _data(ESTOP)
+    del data["drivetrain"]["load"]["rope"]  # a rigid rope
+    drive = data["drivetrain"]["speed_controllers"]["drive"]
+    del drive["emergency_stop_at"]
+    drive.update({"emergency_stop_above": "1600 rpm", "reference": [["0 s", "0 rpm"], ["0.6 s", "0 rpm"],
+                                                                    ["1.6 s", "-1700 rpm"]]})
+    run = simulate(scenario_from_dict(data))
+    kinds = list(run.instants["kind"])
+    trip = kinds.index("drive_overspeed")
+    tripped = run.instants["time"][trip]
+    assert run["motor_speed"][run.instant_rows()[trip]] == pytest.approx(-1600 * math.pi / 30, rel=1e-10)
+    w0, d, a1, a2 = 1600 * math.pi / 30, 0.2, LOAD / INERTIA, (130.0 - LOAD) / INERTIA
+    w1 = w0 + a1 * d
+    assert run.summary["stopping_time"] == pytest.approx(d + w1 / a2, rel=1e-8)
+    distance = RADIUS / RATIO * (w0 * d + 0.5 * a1 * d * d + w1 * w1 / (2 * a2))
+    assert run.summary["stopping_distance"] == pytest.approx(distance, rel=1e-7)
+    assert np.all(run["drive_torque"][run.time > tripped] == 0.0)
+    assert run.instants["time"][kinds.index("brake_apply")] == pytest.approx(tripped + d, abs=1e-9)  # the root's
+    assert run.summary["energy_relative_residual"] < 1e-9
+
+
 def test_the_rollback_with_no_drive_torque_is_a_constant_acceleration():
     """A drive that can give no torque (1 uN*m) and proves none: the brake opens after its opening time and the
     load runs back at w' = -T_L / J: the rope paid out to the end of the run is R / i a (t - t_r)^2 / 2."""
@@ -98,6 +123,9 @@ def test_the_brake_opens_after_the_proof_and_closes_after_the_stop(sequence):
      "drivetrain.brakes.brake.operated_by", "brake_sequence"),
     (lambda d: d["drivetrain"]["speed_controllers"]["drive"].update({"emergency_stop_at": "3 s"}),
      "drivetrain.speed_controllers.drive.emergency_stop_at", "not both"),
+    (lambda d: d["drivetrain"]["speed_controllers"]["drive"].update({"emergency_stop_above": "1600 rpm"})
+     or d["drivetrain"]["speed_controllers"]["drive"].pop("brake_sequence"),
+     "drivetrain.speed_controllers.drive.emergency_stop_above", "brake_sequence"),
 ])
 def test_bad_input_names_its_key(change, key, says, tmp_path):
     refused_in_one_line(SEQUENCE, change, key, says, tmp_path)

@@ -6,6 +6,9 @@ conditions' changes located as switches are.
   (:mod:`.operated_brake`) opens when it passes the brake's opening time.
 - The close count starts on an emergency stop, or after the stop command once the speed is below the closing
   speed with the brake open; the brake holds again when it passes the brake's closing time.
+- The emergency count starts on the emergency stop: at its time, or where the speed first exceeds the trip speed
+  (an overspeed trip); from then on the drive is switched off, and the time the brake takes to hold the drum is
+  the count's value then (``stopping_time``).
 - Where a load hangs from a shaft geared to the one controlled, the rope the drum pays out backwards from the
   release until the drive has the load going its way (the drum first turning forwards, or the reference first
   asking for lowering): ``rollback_distance``; and on an emergency stop, until the brake holds the drum
@@ -36,13 +39,27 @@ def counts(name: str) -> tuple:
             f"{name}_stopping_travel")
 
 
+def emergency_count(name: str) -> str:
+    """The state of the time since the emergency stop (0 before it)."""
+    return f"{name}_emergency_count"
+
+
+def switched_off(controller, x):
+    """Whether the drive is switched off by its emergency stop: since its time, or since its speed first exceeded
+    the trip speed (the count running: a condition met once stays met)."""
+    tripped = x.table(f"{controller.section}.emergency") > 0.5
+    if controller.has_trip:
+        tripped = tripped | (jnp.abs(x.speed(controller.measures)) >= controller.trip_speed)
+    return tripped | (x.state(emergency_count(controller.section)) > 0.0)
+
+
 def conditions(controller, x, torque) -> dict:
     """What the sequence's counts and distances turn on, at the instant (``torque``: the drive's on its shaft)."""
     release, close, under_way, _, _ = counts(controller.section)
     speed = x.speed(controller.measures)
     released = x.state(release) >= controller.release_delay
     return {"proven": jnp.abs(torque) >= controller.prove_torque, "released": released,
-            "emergency": x.table(f"{controller.section}.emergency") > 0.5,
+            "emergency": switched_off(controller, x) if controller.has_emergency_stop else False,
             "stopping": x.table(f"{controller.section}.stopping") > 0.5,
             "slow": jnp.abs(speed) < controller.close_speed,
             "under_way": x.state(under_way) > 0.0 if controller.has_rope else False,
@@ -57,6 +74,8 @@ def rates(controller, x, torque) -> dict:
     running = lambda state, starts: jnp.where((x.state(state) > 0.0) | starts, 1.0, 0.0)  # noqa: E731
     out = {release: running(release, c["proven"] & ~c["emergency"]),
            close: running(close, c["emergency"] | (c["stopping"] & c["slow"] & c["released"]))}
+    if controller.has_emergency_stop:
+        out[emergency_count(controller.section)] = jnp.where(c["emergency"], 1.0, 0.0)
     if controller.has_rope:
         rope = controller.rope_per_radian * c["speed"]  # m/s of rope, positive lifting
         lowering = controller.reference(x) < 0.0
@@ -67,18 +86,20 @@ def rates(controller, x, torque) -> dict:
 
 
 def guard_kinds(controller) -> tuple:
-    """The guards' names: the proof, the closing speed, and (with a rope) the controlled shaft and the reference
-    through rest."""
+    """The guards' names: the proof, the closing speed, (with a rope) the controlled shaft and the reference
+    through rest, and the trip speed (an overspeed trip's)."""
     name = controller.section
-    return (f"{name}_proof", f"{name}_slow") + ((f"{name}_turn", f"{name}_asked") if controller.has_rope else ())
+    return ((f"{name}_proof", f"{name}_slow") + ((f"{name}_turn", f"{name}_asked") if controller.has_rope else ())
+            + ((f"{name}_overspeed",) if controller.has_trip else ()))
 
 
 def guards(controller, x, torque) -> dict:
     """Where the conditions change: the torque through the proving torque, the speed through the closing speed,
-    the controlled shaft and its reference through rest (the rollback's end)."""
+    the controlled shaft and its reference through rest (the rollback's end), the speed through the trip speed."""
     speed = x.speed(controller.measures)
-    values = (jnp.abs(torque) - controller.prove_torque, controller.close_speed - jnp.abs(speed), speed,
-              controller.reference(x))
+    values = (jnp.abs(torque) - controller.prove_torque, controller.close_speed - jnp.abs(speed))
+    values += (speed, controller.reference(x)) if controller.has_rope else ()
+    values += (controller.trip_speed - jnp.abs(speed),) if controller.has_trip else ()
     return dict(zip(guard_kinds(controller), values))
 
 
@@ -100,7 +121,8 @@ def extremes(controller, x, torque) -> dict:
     out = {f"{name}_proven_torque": ("first_value", (c["released"], torque)),
            f"{name}_release_time": ("first", c["released"])}
     if controller.has_emergency_stop:
-        out["stopping_time"] = ("first_value", (c["emergency"] & c["held"], x.t - controller.emergency_stop_at))
+        out["stopping_time"] = ("first_value", (c["emergency"] & c["held"],
+                                                x.state(emergency_count(controller.section))))
     return out
 
 

@@ -24,7 +24,8 @@ class SpeedController(AbstractElement):
     torque on the shaft is a state following y, T_c tau' = y - tau, started at y.  The torque's work on the shaft
     it drives is a state and the ledger's work.  With a brake sequence (:mod:`._brake_sequence`) it releases and
     applies its brake and takes its torque away once the brake is applied (through its torque lag, where it has
-    one), and an emergency stop takes its torque away at once (a table's step).
+    one), and an emergency stop takes its torque away at once: at its time (a table's step), or where the speed it
+    measures first exceeds its trip speed (an overspeed trip, the crossing located as a switch is).
     """
 
     gain: object  # k, N*m*s/rad
@@ -54,6 +55,7 @@ class SpeedController(AbstractElement):
     close_speed: object = 0.0  # rad/s
     rope_per_radian: object = 0.0  # m of rope a rad of the shaft it measures
     emergency_stop_at: object = 0.0  # s
+    trip_speed: object = 0.0  # rad/s, the overspeed trip's
     stopping_times: object = None  # s: the stop command, a step of a table of time
     stopping_values: object = None
     emergency_times: object = None  # s: the emergency stop, another
@@ -61,7 +63,8 @@ class SpeedController(AbstractElement):
     brake: str = static("")  # the brake its sequence works ("": none)
     has_rope: bool = static(False)  # a load hangs from a shaft geared to the one it measures
     has_stop: bool = static(False)  # its sequence has a stop command
-    has_emergency_stop: bool = static(False)
+    has_scheduled_stop: bool = static(False)  # an emergency stop at a time
+    has_trip: bool = static(False)  # an emergency stop where the speed exceeds the trip speed
     measures: str = static("")
     drives: str = static("")
     has_integral: bool = static(True)
@@ -101,10 +104,17 @@ class SpeedController(AbstractElement):
         stopping, emergency = sequence.step_table(brake.stop_at), sequence.step_table(spec.emergency_stop_at)
         return dict(prove_torque=brake.prove_torque, release_delay=brake.release_delay, close_delay=brake.close_delay,
                     close_speed=brake.close_speed, rope_per_radian=0.0 if rope is None else rope,
-                    emergency_stop_at=spec.emergency_stop_at or 0.0, stopping_times=stopping[0],
+                    emergency_stop_at=spec.emergency_stop_at or 0.0, trip_speed=spec.emergency_stop_above or 0.0,
+                    stopping_times=stopping[0],
                     stopping_values=stopping[1], emergency_times=emergency[0], emergency_values=emergency[1],
                     brake=brake.brake, has_rope=rope is not None, has_stop=brake.stop_at is not None,
-                    has_emergency_stop=spec.emergency_stop_at is not None)
+                    has_scheduled_stop=spec.emergency_stop_at is not None,
+                    has_trip=spec.emergency_stop_above is not None)
+
+    @property
+    def has_emergency_stop(self) -> bool:
+        """An emergency stop at a time, or an overspeed trip, or both (whichever comes first)."""
+        return self.has_scheduled_stop or self.has_trip
 
     @property
     def integral_state(self) -> str:
@@ -166,16 +176,16 @@ class SpeedController(AbstractElement):
     def event_kinds(self) -> tuple:
         name = self.section
         return ((f"{name}_stop",) if self.has_stop else ()) + \
-            ((f"{name}_emergency_stop",) if self.has_emergency_stop else ())
+            ((f"{name}_emergency_stop",) if self.has_scheduled_stop else ())
 
     def boundaries(self) -> tuple:  # the stop command and the emergency stop: the steps of their tables
         return ((self.stopping_times[-1],) if self.has_stop else ()) + \
-            ((self.emergency_stop_at,) if self.has_emergency_stop else ())
+            ((self.emergency_stop_at,) if self.has_scheduled_stop else ())
 
     def boundary_events(self, t) -> tuple:
         name = self.section
         return (((f"{name}_stop", t == self.stopping_times[-1]),) if self.has_stop else ()) + \
-            (((f"{name}_emergency_stop", t == self.emergency_stop_at),) if self.has_emergency_stop else ())
+            (((f"{name}_emergency_stop", t == self.emergency_stop_at),) if self.has_scheduled_stop else ())
 
     def tables(self) -> dict:
         out = signal_tables(self, "reference")
@@ -202,7 +212,7 @@ class SpeedController(AbstractElement):
                       else 0.0)
         unlimited = self.gain * (proportional + integral + derivative)
         if self.has_emergency_stop:  # switched off: it asks for nothing (and its integral rests)
-            unlimited = unlimited * (1.0 - x.table(f"{self.section}.emergency"))
+            unlimited = jnp.where(sequence.switched_off(self, x), 0.0, unlimited)
         if self.brake:  # its brake applied (a stop's end): it takes its torque away, the brake holds the load
             unlimited = jnp.where(x.state(sequence.counts(self.section)[1]) >= self.close_delay, 0.0, unlimited)
         return reference - speed, unlimited, filtered
@@ -219,7 +229,7 @@ class SpeedController(AbstractElement):
     def _applied(self, x, output):
         """The torque on the shaft, its output ``output`` already worked out (None where it has a lag)."""
         torque = x.state(self.torque_state) if self.has_lag else output
-        return torque * (1.0 - x.table(f"{self.section}.emergency")) if self.has_emergency_stop else torque
+        return jnp.where(sequence.switched_off(self, x), 0.0, torque) if self.has_emergency_stop else torque
 
     def torques(self, x) -> tuple:
         return ((self.drives, self.torque(x)),)
@@ -236,6 +246,8 @@ class SpeedController(AbstractElement):
             out[self.filter_state] = self.start_filter
         if self.brake:
             out.update({count: 0.0 for count in sequence.counts(self.section)[:2 + 3 * self.has_rope]})
+        if self.has_emergency_stop:
+            out[sequence.emergency_count(self.section)] = 0.0
         return out
 
     def rates(self, x) -> dict:
@@ -248,8 +260,9 @@ class SpeedController(AbstractElement):
         if self.has_lag:
             out[self.torque_state] = (output - x.state(self.torque_state)) / self.torque_lag
         if self.has_integral:
-            out[self.integral_state] = (error + (output - unlimited) / (self.gain * self.anti_windup)) \
-                / self.integral_time * (1.0 - x.table(f"{self.section}.emergency") if self.has_emergency_stop else 1.0)
+            rate = (error + (output - unlimited) / (self.gain * self.anti_windup)) / self.integral_time
+            out[self.integral_state] = (jnp.where(sequence.switched_off(self, x), 0.0, rate) if self.has_emergency_stop
+                                        else rate)
         if self.has_derivative:
             out[self.filter_state] = self.derivative_filter * (filtered - x.state(self.filter_state)) \
                 / self.derivative_time
