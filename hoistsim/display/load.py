@@ -7,6 +7,11 @@ from .panel import Display, Panel, SummaryPanel, Trace
 
 def _headline(summary: dict) -> str | None:
     final, lowest = float(summary["final_load_position"]), float(summary["lowest_load_position"])
+    # a load a speed controller moves goes where it is asked (lowered on purpose); its brake sequence says any
+    # rollback: only an uncontrolled hoist's load below its start has run back
+    controlled = any(key.endswith("_saturated_time") for key in summary)
+    if controlled and final < 0:
+        return f"load lowered {-final:.3g} m"
     if lowest < 0 and final < 0:
         return f"load runs back {-final:.3g} m"
     if lowest < 0:
