@@ -109,6 +109,8 @@ FIGURES = {
                    _run_and_plot("modelica/DCPM_Start.yaml", {"": "dcpm_start.png"})),
     "pid_controller": ("hoistsim run + plot scenarios/modelica/PID_Controller.yaml",
                        _run_and_plot("modelica/PID_Controller.yaml", {"": "pid_controller.png"})),
+    "oscillator": ("hoistsim run + plot scenarios/modelica/translational/Oscillator.yaml",
+                   _run_and_plot("modelica/translational/Oscillator.yaml", {"": "oscillator.png"})),
     "imc_dol": ("hoistsim run + plot scenarios/modelica/IMC_DOL.yaml",
                 _run_and_plot("modelica/IMC_DOL.yaml", {"": "imc_dol.png"})),
     "imc_yd": ("hoistsim run + plot scenarios/modelica/IMC_YD.yaml",

@@ -28,12 +28,18 @@ def events(times):
 
 
 def deviations(run, example: str, ours: dict) -> dict:
-    """Each comparison signal's worst deviation from the reference, over its range, at every reference row more
-    than 1 ms from a reference event (``ours``: signal -> our series on the run's rows)."""
+    """Each comparison signal's worst deviation from the reference, over its range (:func:`_range`), at every
+    reference row more than 1 ms from a reference event (``ours``: signal -> our series on the run's rows)."""
     table = reference(example)
     times = table["time"]
     instants = events(times)
     far = (np.min(np.abs(times[:, None] - instants[None, :]), axis=1) > 1e-3 if len(instants)
            else np.ones(times.shape, bool))
     return {signal: float(np.max(np.abs(np.interp(times, run.time, series) - table[signal])[far])
-                          / np.ptp(table[signal])) for signal, series in ours.items()}
+                          / _range(table[signal])) for signal, series in ours.items()}
+
+
+def _range(values):
+    """A signal's range; one that never moves (a mass at rest throughout), its magnitude, at least 1 of its unit."""
+    spread = np.ptp(values)
+    return spread if spread > 0.0 else max(float(np.max(np.abs(values))), 1.0)

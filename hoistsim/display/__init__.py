@@ -19,6 +19,7 @@ from .holding_brake import HOLDING_BRAKE
 from .induction_machine import INDUCTION_MACHINE
 from .linkage import LINKAGE
 from .load import LOAD
+from .mass import MASS
 from .mesh_friction import MESH_FRICTION
 from .motion_source import MOTION_SOURCE
 from .motor import MOTOR
@@ -34,8 +35,8 @@ from .spring_damper import SPRING_DAMPER
 
 DISPLAYS: tuple[Display, ...] = (MOTOR, GEAR_PAIR, MESH_FRICTION, FRICTION_CLUTCH, CLUTCH_HEATING, LOAD, ROPE,
                                  GROUND, HOLDING_BRAKE, FRICTION_BRAKE, RATCHET, DRUM_SHAFT_LOADS, PERIODIC_REGIME,
-                                 SHAFT, SHAFT_TORQUE, MOTION_SOURCE, DC_MACHINE, INDUCTION_MACHINE, SPEED_CONTROLLER,
-                                 LINKAGE, SPRING_DAMPER, EDDY_CURRENT_BRAKE)
+                                 SHAFT, MASS, SHAFT_TORQUE, MOTION_SOURCE, DC_MACHINE, INDUCTION_MACHINE,
+                                 SPEED_CONTROLLER, LINKAGE, SPRING_DAMPER, EDDY_CURRENT_BRAKE)
 
 
 def headline(summary: dict, names: dict | None = None) -> list[str]:

@@ -10,9 +10,15 @@ def _sources(run: dict) -> dict:
 
 
 def _panels_for(run: dict) -> tuple:
-    traces = tuple(Trace(f"{name} on {spec['shaft']}", f"{name}_torque") for name, spec in _sources(run).items())
-    return (Panel("motion_sources", "motion source's\ntorque [N*m]", 4, traces, zero_line=True, height=0.8),
-            ) if traces else ()
+    masses = (run.get("parameters", {}).get("drivetrain") or {}).get("masses") or {}
+    panels = []
+    for word, units, on_line in (("torque", "N*m", False), ("force", "N", True)):
+        traces = tuple(Trace(f"{name} on {spec['shaft']}", f"{name}_{word}") for name, spec in _sources(run).items()
+                       if (spec["shaft"] in masses) == on_line)
+        if traces:
+            panels.append(Panel(f"motion_source_{word}s", f"motion source's\n{word} [{units}]", 4, traces,
+                                zero_line=True, height=0.8))
+    return tuple(panels)
 
 
-MOTION_SOURCE = Display(panels_for=_panels_for, reads=lambda column: column.endswith("_torque"))
+MOTION_SOURCE = Display(panels_for=_panels_for, reads=lambda column: column.endswith(("_torque", "_force")))

@@ -86,6 +86,7 @@ _PATTERNS = [
     (r"peak_(?P<part>.+)_temperature", "highest temperature of {part}", ""),
     (r"final_(?P<part>.+)_temperature", "temperature of {part} at the end", ""),
     (r"final_(?P<part>.+)_speed", "speed of the {part} shaft at the end", ""),
+    (r"final_(?P<part>.+)_velocity", "velocity of mass {part} at the end", ""),
     (r"(?P<part>.+)_per_period", "mean growth of {part} in a period, settled regime", "NaN: never settled"),
     (r"(?P<part>.+)_loss_energy", "energy lost in {part} over the run", ""),
     (r"(?P<part>.+)_energy", "heat dissipated in {part} over the run", ""),

@@ -139,8 +139,8 @@ class BrakeSequenceSpec(Section):
     """A hoist drive's brake sequence: the brake released once the drive's torque is proven (its magnitude at
     ``prove_torque``) and the brake's opening time has passed; after the stop command, closed once the speed
     it controls is below ``close_speed`` and the brake's closing time has passed; on an emergency stop (the
-    controller's ``emergency_stop_at``, or its overspeed trip ``emergency_stop_above``) the drive's torque taken away at once and the brake closed after its
-    closing time."""
+    controller's ``emergency_stop_at``, or its overspeed trip ``emergency_stop_above``) the drive's torque taken
+    away at once and the brake closed after its closing time."""
 
     brake: Text = Field(description="the friction brake it works (drivetrain.brakes, operated_by this controller)")
     prove_torque: u.quantity(u.TORQUE, ge=0.0) = Field(description="the torque the drive proves before the brake "
@@ -276,7 +276,8 @@ def check_drive_parts(drivetrain, names_taken: set, is_name) -> None:
                 names_taken.add(block)
             for key in ("shaft", "measures", "drives"):
                 shaft = getattr(part, key, None)
-                if shaft is not None and shaft not in drivetrain.shafts:
+                driven_mass = kind == "motion_sources" and shaft in drivetrain.masses  # a source drives a mass too
+                if shaft is not None and shaft not in drivetrain.shafts and not driven_mass:
                     raise ScenarioError(f"drivetrain.{kind}.{name}.{key}", f"there is no shaft {shaft!r} "
                                         f"(shafts: {', '.join(drivetrain.shafts)})")
     _check_brake_sequences(drivetrain)

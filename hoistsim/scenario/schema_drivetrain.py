@@ -29,6 +29,7 @@ from .schema_drive import (DRIVE_PARTS, DcMachineSpec, InductionMachineSpec, Spe
                            check_drive_parts)
 from .schema_speed_torques import SPEED_PARTS, EddyCurrentBrakeSpec, HeatCapacitorSpec, SpeedLaws, check_speed_parts
 from .schema_linkage import PlanetarySpec, check_linkages, start_speeds
+from .schema_masses import ForceSpec, MassSpec, check_line_parts
 from .schema_motion_source import MotionSourceSpec
 from .schema_shaft_parts import (SHAFT_PARTS, BrakeOnShaftSpec, OnShaft, RatchetOnShaftSpec, RotorSpec,
                                  SliderCrankSpec, check_shaft_parts)
@@ -167,7 +168,7 @@ class ShaftMotorSpec(OnShaft, MotorSpec):
 class DrivetrainSpec(Section):
     """A machine drawn as shafts and the parts on and between them; each part's key names it and its outputs."""
 
-    shafts: dict[str, ShaftSpec]
+    shafts: dict[str, ShaftSpec] = {}
     torques: list[TorqueSpec] = []
     clutches: dict[str, FrictionClutchSpec] = {}
     one_way_clutches: dict[str, OneWayClutchSpec] = {}
@@ -187,6 +188,8 @@ class DrivetrainSpec(Section):
     induction_machines: dict[str, InductionMachineSpec] = {}
     speed_controllers: dict[str, SpeedControllerSpec] = {}
     motion_sources: dict[str, MotionSourceSpec] = {}
+    masses: dict[str, MassSpec] = {}
+    forces: list[ForceSpec] = []
 
     @model_validator(mode="before")
     @classmethod
@@ -197,7 +200,7 @@ class DrivetrainSpec(Section):
             return data
         data = dict(data)
         for kind in ("shafts", "clutches", "one_way_clutches", "bearing_frictions", "springs", "gears", "motors",
-                     *SHAFT_PARTS, *SPEED_PARTS, *DRIVE_PARTS, "planetaries"):
+                     *SHAFT_PARTS, *SPEED_PARTS, *DRIVE_PARTS, "planetaries", "masses"):
             parts = data.get(kind)
             if not isinstance(parts, dict):
                 continue
@@ -209,28 +212,38 @@ class DrivetrainSpec(Section):
                     entry = {**entry, "name": key}
                 named[key] = entry
             data[kind] = named
-        torques = data.get("torques")
-        if isinstance(torques, list):  # named by their place: torque1, torque2, ...
-            for i, entry in enumerate(torques):
-                if isinstance(entry, dict) and "name" in entry:
-                    raise ScenarioError(f".torques.{i}.name", "unknown key: a torque is named by its place (torque1, ...)")
-            data["torques"] = [{**entry, "name": f"torque{i + 1}"} if isinstance(entry, dict) else entry
-                               for i, entry in enumerate(torques)]
+        for kind, word in (("torques", "torque"), ("forces", "force")):
+            listed = data.get(kind)
+            if isinstance(listed, list):  # named by their place: torque1, torque2, ...
+                for i, entry in enumerate(listed):
+                    if isinstance(entry, dict) and "name" in entry:
+                        raise ScenarioError(f".{kind}.{i}.name", f"unknown key: a {word} is named by its place "
+                                            f"({word}1, ...)")
+                data[kind] = [{**entry, "name": f"{word}{i + 1}"} if isinstance(entry, dict) else entry
+                              for i, entry in enumerate(listed)]
+        check_line_parts(data, lambda kind, key: u.dimension_of(
+            {"springs": SpringSpec, "motion_sources": MotionSourceSpec}[kind].model_fields[key]))
         return data
 
     @model_validator(mode="after")
     def _named_and_joined(self):
-        if not self.shafts:
-            raise ScenarioError("drivetrain.shafts", "give at least one shaft: {name: {inertia, speed}}")
-        for kind, names in (("shafts", self.shafts), ("clutches", self.clutches)):
+        if not self.shafts and not self.masses:
+            raise ScenarioError("drivetrain.shafts", "give at least one shaft, {name: {inertia, speed}}, or mass "
+                                "(drivetrain.masses: {name: {mass, position, velocity}})")
+        for kind, names in (("shafts", self.shafts), ("clutches", self.clutches), ("masses", self.masses)):
             for name in names:
                 if not _NAME.match(name) or name == GROUND:
                     raise ScenarioError(f"drivetrain.{kind}.{name}", "a name is a word of letters, digits and "
                                         f"underscores starting with a letter, and not {GROUND!r}")
-        for name in self.clutches:
-            if name in self.shafts:
-                raise ScenarioError(f"drivetrain.clutches.{name}", "is also the name of a shaft: names must "
-                                    "differ (they name the outputs)")
+        for kind, names in (("clutches", self.clutches), ("masses", self.masses)):
+            for name in names:
+                if name in self.shafts:
+                    raise ScenarioError(f"drivetrain.{kind}.{name}", "is also the name of a shaft: names must "
+                                        "differ (they name the outputs)")
+        for i, force in enumerate(self.forces):
+            if force.mass not in self.masses:
+                raise ScenarioError(f"drivetrain.forces.{i}.mass", f"there is no mass {force.mass!r} (masses: "
+                                    f"{', '.join(self.masses) or 'none'})")
         known = ", ".join(self.shafts)
         for i, torque in enumerate(self.torques):
             if torque.shaft not in self.shafts:
@@ -243,7 +256,8 @@ class DrivetrainSpec(Section):
                 key = "shaft" if kind == "bearing_frictions" and part.between is None else "between"
                 for side in (a, b):
                     grounded = side == GROUND and (side == b or kind == "springs")  # a spring's housing: either
-                    if side not in self.shafts and not (grounded and kind != "one_way_clutches"):
+                    massed = kind == "springs" and side in self.masses  # a spring on a line
+                    if side not in self.shafts and not massed and not (grounded and kind != "one_way_clutches"):
                         raise ScenarioError(f"drivetrain.{kind}.{name}.{key}", f"there is no shaft {side!r} "
                                             f"(shafts: {known}{_GROUNDED[kind]})")
                 if a == b:
@@ -286,7 +300,8 @@ class DrivetrainSpec(Section):
                                     f"{a!r} can never overrun {b!r}")
 
     def _parts_named(self):
-        seen = {name: "shafts" for name in self.shafts} | {name: "clutches" for name in self.clutches}
+        seen = ({name: "shafts" for name in self.shafts} | {name: "clutches" for name in self.clutches}
+                | {name: "masses" for name in self.masses})
         for kind in ("one_way_clutches", "bearing_frictions", "springs"):
             for name in getattr(self, kind):
                 if not _NAME.match(name) or name == GROUND or name in seen:

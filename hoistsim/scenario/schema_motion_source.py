@@ -12,7 +12,8 @@ from .schema_base import Section
 from .signals import signal
 from .units import Text
 
-MOTIONS = ("speed", "angle", "acceleration")  # what a source may prescribe, as its keys name it
+MOTIONS = ("speed", "angle", "acceleration", "velocity", "position")  # what a source may prescribe, by its keys
+ACCELERATION = u.ANGULAR_ACCELERATION.on_line(u.ACCELERATION)  # a shaft's, or a mass's (m/s^2)
 
 
 class MotionSourceSpec(Section):
@@ -27,14 +28,18 @@ class MotionSourceSpec(Section):
     an acceleration keeps the speed it starts with and accelerates as told."""
 
     alternatives = (MOTIONS,)
-    shaft: Text = Field(description="the shaft it drives (its inertia, and what the shaft's parts take, are the "
-                        "source's torque too)")
+    shaft: Text = Field(description="the shaft or the mass it drives (its inertia, and what its parts take, are "
+                        "the source's torque too)")
     speed: signal(u.ANGULAR_SPEED) | None = Field(None, description="the speed it drives the shaft at: a "
                                                           "signal of time")
     angle: signal(u.ANGLE) | None = Field(None, description="the angle it drives the shaft to: a signal "
                                                   "of time")
-    acceleration: signal(u.ANGULAR_ACCELERATION) | None = Field(None, description="the acceleration it "
-                                                                         "drives the shaft at: a signal of time")
+    acceleration: signal(ACCELERATION) | None = Field(None, description="the acceleration it drives the shaft "
+                                                      "(or mass) at: a signal of time")
+    velocity: signal(u.VELOCITY) | None = Field(None, description="the velocity it drives a mass at: a signal of "
+                                                "time")
+    position: signal(u.LENGTH) | None = Field(None, description="the position it drives a mass to: a signal of "
+                                              "time")
     filter_frequency: u.quantity(u.FREQUENCY, gt=0.0) | None = Field(None, description="f_crit: the reference "
                                                                      "followed through a filter of this "
                                                                      "frequency (none: exactly)")
@@ -45,7 +50,8 @@ class MotionSourceSpec(Section):
         given = [key for key in MOTIONS if getattr(self, key) is not None]
         if len(given) != 1:
             key = given[1] if given else "speed"
-            raise ScenarioError(f".{key}", "give one motion: speed, angle or acceleration (a signal of time)")
+            raise ScenarioError(f".{key}", "give one motion: speed, angle or acceleration of a shaft, velocity, "
+                                "position or acceleration of a mass (a signal of time)")
         if self.filter_frequency is not None and given[0] == "acceleration":
             raise ScenarioError(".filter_frequency", "filters a speed or an angle: an acceleration is followed "
                                 "exactly")
@@ -53,20 +59,33 @@ class MotionSourceSpec(Section):
 
     @property
     def characteristic(self) -> str:
-        """Which motion it prescribes: ``speed``, ``angle`` or ``acceleration``."""
-        return next(key for key in MOTIONS if getattr(self, key) is not None)
+        """Which motion it prescribes: ``speed`` (a mass's velocity too), ``angle`` (a mass's position too) or
+        ``acceleration``."""
+        given = next(key for key in MOTIONS if getattr(self, key) is not None)
+        return {"velocity": "speed", "position": "angle"}.get(given, given)
+
+    def lowered(self, scenario) -> "MotionSourceSpec":
+        """With whether it drives a mass written in (``on_line``)."""
+        return self.with_resolved(on_line=self.shaft in scenario.drivetrain.masses)
+
+    @property
+    def reference(self):
+        """The signal it prescribes, whichever its key."""
+        return next(getattr(self, key) for key in MOTIONS if getattr(self, key) is not None)
 
 
 def start_driven_angles(drivetrain) -> None:
     """A shaft driven to an angle starts at its reference's angle at t = 0: its ``angle`` set so (every part that
     reads its shafts' starting angles, a spring's twist, sees it), or refused where it is given otherwise."""
     for name, source in drivetrain.motion_sources.items():
-        if source.angle is None:
+        if source.characteristic != "angle":
             continue
-        shaft = drivetrain.shafts[source.shaft]
-        start = source.angle.value_at(0.0)
-        if "angle" in shaft.model_fields_set and abs(shaft.angle - start) > 1e-12 * max(1.0, abs(start)):
-            raise ScenarioError(f"drivetrain.shafts.{source.shaft}.angle", f"is {shaft.angle:.12g} rad, but the "
-                                f"angle source {name!r} drives the shaft from {start:.12g} rad at t = 0: leave it out "
-                                "or give that")
-        shaft._derive("angle", start)
+        on_line = source.shaft in drivetrain.masses
+        body = (drivetrain.masses if on_line else drivetrain.shafts)[source.shaft]
+        key, kind, unit = ("position", "masses", "m") if on_line else ("angle", "shafts", "rad")
+        start = source.reference.value_at(0.0)
+        if key in body.model_fields_set and abs(getattr(body, key) - start) > 1e-12 * max(1.0, abs(start)):
+            raise ScenarioError(f"drivetrain.{kind}.{source.shaft}.{key}", f"is {getattr(body, key):.12g} {unit}, "
+                                f"but the motion source {name!r} drives it from {start:.12g} {unit} at t = 0: leave "
+                                "it out or give that")
+        body._derive(key, start)

@@ -11,18 +11,25 @@ from ..errors import ScenarioError
 from . import plausible
 from . import units as u
 from .schema_base import Section
+from .schema_masses import start_positions
 from .units import Text
+
+# between shafts, or between masses (on a line: N/m and N*s/m)
+STIFFNESS = u.TORSIONAL_STIFFNESS.on_line(u.STIFFNESS)
+DAMPING = u.TORSIONAL_DAMPING.on_line(u.DAMPING)
 
 
 class SpringSpec(Section):
     """A torsional spring c and a damper d in parallel, from shaft a to shaft b (or ``ground``): it passes
     tau = c (phi_rel - unstretched_angle) + d w_rel, phi_rel and w_rel b's angle and speed less a's (Modelica's
-    SpringDamper; a Spring without damping, a Damper without stiffness)."""
+    SpringDamper; a Spring without damping, a Damper without stiffness).  Between two masses (or a mass and
+    ``ground``) it is the line's: f = c (s_rel - unstretched_length) + d v_rel, c in N/m and d in N*s/m, s_rel the
+    distance of their centres."""
 
     alternatives = (("stiffness", "shear_modulus + diameter + length", "damping alone (a damper)"),)
     between: tuple[Text, Text] = Field(description="[shaft a, shaft b]: either may be ground (the housing), not "
                                        "both")
-    stiffness: u.quantity(u.TORSIONAL_STIFFNESS, ge=0.0) | None = Field(None, description="c (absent: a damper)")
+    stiffness: u.quantity(STIFFNESS, ge=0.0) | None = Field(None, description="c (absent: a damper)")
     # or a round shaft's: c = G pi (D^4 - D_i^4) / (32 L)
     shear_modulus: u.quantity(u.PRESSURE, gt=0.0) | None = Field(None, description="G of a round shaft (steel: "
                                                                  "79-81 GPa): c = G pi (D^4 - D_i^4) / (32 L)")
@@ -32,21 +39,25 @@ class SpringSpec(Section):
         0.0, description="D_i, a hollow shaft's bore")
     length: u.quantity(u.LENGTH, plausible=plausible.SHAFT_LENGTH, gt=0.0) | None = Field(
         None, description="L, between the parts it joins")
-    damping: u.quantity(u.TORSIONAL_DAMPING, ge=0.0) = Field(0.0, description="d")
+    damping: u.quantity(DAMPING, ge=0.0) = Field(0.0, description="d")
     unstretched_angle: u.quantity(u.ANGLE) = Field(0.0, description="phi_rel0: the twist at which it passes no "
                                                    "torque")
+    unstretched_length: u.quantity(u.LENGTH) | None = Field(None, description="s_rel0, between masses: the "
+                                                            "distance of their centres at which it passes no force")
     backlash: u.quantity(u.ANGLE, ge=0.0) | None = Field(None, description="b: the total play (Modelica's "
                                                          "ElastoBacklash)")
     name: str = Field("", exclude=True)  # its key in drivetrain.springs (set there, never written)
 
     def lowered(self, scenario) -> "SpringSpec":
         """With its twist at the start written in: b's angle less a's (a shaft's ``angle``, the ground's 0)."""
-        shafts = scenario.drivetrain.shafts
-        start = [0.0 if side == "ground" else shafts[side].angle for side in self.between]
-        return self.with_resolved(initial_twist=start[1] - start[0])
+        start = start_positions(scenario.drivetrain)
+        return self.with_resolved(initial_twist=start[self.between[1]] - start[self.between[0]],
+                                  on_line=any(side in scenario.drivetrain.masses for side in self.between))
 
     @model_validator(mode="after")
     def _a_spring_or_a_damper(self):
+        if self.unstretched_length is not None:  # between masses: the same law's rest point, in metres
+            self._derive("unstretched_angle", self.unstretched_length)
         keys = (self.stiffness, self.shear_modulus, self.diameter, self.length)
         damper = all(value is None for value in keys) and self.damping > 0.0  # a damping alone
         shaft = not damper and self._one_value_or_group(

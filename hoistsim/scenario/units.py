@@ -31,6 +31,33 @@ from pydantic import BeforeValidator
 
 from ..cache_folders import cache_folder
 from . import unit_words as words
+from .dimensions import (  # noqa: F401 (each dimension, read as units.<NAME> throughout the schema)
+    ACCELERATION,
+    ANGLE,
+    ANGULAR_ACCELERATION,
+    ANGULAR_SPEED,
+    AREA,
+    CONDUCTANCE,
+    DAMPING,
+    DENSITY,
+    DIMENSIONLESS,
+    FORCE,
+    FREQUENCY,
+    HEAT_CAPACITY,
+    INERTIA,
+    LENGTH,
+    MASS,
+    POWER,
+    PRESSURE,
+    STIFFNESS,
+    TEMPERATURE,
+    TIME,
+    TORQUE,
+    TORSIONAL_DAMPING,
+    TORSIONAL_STIFFNESS,
+    VELOCITY,
+    Dimension,
+)
 from .unit_factors import known_factors
 
 if TYPE_CHECKING:
@@ -70,41 +97,6 @@ def registry() -> pint.UnitRegistry:
     return ureg
 
 
-@dataclass(frozen=True)
-class Dimension:
-    """What a scenario key measures: a readable name, its SI unit, an example."""
-
-    name: str
-    si_unit: str
-    example: str
-    radians: int = 0  # power of the angle in the unit ("rpm" is rad/s: 1)
-    shown_in: str = ""  # unit for limits in messages, when not the SI one
-
-
-TORQUE = Dimension("torque", "N*m", "'500 N*m'")
-ANGULAR_SPEED = Dimension("angular speed", "rad/s", "'300 rpm'", radians=1, shown_in="rpm")
-INERTIA = Dimension("moment of inertia", "kg*m^2", "'40 kg*m^2'")
-MASS = Dimension("mass", "kg", "'500 kg'")
-LENGTH = Dimension("length", "m", "'20 cm'")
-ANGLE = Dimension("angle", "rad", "'25 deg'", radians=1, shown_in="deg")
-ANGULAR_ACCELERATION = Dimension("angular acceleration", "rad/s^2", "'1 rad/s^2'", radians=1)
-FORCE = Dimension("force", "N", "'200 daN'")
-TIME = Dimension("time", "s", "'0.5 s'")
-ACCELERATION = Dimension("acceleration", "m/s^2", "'9.81 m/s^2'")
-DIMENSIONLESS = Dimension("pure number", "", "0.3")
-DENSITY = Dimension("density", "kg/m^3", "'7200 kg/m^3'")
-TEMPERATURE = Dimension("temperature", "K", "'25 degC'", shown_in="degC")  # absolute: degC and degF are offsets
-HEAT_CAPACITY = Dimension("heat capacity", "J/K", "'2.4 kJ/K'")
-CONDUCTANCE = Dimension("thermal conductance", "W/K", "'20 W/K'")
-STIFFNESS = Dimension("stiffness", "N/m", "'2.5e5 N/m'")
-PRESSURE = Dimension("modulus (a pressure)", "Pa", "'100 GPa'")
-AREA = Dimension("area", "m^2", "'95 mm^2'")
-FREQUENCY = Dimension("frequency", "Hz", "'5 Hz'")
-POWER = Dimension("power", "W", "'15 kW'")
-TORSIONAL_STIFFNESS = Dimension("torsional stiffness", "N*m/rad", "'1e4 N*m/rad'", radians=-1)
-TORSIONAL_DAMPING = Dimension("torsional damping", "N*m*s/rad", "'10 N*m*s/rad'", radians=-1)
-
-
 class UnitError(ValueError):
     """A value that is not a quantity of the expected kind, or not an allowed one."""
 
@@ -130,6 +122,14 @@ def to_si(value: object, dimension: Dimension) -> float:
         return _to_si(value, dimension)
     except OverflowError:  # an integer too large for a float
         raise UnitError(f"must be a finite number, got {_shown(value)[:40]}") from None
+    except UnitError:
+        if dimension.line is None or not isinstance(value, str):
+            raise
+        try:  # a part on a line: its value in the line's units
+            return _string_to_si(value, dimension.line)
+        except UnitError:
+            pass
+        raise
 
 
 @lru_cache(maxsize=4096)

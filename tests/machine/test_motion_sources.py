@@ -171,6 +171,6 @@ def test_a_shaft_driven_to_an_angle_may_not_start_elsewhere(tmp_path):
     path = tmp_path / "sources.yaml"
     path.write_text(EXACT)
     refused_in_one_line(path, part_keys_set("shafts", "c", {"angle": "0 rad"}), "drivetrain.shafts.c.angle",
-                        "drives the shaft from 0.5 rad", tmp_path)
+                        "drives it from 0.5 rad", tmp_path)
 
 

@@ -6,7 +6,6 @@ import jax
 import jax.numpy as jnp
 
 from .dynamics import Instant
-from .layout import angle_state
 from .schedule import table_at, tables_of
 
 
@@ -24,7 +23,7 @@ def row_outputs(plan, times, states, modes):
         out = {}
         for element in layout.elements:
             out.update(element.outputs(x))
-        out.update({angle_state(shaft): x.angle(shaft) for shaft in layout.angle_shafts})
+        out.update({layout.angle_columns[shaft][0]: x.angle(shaft) for shaft in layout.angle_shafts})
         return jnp.stack([jnp.asarray(out[name], dtype=jnp.float64) for name in names])
 
     return jax.vmap(one, out_axes=1)(times, states, modes)

@@ -122,6 +122,11 @@ class AbstractElement:
         """Shaft -> its angle at t = 0 (rad), for the shafts it is (default 0)."""
         return {}
 
+    def angle_columns(self) -> dict:
+        """Shaft -> (its angle's column name, units, description), for the shafts it is that call their angle
+        otherwise than ``<shaft>_angle`` (rad): a mass on a line's position (m)."""
+        return {}
+
     def angles(self) -> tuple:
         """Shafts whose angle it reads (``x.angle(shaft)``, rad from the start): a state and column each."""
         # one state and one output column <shaft>_angle for each shaft some element asks for, none otherwise

@@ -31,7 +31,7 @@ class LayoutError(ValueError):
         self.key = key
 
 
-def _outputs(elements: tuple, angle_shafts: list) -> tuple[dict, dict]:
+def _outputs(elements: tuple, angle_columns: dict) -> tuple[dict, dict]:
     """(columns, summaries) of the elements and the angles read: name -> (units, description), name -> units.
 
     A results file holds every series and every summary side by side, each under its name: a name is made by
@@ -40,8 +40,7 @@ def _outputs(elements: tuple, angle_shafts: list) -> tuple[dict, dict]:
     for a layout, whatever the elements."""
     columns, summaries = {}, {}
     made = {}  # name -> (the maker's place in the elements, its section, "series" or "summary")
-    angles = {angle_state(shaft): ("rad", f"angle of the {shaft} shaft (its initial angle at t = 0)")
-              for shaft in angle_shafts}
+    angles = {name: (units, text) for name, units, text in angle_columns.values()}
     makers = [(e.section, e.columns, e.summaries) for e in elements] + [("the angles read", angles, {})]
     for place, (section, series, summary) in enumerate(makers):
         for kind, names, into in (("series", series, columns), ("summary", summary, summaries)):
@@ -90,6 +89,10 @@ class Layout:
                 if shaft not in self.angle_shafts:
                     self.angle_shafts.append(shaft)
         self.state_names += [angle_state(shaft) for shaft in self.angle_shafts]
+        # each angle's column: <shaft>_angle (rad), or what the element a shaft is calls it (a mass's position)
+        named = {shaft: column for element in elements for shaft, column in element.angle_columns().items()}
+        self.angle_columns = {shaft: named.get(shaft, (angle_state(shaft), "rad", f"angle of the {shaft} shaft "
+                                                       "(its initial angle at t = 0)")) for shaft in self.angle_shafts}
         starts = {shaft: angle for element in elements for shaft, angle in element.angle_starts().items()}
         self.initial_states += [starts.get(shaft, 0.0) for shaft in self.angle_shafts]
         self._state_index = {name: i for i, name in enumerate(self.state_names)}
@@ -122,7 +125,7 @@ class Layout:
             if watched and self.sections.count(element.section) > 1:
                 raise LayoutError(element.section, f"{element.section!r} names more than one part of the machine, "
                                   "and this one's guards and events are found by its name")
-        self._columns, self.summaries = _outputs(elements, self.angle_shafts)
+        self._columns, self.summaries = _outputs(elements, self.angle_columns)
         # where the loop writes each output among its own (all of them, in this order; see named)
         self.column_slots = list(range(len(self._columns)))
         self.summary_slots = list(range(len(self.summaries)))

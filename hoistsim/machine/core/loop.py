@@ -350,8 +350,14 @@ def restart_loop(plan: Plan, solver, log_size: int, step_room: int = 0, columns:
         stepped_state, stepped_modes = jnp.full((rows, size), nan), jnp.full((rows, couplings), -1)
     grid_state = jnp.where(ended, jnp.where(status == OK, c.y, nan), stepped_state)
     grid_modes = jnp.where(ended, jnp.where(status == OK, c.modes, -1), stepped_modes)
+    # the ledger's scale: the most kinetic energy at a pass's ends or a row (a run that swings and comes to rest
+    # again, its works cancelling, without a switch between)
+    peak = c.extremes[extremes.KINETIC_PEAK]
+    if c.kept is not None:
+        held = jax.vmap(lambda y: Instant(layout, 0.0, y).kinetic_energy())(stepped_state)
+        peak = jnp.maximum(peak, jnp.max(jnp.where(ended[:, 0] | jnp.isnan(held), 0.0, held)))
     scalars = [c.t, *summary_values(plan, c.extremes, c.y, c.modes), *ledger_values(layout, plan.initial_state),
-               *ledger_values(layout, c.y), c.extremes[extremes.KINETIC_PEAK]]
+               *ledger_values(layout, c.y), peak]
     log_time, log_margin, codes, log_state, log_modes = unpack(c.log, c.log_count, couplings, columns)
     # the grid's rows and the events' through one evaluation (one copy of it in the program)
     outputs = row_outputs(plan, jnp.concatenate([plan.grid, log_time]), jnp.concatenate([grid_state, log_state]),

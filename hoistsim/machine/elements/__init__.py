@@ -32,10 +32,12 @@ from .holding_brake import HoldingBrake as HoldingBrake
 from .housed_gear import HousedGear as HousedGear
 from .induction_machine import InductionMachine as InductionMachine
 from .level_load import LevelLoad as LevelLoad
+from .line_force import LineForce as LineForce
 from .linear_motor import LinearMotor as LinearMotor
 from .linear_torque import LinearTorque as LinearTorque
 from .load_drag import LoadDrag as LoadDrag
 from .lossy_gear import LossyGear as LossyGear
+from .mass import Mass as Mass
 from .mesh_friction import MeshFriction as MeshFriction
 from .motor import Motor as Motor
 from .motor_ripple import MotorRipple as MotorRipple
@@ -66,6 +68,7 @@ from .wire_rope import WireRope as WireRope
 REGISTRY: dict[str, object] = {
     "drivetrain.shafts.*": Shaft,
     "drivetrain.shafts.*.resisting_ripple": ResistingRipple,
+    "drivetrain.masses.*": Mass,
     "drivetrain.rotors.*": Flywheel,
     "drivetrain.slider_cranks.*": SliderCrank,
     "drivetrain.motors.*": Motor,
@@ -77,6 +80,7 @@ REGISTRY: dict[str, object] = {
     "drivetrain.motion_sources.*": {"speed": SpeedSource, "angle": AngleSource, "acceleration": AccelerationSource},
     "drivetrain.torques.*": {"time": ShaftTorque, "speed_table": SpeedTableTorque, "quadratic": QuadraticTorque,
                              "linear": LinearTorque},
+    "drivetrain.forces.*": LineForce,
     # linkages of three shafts, before the friction couplings: where stuck couplings hold one motion twice,
     # the first in order takes the torque, and these hold any
     "drivetrain.gears.*.housing": HousedGear,  # a stage whose housing turns

@@ -17,7 +17,7 @@ class AbstractMotionSource(AbstractWorkOnShaft, AbstractCoupling):
     couplings lock or a boundary is passed).  The torque it applies to the shaft is its output
     ``<section>_torque``; its work on the shaft (that torque times the shaft's speed, and its impulses' work where
     the speed it holds jumps) is the state ``<section>_work`` and a work term of the energy ledger.  Subclasses
-    declare ``shaft`` and ``section``."""
+    declare ``shaft``, ``on_line`` (a mass's: a force, m and m/s) and ``section``."""
 
     can_slip: ClassVar[bool] = False
     reports_switches: ClassVar[bool] = False
@@ -28,9 +28,15 @@ class AbstractMotionSource(AbstractWorkOnShaft, AbstractCoupling):
         """(the shaft's speed it holds, or None: the speed it has; its acceleration), rad/s and rad/s^2."""
 
     @property
+    def torque_name(self) -> str:
+        """Its output: ``<name>_torque`` on a shaft, ``<name>_force`` on a mass."""
+        return f"{self.section}_{'force' if self.on_line else 'torque'}"
+
+    @property
     def columns(self) -> dict:
-        return {f"{self.section}_torque": ("N*m", f"torque the motion source {self.section} applies to shaft "
-                                                  f"{self.shaft}, positive in its positive sense")}
+        what, units, body = ("force", "N", "mass") if self.on_line else ("torque", "N*m", "shaft")
+        return {self.torque_name: (units, f"{what} the motion source {self.section} applies to {body} {self.shaft}, "
+                                          "positive in its positive sense")}
 
     def joins(self) -> tuple:
         return (self.shaft, None)
@@ -46,4 +52,4 @@ class AbstractMotionSource(AbstractWorkOnShaft, AbstractCoupling):
         return -x.coupling_torque(self.section)
 
     def outputs(self, x) -> dict:
-        return {f"{self.section}_torque": self.torque(x)}
+        return {self.torque_name: self.torque(x)}

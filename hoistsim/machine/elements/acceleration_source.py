@@ -17,12 +17,14 @@ class AccelerationSource(AbstractMotionSource):
     acceleration_phases: object  # rad
     acceleration_envelope_times: object = None  # s, the harmonics' envelope (None: none)
     acceleration_envelope_values: object = None
+    on_line: bool = static(False)  # it drives a mass (m, m/s, m/s^2; a force)
     shaft: str = static("")
     section: str = static("")  # its key in drivetrain.motion_sources
 
     @classmethod
     def from_spec(cls, spec) -> "AccelerationSource":
-        return cls(**signal_fields(spec.acceleration, "acceleration"), shaft=spec.shaft, section=spec.name)
+        return cls(**signal_fields(spec.reference, "acceleration"), on_line=spec.resolved("on_line"),
+                   shaft=spec.shaft, section=spec.name)
 
     def tables(self) -> dict:
         return signal_tables(self, "acceleration")

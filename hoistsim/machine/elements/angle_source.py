@@ -33,12 +33,14 @@ class AngleSource(AbstractMotionSource):
     angle_envelope_times: object = None  # s, the harmonics' envelope (None: none)
     angle_envelope_values: object = None
     filter_frequency: object = None  # Hz (None: exactly)
+    on_line: bool = static(False)  # it drives a mass (m, m/s, m/s^2; a force)
     shaft: str = static("")
     section: str = static("")  # its key in drivetrain.motion_sources
 
     @classmethod
     def from_spec(cls, spec) -> "AngleSource":
-        return cls(**signal_fields(spec.angle, "angle"), filter_frequency=spec.filter_frequency, shaft=spec.shaft,
+        return cls(**signal_fields(spec.reference, "angle"),
+                   filter_frequency=spec.filter_frequency, on_line=spec.resolved("on_line"), shaft=spec.shaft,
                    section=spec.name)
 
     @property

@@ -28,12 +28,14 @@ class SpeedSource(AbstractMotionSource):
     speed_envelope_times: object = None  # s, the harmonics' envelope (None: none)
     speed_envelope_values: object = None
     filter_frequency: object = None  # Hz (None: exactly)
+    on_line: bool = static(False)  # it drives a mass (m, m/s, m/s^2; a force)
     shaft: str = static("")
     section: str = static("")  # its key in drivetrain.motion_sources
 
     @classmethod
     def from_spec(cls, spec) -> "SpeedSource":
-        return cls(**signal_fields(spec.speed, "speed"), filter_frequency=spec.filter_frequency, shaft=spec.shaft,
+        return cls(**signal_fields(spec.reference, "speed"),
+                   filter_frequency=spec.filter_frequency, on_line=spec.resolved("on_line"), shaft=spec.shaft,
                    section=spec.name)
 
     @property

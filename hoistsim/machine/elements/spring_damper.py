@@ -21,6 +21,7 @@ class SpringDamper(AbstractElement):
     damping: object  # d, N*m*s/rad
     unstretched_angle: object  # phi_rel0, rad
     initial_twist: object = 0.0  # phi_rel at t = 0, rad
+    on_line: bool = static(False)  # between masses: a force (N), a stretch (m)
     driving: str | None = static(None)  # shaft a, None for the ground
     driven: str | None = static(None)  # shaft b, None for the ground
     section: str = static("")  # its name
@@ -33,7 +34,8 @@ class SpringDamper(AbstractElement):
     def fields_from(spec) -> dict:
         a, b = (None if side == "ground" else side for side in spec.between)
         return dict(stiffness=spec.spring_rate, damping=spec.damping, unstretched_angle=spec.unstretched_angle,
-                    initial_twist=spec.resolved("initial_twist"), driving=a, driven=b, section=spec.name)
+                    initial_twist=spec.resolved("initial_twist"), on_line=spec.resolved("on_line"), driving=a,
+                    driven=b, section=spec.name)
 
     @property
     def loss_state(self) -> str:
@@ -48,12 +50,21 @@ class SpringDamper(AbstractElement):
         return {f"{self.section}_strain_energy": "potential", self.loss_state: "loss"}
 
     @property
-    def columns(self) -> dict:
-        a, b = (f"shaft {side}" if side else "the ground" for side in (self.driving, self.driven))
+    def output_names(self) -> tuple:
+        """Its outputs' names: (what it passes, its twist, the twist's speed); a line's force and stretch."""
         name = self.section
-        return {f"{name}_torque": ("N*m", f"torque {name} passes: it pulls {b} back with it, {a} forward"),
-                f"{name}_twist": ("rad", f"angle of {b} less that of {a}"),
-                f"{name}_twist_speed": ("rad/s", f"speed of {b} less that of {a}")}
+        words = ("force", "stretch", "stretch_speed") if self.on_line else ("torque", "twist", "twist_speed")
+        return tuple(f"{name}_{word}" for word in words)
+
+    @property
+    def columns(self) -> dict:
+        body, units = ("mass", ("N", "m", "m/s")) if self.on_line else ("shaft", ("N*m", "rad", "rad/s"))
+        a, b = (f"{body} {side}" if side else "the ground" for side in (self.driving, self.driven))
+        passes, twist, speed = self.output_names
+        what, where = ("force", "position") if self.on_line else ("torque", "angle")
+        return {passes: (units[0], f"{what} {self.section} passes: it pulls {b} back with it, {a} forward"),
+                twist: (units[1], f"{where} of {b} less that of {a}"),
+                speed: (units[2], f"speed of {b} less that of {a}")}
 
     def angles(self) -> tuple:
         return tuple(side for side in (self.driving, self.driven) if side is not None)
@@ -101,5 +112,5 @@ class SpringDamper(AbstractElement):
                 self.loss_state: x.state(self.loss_state)}
 
     def outputs(self, x) -> dict:
-        return {f"{self.section}_torque": self.torque(x), f"{self.section}_twist": self.twist(x),
-                f"{self.section}_twist_speed": self.twist_speed(x)}
+        passes, twist, speed = self.output_names
+        return {passes: self.torque(x), twist: self.twist(x), speed: self.twist_speed(x)}
