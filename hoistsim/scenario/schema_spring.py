@@ -46,6 +46,9 @@ class SpringSpec(Section):
                                                             "distance of their centres at which it passes no force")
     backlash: u.quantity(u.ANGLE, ge=0.0) | None = Field(None, description="b: the total play (Modelica's "
                                                          "ElastoBacklash)")
+    gap: bool = Field(False, description="true: it only pushes, touching while compressed below its unstretched "
+                      "length (or angle), its damping limited to its spring's force (Modelica's ElastoGap: a "
+                      "buffer, a stop with give)")
     name: str = Field("", exclude=True)  # its key in drivetrain.springs (set there, never written)
 
     def lowered(self, scenario) -> "SpringSpec":
@@ -70,6 +73,11 @@ class SpringSpec(Section):
         if self.backlash is not None and self.spring_rate == 0.0:
             raise ScenarioError(".stiffness", "is required with backlash: the sides meet through the spring (a "
                                 "contact without stiffness would pass no torque)")
+        if self.gap and self.backlash is not None:
+            raise ScenarioError(".gap", "give either backlash (a play both ways) or gap (a contact one way), not both")
+        if self.gap and self.spring_rate == 0.0:
+            raise ScenarioError(".stiffness", "is required with gap: the sides push through the spring (its "
+                                "damping is limited to the spring's force)")
         if self.spring_rate == 0.0 and self.damping == 0.0:
             raise ScenarioError(".stiffness", "give a stiffness, a damping or both (a spring of neither passes "
                                 "no torque)")
@@ -77,8 +85,9 @@ class SpringSpec(Section):
 
     @property
     def characteristic(self) -> str:
-        """Which variant: ``spring`` (a spring-damper) or ``backlash`` (one with play)."""
-        return "spring" if self.backlash is None else "backlash"
+        """Which variant: ``spring`` (a spring-damper), ``backlash`` (one with play) or ``gap`` (one that only
+        pushes)."""
+        return "gap" if self.gap else "spring" if self.backlash is None else "backlash"
 
     @property
     def spring_rate(self) -> float:

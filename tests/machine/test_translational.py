@@ -2,11 +2,12 @@
 and motion sources driving them, against Dymola's published trajectories of Modelica's Translational examples
 and closed forms.
 
-- Accelerate, SignConvention, Sensors, Damper, Oscillator, InitialConditions and WhyArrows
+- Accelerate, SignConvention, Sensors, Damper, Oscillator, InitialConditions, WhyArrows and ElastoGap
   (scenarios/modelica/translational/) within 1e-3 of each comparison signal's range at every reference row;
   Modelica's s_rel of a part runs between masses' ends (or an end and a wall), worked out from their centres
   (a mass's length is Modelica's L).
-- A sine force on a mass (Sensors) and a mass on a spring-damper (Damper's third) in closed form.
+- A sine force on a mass (Sensors), a mass on a spring-damper (Damper's third) and a mass arriving on an
+  elasto-gap (its contact time, its damping's limit and its force at every row) in closed form.
 - The ledger closes in every example.
 - Bad input: a part joining a mass to a shaft, a line's part in a shaft's units or with a shaft's key, a force
   on no mass: one line naming the key, nothing written.
@@ -44,6 +45,9 @@ def _comparison(example: str, run) -> dict:
                 "sd1.v_rel": run["m2_velocity"] - run["m1_velocity"],
                 "sd2.s_rel": run["m4_position"] - run["m3_position"] - 4.0,
                 "sd2.v_rel": run["m4_velocity"] - run["m3_velocity"]}
+    if example == "ElastoGap":  # from the point at -2 m to a mass, or from a mass to the point at 2 m
+        return {"elastoGap1.v_rel": run["mass2_velocity"], "elastoGap2.s_rel": 2.0 - run["mass2_position"],
+                "springDamper1.v_rel": run["mass1_velocity"], "springDamper2.s_rel": 2.0 - run["mass1_position"]}
     masses = {"SignConvention": ("mass1", "mass2", "mass3"), "Sensors": ("mass",),
               "WhyArrows": ("inertia2", "mass1")}[example]
     return {f"{m}.{k}": run[f"{m}_{series}"] for m in masses for k, series in (("s", "position"), ("v", "velocity"))}
@@ -52,8 +56,10 @@ def _comparison(example: str, run) -> dict:
 # measured worst deviations, of each signal's range: Dymola's own error at its tolerance 1e-6 where ours is far
 # below it (the closed forms below): Accelerate 2.5e-7, SignConvention 2.5e-7, Sensors 1.9e-5, Damper 2.7e-6,
 # Oscillator 4.8e-4 (an undamped resonance, Dymola's phase error growing with each swing), InitialConditions
-# 1.7e-5, WhyArrows 3.2e-6
-EXAMPLES = ("Accelerate", "SignConvention", "Sensors", "Damper", "Oscillator", "InitialConditions", "WhyArrows")
+# 1.7e-5, WhyArrows 3.2e-6, ElastoGap 5.8e-6 (its contacts within 1e-7 s of Dymola's events, its separations where
+# the force falls to zero, before the gap's length is reached, Dymola's event: the row gap_edge)
+EXAMPLES = ("Accelerate", "SignConvention", "Sensors", "Damper", "Oscillator", "InitialConditions", "WhyArrows",
+            "ElastoGap")
 
 
 @pytest.fixture(scope="module")
@@ -107,3 +113,43 @@ def test_a_mass_on_a_spring_damper_is_its_closed_form(runs):
 ])
 def test_bad_parts_on_a_line_are_refused_in_one_line(change, key, says, tmp_path):
     refused_in_one_line(FOLDER / "Damper.yaml", change, key, says, tmp_path)
+
+
+def test_a_mass_arriving_on_a_gap_pushes_off_as_its_closed_form():
+    """1000 kg at 1 m/s onto an elasto-gap of 1e5 N/m and 2e3 N*s/m (x the compression): while the damping's force
+    is limited to the spring's, m x'' = -2 c x, x = v0 / w1 sin(w1 t), w1 = sqrt(2 c / m), until d x' = c x
+    (tan(w1 t1) = d w1 / c); then m x'' + d x' + c x = 0, a damped oscillator from there, until the force
+    c x + d x' falls to zero: the separation.  Contact time and the force at every row in contact."""
+    from scipy.optimize import brentq
+
+    from hoistsim import scenario_from_dict
+    m, c, d, v0, start = 1000.0, 1e5, 2e3, 1.0, 0.1
+    run = simulate(scenario_from_dict({"name": "gap", "drivetrain": {
+        "masses": {"load": {"mass": f"{m} kg", "position": f"{start} m", "velocity": f"{-v0} m/s"}},
+        "springs": {"buffer": {"between": ["ground", "load"], "stiffness": f"{c} N/m", "damping": f"{d} N*s/m",
+                               "unstretched_length": "0 m", "gap": True}}},
+        "simulation": {"duration": "0.5 s", "output_interval": "1 ms", "rtol": 1e-11, "atol": 1e-13}}))
+    w1 = math.sqrt(2 * c / m)
+    t1 = math.atan(d * w1 / c) / w1
+    x1, v1 = v0 / w1 * math.sin(w1 * t1), v0 * math.cos(w1 * t1)
+    zeta, w0 = d / (2 * math.sqrt(c * m)), math.sqrt(c / m)
+    wd = w0 * math.sqrt(1 - zeta**2)
+
+    def later(tau):  # (x, x') in the second phase, tau after t1
+        decay, b = math.exp(-zeta * w0 * tau), (v1 + zeta * w0 * x1) / wd
+        x = decay * (x1 * math.cos(wd * tau) + b * math.sin(wd * tau))
+        dx = decay * ((b * wd - zeta * w0 * x1) * math.cos(wd * tau) - (x1 * wd + zeta * w0 * b) * math.sin(wd * tau))
+        return x, dx
+
+    apart = brentq(lambda tau: c * later(tau)[0] + d * later(tau)[1], 1e-6, math.pi / wd)
+    kinds, times = list(run.instants["kind"]), run.instants["time"]
+    contact, separation = times[kinds.index("contact")], times[kinds.index("separation")]
+    assert contact == pytest.approx(start / v0, abs=1e-10)
+    assert separation - contact == pytest.approx(t1 + apart, abs=1e-9)
+    assert times[kinds.index("gap_damping_limit")] - contact == pytest.approx(t1, abs=1e-9)
+    rows = (run.time > contact) & (run.time < separation)
+    tau = run.time[rows] - contact
+    force = np.where(tau < t1, 2 * c * v0 / w1 * np.sin(w1 * tau),
+                     [c * later(s - t1)[0] + d * later(s - t1)[1] if s >= t1 else 0.0 for s in tau])
+    np.testing.assert_allclose(-run["buffer_force"][rows], force, rtol=0, atol=1e-6 * np.max(force))
+    assert run.summary["energy_relative_residual"] < 1e-9

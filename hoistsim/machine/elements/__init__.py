@@ -23,6 +23,7 @@ from .dc_machine import DcMachine as DcMachine
 from .eddy_current_brake import EddyCurrentBrake as EddyCurrentBrake
 from .elastic_load import ElasticLoad as ElasticLoad
 from .elasto_backlash import ElastoBacklash as ElastoBacklash
+from .elasto_gap import ElastoGap as ElastoGap
 from .flywheel import Flywheel as Flywheel
 from .friction_brake import FrictionBrake as FrictionBrake
 from .friction_clutch import FrictionClutch as FrictionClutch
@@ -89,7 +90,7 @@ REGISTRY: dict[str, object] = {
     "drivetrain.clutches.*.heating": ClutchHeating,
     "drivetrain.one_way_clutches.*": OneWayClutch,
     "drivetrain.bearing_frictions.*": BearingFriction,
-    "drivetrain.springs.*": {"spring": SpringDamper, "backlash": ElastoBacklash},
+    "drivetrain.springs.*": {"spring": SpringDamper, "backlash": ElastoBacklash, "gap": ElastoGap},
     # a lossy stage's mesh: constant efficiencies (the hoist's), or Modelica's lossTable
     "drivetrain.gears.*.mesh": {"efficiency": MeshFriction, "loss_table": LossyGear},
     "drivetrain.load": {"rigid": RigidLoad, "elastic": ElasticLoad,  # on a rigid rope, or a body on its rope,
