@@ -19,7 +19,8 @@ def reference(example: str) -> dict:
     with (plain.open() if plain.exists() else gzip.open(DATA / f"{example}.csv.gz", "rt")) as f:
         rows = list(csv.reader(f))
     table = np.asarray([[float(v) for v in row] for row in rows[1:]])
-    return {name: table[:, i] for i, name in enumerate(rows[0])}
+    # (the time's header is "time", or "Time" in some files)
+    return {"time" if name == "Time" else name: table[:, i] for i, name in enumerate(rows[0])}
 
 
 def events(times):

@@ -38,12 +38,14 @@ class ForceSpec(Section):
 
 # the parts that may join masses, the key that names their bodies, and their keys measured otherwise on a line
 LINE_PARTS = {"springs": ("between", ("stiffness", "damping")),
-              "motion_sources": ("shaft", ("acceleration",))}
+              "motion_sources": ("shaft", ("acceleration",)),
+              "eddy_current_brakes": ("shaft", ())}
 # keys a part has on one kind of body only: on shafts, on a line
 ROTATION_ONLY = {"springs": ("unstretched_angle", "shear_modulus", "diameter", "inner_diameter", "length",
                              "backlash"),
-                 "motion_sources": ("speed", "angle")}
-LINE_ONLY = {"springs": ("unstretched_length",), "motion_sources": ("velocity", "position")}
+                 "motion_sources": ("speed", "angle"), "eddy_current_brakes": ("nominal_torque", "nominal_speed")}
+LINE_ONLY = {"springs": ("unstretched_length",), "motion_sources": ("velocity", "position"),
+             "eddy_current_brakes": ("nominal_force", "nominal_velocity")}
 
 
 def written_on_line(value: object, dimension: u.Dimension) -> bool | None:

@@ -87,7 +87,7 @@ class HeatCapacitorSpec(Section):
     def lowered(self, scenario) -> "HeatCapacitorSpec":
         """With the eddy-current brake whose heat warms it written in (the schema says there is one)."""
         brakes = scenario.drivetrain.eddy_current_brakes
-        return self.with_resolved(brake=next(b for b in brakes.values() if b.heat_to == self.name))
+        return self.with_resolved(brake=next(b for b in brakes.values() if b.heat_to == self.name).lowered(scenario))
 
 
 class EddyCurrentBrakeSpec(Section):
@@ -96,11 +96,17 @@ class EddyCurrentBrakeSpec(Section):
     temperature coefficient at 20 degC converted to the reference temperature; its heat goes into a heat capacitor
     (``heat_to``), whose temperature is T, or T is ``temperature``."""
 
-    alternatives = (("heat_to", "temperature"),)
-    shaft: Text = Field(description="the shaft it brakes")
-    nominal_torque: u.quantity(u.TORQUE, gt=0.0) = Field(description="the most it brakes, at nominal_speed")
-    nominal_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) = Field(description="where it brakes most, at "
-                                                               "reference_temperature")
+    alternatives = (("heat_to", "temperature"), ("nominal_torque + nominal_speed", "nominal_force + nominal_velocity"))
+    shaft: Text = Field(description="the shaft (or the mass) it brakes")
+    nominal_torque: u.quantity(u.TORQUE, gt=0.0) | None = Field(None, description="the most it brakes, at "
+                                                                "nominal_speed")
+    nominal_speed: u.quantity(u.ANGULAR_SPEED, gt=0.0) | None = Field(None, description="where it brakes most, at "
+                                                                      "reference_temperature")
+    nominal_force: u.quantity(u.FORCE, gt=0.0) | None = Field(None, description="on a mass (Modelica's "
+                                                              "EddyCurrentForce): the most it brakes, at "
+                                                              "nominal_velocity")
+    nominal_velocity: u.quantity(u.VELOCITY, gt=0.0) | None = Field(None, description="on a mass: where it brakes "
+                                                                    "most, at reference_temperature")
     excitation: signal(u.DIMENSIONLESS) = Field(TimeSignal(times=(0.0,), values=(1.0,)), description="e (1: the "
                                                 "nominal torque)")
     temperature_coefficient: u.quantity(TEMPERATURE_COEFFICIENT) = Field(0.0, description="alpha20, the disc's "
@@ -114,10 +120,24 @@ class EddyCurrentBrakeSpec(Section):
 
     @model_validator(mode="after")
     def _heat_to_or_temperature(self):
+        # on a shaft its torque and speed, on a mass its force and velocity: the same law in the line's units
+        line = (self.nominal_force, self.nominal_velocity)
+        if None not in line and self.nominal_torque is None and self.nominal_speed is None:
+            self._derive("nominal_torque", self.nominal_force)
+            self._derive("nominal_speed", self.nominal_velocity)
+        elif self.nominal_torque is None or self.nominal_speed is None or line != (None, None):
+            given = [key for key in ("nominal_torque", "nominal_speed", "nominal_force", "nominal_velocity")
+                     if getattr(self, key) is not None]
+            raise ScenarioError(f".{'nominal_torque' if not given else given[-1]}", "give nominal_torque and "
+                                "nominal_speed (on a shaft), or nominal_force and nominal_velocity (on a mass)")
         if self.heat_to is not None and self.temperature is not None:
             raise ScenarioError(".temperature", "give either heat_to (a heat capacitor, whose temperature the brake "
                                 "has) or temperature (a constant), not both")
         return self
+
+    def lowered(self, scenario) -> "EddyCurrentBrakeSpec":
+        """With whether it brakes a mass written in (``on_line``)."""
+        return self.with_resolved(on_line=self.shaft in scenario.drivetrain.masses)
 
     def alpha_at_reference(self) -> float:
         """1/K: the temperature coefficient at the reference temperature (Modelica's convertAlpha)."""
@@ -146,9 +166,10 @@ def check_speed_parts(drivetrain, names_taken: set, is_name) -> None:
             names_taken.add(name)
     heated: dict = {}
     for name, brake in drivetrain.eddy_current_brakes.items():
-        if brake.shaft not in drivetrain.shafts:
+        if brake.shaft not in drivetrain.shafts and brake.shaft not in drivetrain.masses:
             raise ScenarioError(f"drivetrain.eddy_current_brakes.{name}.shaft", f"there is no shaft {brake.shaft!r} "
-                                f"(shafts: {', '.join(drivetrain.shafts)})")
+                                f"(shafts: {', '.join(drivetrain.shafts)}; masses: "
+                                f"{', '.join(drivetrain.masses) or 'none'})")
         if brake.heat_to is None:
             continue
         if brake.heat_to not in drivetrain.heat_capacitors:

@@ -2,8 +2,8 @@
 and motion sources driving them, against Dymola's published trajectories of Modelica's Translational examples
 and closed forms.
 
-- Accelerate, SignConvention, Sensors, Damper, Oscillator, InitialConditions, WhyArrows and ElastoGap
-  (scenarios/modelica/translational/) within 1e-3 of each comparison signal's range at every reference row;
+- Accelerate, SignConvention, Sensors, Damper, Oscillator, InitialConditions, WhyArrows, ElastoGap and
+  EddyCurrentBrake (scenarios/modelica/translational/) within 1e-3 of each comparison signal's range at every reference row;
   Modelica's s_rel of a part runs between masses' ends (or an end and a wall), worked out from their centres
   (a mass's length is Modelica's L).
 - A sine force on a mass (Sensors), a mass on a spring-damper (Damper's third) and a mass arriving on an
@@ -45,6 +45,9 @@ def _comparison(example: str, run) -> dict:
                 "sd1.v_rel": run["m2_velocity"] - run["m1_velocity"],
                 "sd2.s_rel": run["m4_position"] - run["m3_position"] - 4.0,
                 "sd2.v_rel": run["m4_velocity"] - run["m3_velocity"]}
+    if example == "EddyCurrentBrake":
+        return {"eddyCurrentForce.lossPower": run["eddyCurrentForce_loss_power"], "mass.s": run["mass_position"],
+                "heatCapacitor.T": run["heatCapacitor_temperature"]}
     if example == "ElastoGap":  # from the point at -2 m to a mass, or from a mass to the point at 2 m
         return {"elastoGap1.v_rel": run["mass2_velocity"], "elastoGap2.s_rel": 2.0 - run["mass2_position"],
                 "springDamper1.v_rel": run["mass1_velocity"], "springDamper2.s_rel": 2.0 - run["mass1_position"]}
@@ -57,9 +60,10 @@ def _comparison(example: str, run) -> dict:
 # below it (the closed forms below): Accelerate 2.5e-7, SignConvention 2.5e-7, Sensors 1.9e-5, Damper 2.7e-6,
 # Oscillator 4.8e-4 (an undamped resonance, Dymola's phase error growing with each swing), InitialConditions
 # 1.7e-5, WhyArrows 3.2e-6, ElastoGap 5.8e-6 (its contacts within 1e-7 s of Dymola's events, its separations where
-# the force falls to zero, before the gap's length is reached, Dymola's event: the row gap_edge)
+# the force falls to zero, before the gap's length is reached, Dymola's event: the row gap_edge), EddyCurrentBrake
+# 1.2e-5
 EXAMPLES = ("Accelerate", "SignConvention", "Sensors", "Damper", "Oscillator", "InitialConditions", "WhyArrows",
-            "ElastoGap")
+            "ElastoGap", "EddyCurrentBrake")
 
 
 @pytest.fixture(scope="module")
@@ -113,6 +117,12 @@ def test_a_mass_on_a_spring_damper_is_its_closed_form(runs):
 ])
 def test_bad_parts_on_a_line_are_refused_in_one_line(change, key, says, tmp_path):
     refused_in_one_line(FOLDER / "Damper.yaml", change, key, says, tmp_path)
+
+
+def test_an_eddy_current_brake_on_a_mass_is_given_a_force_and_a_velocity(tmp_path):
+    refused_in_one_line(FOLDER / "EddyCurrentBrake.yaml", part_keys_set(
+        "eddy_current_brakes", "eddyCurrentForce", {"nominal_force": None, "nominal_torque": "100 N*m"}),
+        "drivetrain.eddy_current_brakes.eddyCurrentForce.nominal_torque", "no key of a part on a line", tmp_path)
 
 
 def test_a_mass_arriving_on_a_gap_pushes_off_as_its_closed_form():

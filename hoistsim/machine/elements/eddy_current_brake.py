@@ -31,6 +31,7 @@ class EddyCurrentBrake(AbstractElement):
     temperature: object  # K: T where it heats no capacitor
     excitation_envelope_times: object = None  # s, the harmonics' envelope (None: none)
     excitation_envelope_values: object = None
+    on_line: bool = static(False)  # it brakes a mass (Modelica's EddyCurrentForce: N, m/s)
     shaft: str = static("")
     section: str = static("")  # its key in drivetrain.eddy_current_brakes
     heat_to: str | None = static(None)  # the heat capacitor its heat warms, whose temperature it has
@@ -40,7 +41,8 @@ class EddyCurrentBrake(AbstractElement):
         fixed = spec.reference_temperature if spec.temperature is None else spec.temperature
         return cls(nominal_torque=spec.nominal_torque, nominal_speed=spec.nominal_speed,
                    **signal_fields(spec.excitation, "excitation"), temperature_coefficient=spec.temperature_coefficient,
-                   reference_temperature=spec.reference_temperature, temperature=fixed, shaft=spec.shaft,
+                   reference_temperature=spec.reference_temperature, temperature=fixed,
+                   on_line=spec.resolved("on_line"), shaft=spec.shaft,
                    section=spec.name, heat_to=spec.heat_to)
 
     @property
@@ -54,8 +56,9 @@ class EddyCurrentBrake(AbstractElement):
     @property
     def columns(self) -> dict:
         name = self.section
-        return {f"{name}_torque": ("N*m", f"torque eddy-current brake {name} applies to shaft {self.shaft}, "
-                                          "positive in the shaft's positive sense"),
+        what, units, body = ("force", "N", "mass") if self.on_line else ("torque", "N*m", "shaft")
+        return {f"{name}_{what}": (units, f"{what} eddy-current brake {name} applies to {body} {self.shaft}, "
+                                          f"positive in the {body}'s positive sense"),
                 f"{name}_loss_power": ("W", f"heat eddy-current brake {name} makes, its braking torque times the "
                                             "speed"),
                 f"{name}_heat": ("J", f"heat eddy-current brake {name} has made so far")}
@@ -92,5 +95,6 @@ class EddyCurrentBrake(AbstractElement):
 
     def outputs(self, x) -> dict:
         name = self.section
-        return {f"{name}_torque": -self.braking_torque(x), f"{name}_loss_power": self.loss_power(x),
+        return {f"{name}_{'force' if self.on_line else 'torque'}": -self.braking_torque(x),
+                f"{name}_loss_power": self.loss_power(x),
                 f"{name}_heat": x.state(self.heat_state)}
