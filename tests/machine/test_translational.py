@@ -3,14 +3,14 @@ and motion sources driving them, against Dymola's published trajectories of Mode
 and closed forms.
 
 - Accelerate, SignConvention, Sensors, Damper, Oscillator, InitialConditions, WhyArrows, ElastoGap and
-  EddyCurrentBrake (scenarios/modelica/translational/) within 1e-3 of each comparison signal's range at every reference row;
-  Modelica's s_rel of a part runs between masses' ends (or an end and a wall), worked out from their centres
-  (a mass's length is Modelica's L).
+  EddyCurrentBrake (scenarios/modelica/translational/) within 1e-3 of each comparison signal's range at every
+  reference row; Modelica's s_rel of a part runs between masses' ends (or an end and a wall), worked out from
+  their centres (a mass's length is Modelica's L).
 - A sine force on a mass (Sensors), a mass on a spring-damper (Damper's third) and a mass arriving on an
   elasto-gap (its contact time, its damping's limit and its force at every row) in closed form.
 - The ledger closes in every example.
-- Bad input: a part joining a mass to a shaft, a line's part in a shaft's units or with a shaft's key, a force
-  on no mass: one line naming the key, nothing written.
+- Bad input: a part joining a mass to a shaft, a line's part in a shaft's units or with a shaft's key (an
+  eddy-current brake's torque on a mass), a force on no mass: one line naming the key, nothing written.
 """
 
 from __future__ import annotations
