@@ -92,9 +92,20 @@ def _headline(summary: dict) -> str | None:
     return "; ".join(_story(name, summary) for name in names) if names else None
 
 
-def _mirrored(name: str):
-    """The capacity's other side (N*m), drawn only where the torque goes that way (a load running back)."""
-    return lambda run: -run[f"{name}_capacity"] if (run[f"{name}_torque"] < 0).any() else None
+def _on_line(run: dict, spec: dict) -> bool:
+    """Whether a coupling joins masses (a brake on a line): its friction force where a shaft's passes a torque."""
+    masses = ((run.get("parameters") or {}).get("drivetrain") or {}).get("masses") or {}
+    return any(side in masses for side in spec.get("between") or ())
+
+
+def _passed(name: str, on_line: bool) -> str:
+    """The column of what a coupling passes: ``<name>_torque``, on a line ``<name>_friction``."""
+    return f"{name}_{'friction' if on_line else 'torque'}"
+
+
+def _mirrored(name: str, passed: str):
+    """The capacity's other side, drawn only where the torque goes that way (a load running back)."""
+    return lambda run: -run[f"{name}_capacity"] if (run[passed] < 0).any() else None
 
 
 def _static_torque(spec: dict) -> float:
@@ -103,14 +114,15 @@ def _static_torque(spec: dict) -> float:
     return float(spec.get("peak", 1.0)) * float(torque[0][1] if isinstance(torque, (list, tuple)) else torque)
 
 
-def _capacities(kind: str, name: str, spec: dict) -> tuple:
-    """The lines a coupling's torque meets: a clutch's static capacity (its other side where the torque goes
-    there), a one-way clutch's on the side its freewheel does not hold, a bearing friction's static torque."""
+def _capacities(kind: str, name: str, spec: dict, passed: str) -> tuple:
+    """The lines a coupling's torque (``passed``, its column) meets: a clutch's static capacity (its other side
+    where the torque goes there), a one-way clutch's on the side its freewheel does not hold, a bearing
+    friction's static torque."""
     both = ("torque", "capacity")
     if kind == "clutches":
         return (Trace("static capacity", f"{name}_capacity", style=":", limit=True),
                 Trace("- static capacity", f"{name}_capacity", style=":", limit=True,
-                      needs=tuple(f"{name}_{w}" for w in both), value=_mirrored(name)))
+                      needs=(passed, f"{name}_capacity"), value=_mirrored(name, passed)))
     if kind == "one_way_clutches":  # driving shaft a forwards past b, the freewheel holds any torque
         return (Trace("- static capacity", f"{name}_capacity", style=":", limit=True,
                       needs=tuple(f"{name}_{w}" for w in both), value=lambda run: -run[f"{name}_capacity"]),)
@@ -141,12 +153,15 @@ def _panels_for(run: dict) -> tuple:
     names = [name for _, name, _ in found]
     lone = len(found) == 1
     rpm = not (run.get("parameters") or {}).get("drivetrain")
+    line = [_on_line(run, spec) for _, _, spec in found]
+    units = "m/s" if all(line) else "rpm" if rpm else "rad/s"
     slips = tuple(Trace(name, f"{name}_slip", marks=("lock",), marks_of=name) for name in names)
-    slip = Panel("clutch_slips", f"clutch slip [{'rpm' if rpm else 'rad/s'}]\n(driving - driven half)", 10, slips,
+    slip = Panel("clutch_slips", f"clutch slip [{units}]\n(driving - driven half)", 10, slips,
                  scale=RPM if rpm else 1.0, zero_line=True)
-    torques = tuple(Panel(f"{name}_torque", f"{name}{' ' if lone else chr(10)}torque [N*m]", 20,
-                          (Trace("transmitted", f"{name}_torque"),) + _capacities(kind, name, spec),
-                          zero_line=True, height=1.0 if lone else 0.8) for kind, name, spec in found)
+    torques = tuple(Panel(passed, f"{name}{' ' if lone else chr(10)}{'friction [N]' if on else 'torque [N*m]'}", 20,
+                          (Trace("transmitted", passed),) + _capacities(kind, name, spec, passed),
+                          zero_line=True, height=1.0 if lone else 0.8)
+                    for (kind, name, spec), on in zip(found, line) for passed in (_passed(name, on),))
     return (slip,) + torques + _heat_panel(names, run)
 
 
@@ -171,6 +186,7 @@ def _summary_panels_for(summary: dict) -> tuple:
         SummaryPanel(f"{name}_slip_energy", f"{name} heat [kJ]", 1, scale=1e-3,
                      partial="heat up to the end of the run", partial_of=f"{name}_lockup_time"),
         SummaryPanel(f"{name}_peak_torque", f"peak {name} torque [N*m]", 2),
+        SummaryPanel(f"{name}_peak_friction", f"peak {name} friction [N]", 2),
     ) if panel.name in summary)
 
 
@@ -187,7 +203,7 @@ def _outcomes_for(summary: dict) -> tuple:
 
 def _reads(column: str) -> bool:
     # not the ledger's energy_<name>_energy: the heat is the coupling's own column
-    return column.endswith(("_torque", "_slip", "_force", "_capacity", "_energy", "_mode", "_locked")) \
+    return column.endswith(("_torque", "_friction", "_slip", "_force", "_capacity", "_energy", "_mode", "_locked")) \
         and not column.startswith("energy_")
 
 

@@ -155,7 +155,7 @@ def clutch_as_drawn(spec, scenario) -> FrictionClutchSpec:
         name="clutch", between=("motor", "pinion"), static_friction=spec.static_friction,
         kinetic_friction=spec.kinetic_friction, surfaces=spec.surfaces, effective_radius=None, cone=cone, force=force,
         heating=scenario.clutch_heating,
-    ).with_resolved(halves=(spec.driving_inertia, spec.driven_inertia))  # its halves' inertias, on its shafts
+    ).with_resolved(halves=(spec.driving_inertia, spec.driven_inertia), on_line=False)  # its halves' inertias
 
 
 def heating_as_drawn(spec, scenario) -> FrictionClutchSpec:

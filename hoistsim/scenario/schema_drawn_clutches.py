@@ -35,6 +35,10 @@ class FrictionClutchSpec(OnShaft, FrictionSpec):
     effective_radius: u.quantity(u.LENGTH, gt=0.0) | None = Field(None, description="the faces' lever: torque = "
                                                                   "mu force effective_radius surfaces")
     cone: ConeSpec | None = Field(None, description="a cone's faces, whose geometry gives the lever")
+    geometry_constant: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = Field(None, description="between masses (a "
+                                                                          "brake on a line, Modelica's cgeo): "
+                                                                          "force = mu force geometry_constant "
+                                                                          "surfaces (default 1)")
     force: signal(u.FORCE) = Field(description="pressing the faces; at or below zero the clutch is open")
     heating: ClutchHeatingSpec | None = Field(None, description="its faces' heat: a lump with its temperature")
     name: str = Field("", exclude=True)  # its key in drivetrain.clutches (set there, never written)
@@ -73,6 +77,8 @@ class FrictionClutchSpec(OnShaft, FrictionSpec):
     @property
     def torque_per_newton(self) -> float:
         """m: the torque each newton of force gives, per unit friction coefficient (a cone's wedge in it)."""
+        if self.effective_radius is None and self.cone is None:  # on a line: a force per newton, no lever
+            return (self.geometry_constant or 1.0) * self.surfaces
         if self.cone is None:
             return self.effective_radius * self.surfaces
         return self.cone.torque_per_newton(self.surfaces)
@@ -80,7 +86,8 @@ class FrictionClutchSpec(OnShaft, FrictionSpec):
     def lowered(self, scenario) -> "FrictionClutchSpec":
         """With the inertias of its halves on shaft a and on shaft b written in (kg*m^2; a drawn clutch's halves
         are its shafts': none)."""
-        return self.with_resolved(halves=(0.0, 0.0))
+        return self.with_resolved(halves=(0.0, 0.0),
+                                  on_line=any(side in scenario.drivetrain.masses for side in self.between))
 
     def fade(self) -> dict | None:
         """Its friction against its faces' temperature (tables on common knots), None for constant friction."""

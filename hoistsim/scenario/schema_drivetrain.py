@@ -256,7 +256,7 @@ class DrivetrainSpec(Section):
                 key = "shaft" if kind == "bearing_frictions" and part.between is None else "between"
                 for side in (a, b):
                     grounded = side == GROUND and (side == b or kind == "springs")  # a spring's housing: either
-                    massed = kind == "springs" and side in self.masses  # a spring on a line
+                    massed = kind in ("springs", "clutches") and side in self.masses  # a part on a line
                     if side not in self.shafts and not massed and not (grounded and kind != "one_way_clutches"):
                         raise ScenarioError(f"drivetrain.{kind}.{name}.{key}", f"there is no shaft {side!r} "
                                             f"(shafts: {known}{_GROUNDED[kind]})")
@@ -264,7 +264,8 @@ class DrivetrainSpec(Section):
                     raise ScenarioError(f"drivetrain.{kind}.{name}.between", f"joins shaft {a!r} to itself")
         for kind in ("clutches", "one_way_clutches"):
             for name, clutch in getattr(self, kind).items():
-                if (clutch.effective_radius is None) == (clutch.cone is None):
+                on_line = any(side in self.masses for side in clutch.between)
+                if (clutch.effective_radius is None) == (clutch.cone is None) and not on_line:
                     raise ScenarioError(f"drivetrain.{kind}.{name}.effective_radius", "give either effective_radius "
                                         "or cone (inner_radius, outer_radius, half_angle), one of them")
         self._parts_named()

@@ -39,13 +39,15 @@ class ForceSpec(Section):
 # the parts that may join masses, the key that names their bodies, and their keys measured otherwise on a line
 LINE_PARTS = {"springs": ("between", ("stiffness", "damping")),
               "motion_sources": ("shaft", ("acceleration",)),
-              "eddy_current_brakes": ("shaft", ())}
+              "eddy_current_brakes": ("shaft", ()),
+              "clutches": ("between", ())}
 # keys a part has on one kind of body only: on shafts, on a line
 ROTATION_ONLY = {"springs": ("unstretched_angle", "shear_modulus", "diameter", "inner_diameter", "length",
                              "backlash"),
-                 "motion_sources": ("speed", "angle"), "eddy_current_brakes": ("nominal_torque", "nominal_speed")}
+                 "motion_sources": ("speed", "angle"), "eddy_current_brakes": ("nominal_torque", "nominal_speed"),
+                 "clutches": ("effective_radius", "cone", "heating")}
 LINE_ONLY = {"springs": ("unstretched_length",), "motion_sources": ("velocity", "position"),
-             "eddy_current_brakes": ("nominal_force", "nominal_velocity")}
+             "eddy_current_brakes": ("nominal_force", "nominal_velocity"), "clutches": ("geometry_constant",)}
 
 
 def written_on_line(value: object, dimension: u.Dimension) -> bool | None:

@@ -2,12 +2,13 @@
 and motion sources driving them, against Dymola's published trajectories of Modelica's Translational examples
 and closed forms.
 
-- Accelerate, SignConvention, Sensors, Damper, Oscillator, InitialConditions, WhyArrows, ElastoGap and
-  EddyCurrentBrake (scenarios/modelica/translational/) within 1e-3 of each comparison signal's range at every
+- Accelerate, SignConvention, Sensors, Damper, Oscillator, InitialConditions, WhyArrows, ElastoGap,
+  EddyCurrentBrake and Brake (scenarios/modelica/translational/) within 1e-3 of each comparison signal's range at every
   reference row; Modelica's s_rel of a part runs between masses' ends (or an end and a wall), worked out from
   their centres (a mass's length is Modelica's L).
-- A sine force on a mass (Sensors), a mass on a spring-damper (Damper's third) and a mass arriving on an
-  elasto-gap (its contact time, its damping's limit and its force at every row) in closed form.
+- A sine force on a mass (Sensors), a mass on a spring-damper (Damper's third), a block braked to rest by
+  Coulomb friction (Brake) and a mass arriving on an elasto-gap (its contact time, its damping's limit and its
+  force at every row) in closed form.
 - The ledger closes in every example.
 - Bad input: a part joining a mass to a shaft, a line's part in a shaft's units or with a shaft's key (an
   eddy-current brake's torque on a mass), a force on no mass: one line naming the key, nothing written.
@@ -52,7 +53,7 @@ def _comparison(example: str, run) -> dict:
         return {"elastoGap1.v_rel": run["mass2_velocity"], "elastoGap2.s_rel": 2.0 - run["mass2_position"],
                 "springDamper1.v_rel": run["mass1_velocity"], "springDamper2.s_rel": 2.0 - run["mass1_position"]}
     masses = {"SignConvention": ("mass1", "mass2", "mass3"), "Sensors": ("mass",),
-              "WhyArrows": ("inertia2", "mass1")}[example]
+              "WhyArrows": ("inertia2", "mass1"), "Brake": ("mass1", "mass2")}[example]
     return {f"{m}.{k}": run[f"{m}_{series}"] for m in masses for k, series in (("s", "position"), ("v", "velocity"))}
 
 
@@ -61,9 +62,9 @@ def _comparison(example: str, run) -> dict:
 # Oscillator 4.8e-4 (an undamped resonance, Dymola's phase error growing with each swing), InitialConditions
 # 1.7e-5, WhyArrows 3.2e-6, ElastoGap 5.8e-6 (its contacts within 1e-7 s of Dymola's events, its separations where
 # the force falls to zero, before the gap's length is reached, Dymola's event: the row gap_edge), EddyCurrentBrake
-# 1.2e-5
+# 1.2e-5, Brake 2.1e-7
 EXAMPLES = ("Accelerate", "SignConvention", "Sensors", "Damper", "Oscillator", "InitialConditions", "WhyArrows",
-            "ElastoGap", "EddyCurrentBrake")
+            "ElastoGap", "EddyCurrentBrake", "Brake")
 
 
 @pytest.fixture(scope="module")
@@ -119,10 +120,31 @@ def test_bad_parts_on_a_line_are_refused_in_one_line(change, key, says, tmp_path
     refused_in_one_line(FOLDER / "Damper.yaml", change, key, says, tmp_path)
 
 
+def test_a_brake_on_a_mass_has_no_lever(tmp_path):
+    refused_in_one_line(FOLDER / "Brake.yaml", part_keys_set("clutches", "brake", {"effective_radius": "0.1 m"}),
+                        "drivetrain.clutches.brake.effective_radius", "no key of a part on a line", tmp_path)
+
+
 def test_an_eddy_current_brake_on_a_mass_is_given_a_force_and_a_velocity(tmp_path):
     refused_in_one_line(FOLDER / "EddyCurrentBrake.yaml", part_keys_set(
         "eddy_current_brakes", "eddyCurrentForce", {"nominal_force": None, "nominal_torque": "100 N*m"}),
         "drivetrain.eddy_current_brakes.eddyCurrentForce.nominal_torque", "no key of a part on a line", tmp_path)
+
+
+def test_a_block_braked_by_coulomb_friction_slides_to_rest_as_its_closed_form(runs):
+    """Brake: 1 kg at 1 m/s, 1 N of friction from 0.1 s (mu 0.5, 2 N pressing): v = 1 - (t - 0.1), at rest at
+    1.1 s (a lock located there), 0.6 m from the start; the brake's heat the 0.5 J of kinetic energy."""
+    run = runs["Brake"]
+    t = run.time
+    np.testing.assert_allclose(run["mass1_velocity"], np.clip(1.0 - np.maximum(t - 0.1, 0.0), 0.0, None), rtol=0,
+                               atol=1e-12)
+    sliding = np.minimum(np.maximum(t - 0.1, 0.0), 1.0)
+    np.testing.assert_allclose(run["mass1_position"], np.minimum(t, 0.1) + sliding - 0.5 * sliding**2, rtol=0,
+                               atol=1e-11)
+    kinds = list(run.instants["kind"])
+    assert run.instants["time"][kinds.index("lock")] == pytest.approx(1.1, abs=1e-12)
+    assert run.energy_balance["brake_energy"] == pytest.approx(0.5, rel=1e-11)
+    assert run["brake_friction"][(t > 0.1) & (t < 1.1)] == pytest.approx(1.0, abs=1e-12)
 
 
 def test_a_mass_arriving_on_a_gap_pushes_off_as_its_closed_form():

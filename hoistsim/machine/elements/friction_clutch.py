@@ -27,6 +27,12 @@ _COLUMNS = {
 }
 _SUMMARIES = {"lockup_time": "s", "slip_duration": "s", "peak_torque": "N*m", "peak_slip_speed": "rad/s",
               "slip_energy": "J"}
+# between masses (a brake on a line): a friction force where a shaft's clutch passes a torque, N and m/s
+LINE_ROLES = {"torque": "friction", "peak_torque": "peak_friction"}
+LINE_UNITS = {"N*m": "N", "rad/s": "m/s"}
+_LINE_TEXT = {"torque": "friction force clutch {name} passes from mass {a} to {b}, positive when mass {a} drives",
+              "slip": "velocity of mass {a} less that of {b}",
+              "capacity": "static friction force of clutch {name} at the force pressing it"}
 
 
 class FrictionClutch(NamedOutputs, AbstractSlipHeat):
@@ -63,6 +69,7 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
     # the kinetic friction against the slip speed's size (a table), in place of the constant where ``slip_varies``
     slip_speeds: object = None  # rad/s
     slip_frictions: object = None
+    on_line: bool = static(False)  # between masses: a friction force (N), a slip in m/s
     driving: str = static("")  # shaft a
     driven: str | None = static(None)  # shaft b, None for the ground
     section: str = static("")  # the clutch's name
@@ -84,7 +91,8 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
         law.update(slip_columns(spec.slip_table, "slip_frictions"))
         return cls(static_friction=spec.static_friction, kinetic_friction=spec.kinetic_at_rest,
                    torque_per_newton=spec.torque_per_newton, **signal_fields(spec.force, "force"),
-                   driving_inertia=driving_inertia, driven_inertia=driven_inertia, driving=a,
+                   driving_inertia=driving_inertia, driven_inertia=driven_inertia, on_line=spec.resolved("on_line"),
+                   driving=a,
                    driven=None if b == "ground" else b, section=spec.name, in_harmonics=spec.force.has_harmonics,
                    **law)
 
@@ -92,15 +100,27 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
     def heat_state(self) -> str:
         return f"{self.section}_energy"
 
+    def role_name(self, role: str) -> str:
+        """An output's name by its role: ``<name>_<role>``, on a line a friction where a shaft's has a torque."""
+        return self.named(f"{{name}}_{LINE_ROLES.get(role, role) if self.on_line else role}")
+
+    def _units(self, units: str) -> str:
+        return LINE_UNITS.get(units, units) if self.on_line else units
+
     @property
     def summaries(self) -> dict:
-        return {self.named(f"{{name}}_{role}"): units for role, units in _SUMMARIES.items()}
+        return {self.role_name(role): self._units(units) for role, units in _SUMMARIES.items()}
 
     @property
     def columns(self) -> dict:
-        b = f"the {self.driven} shaft" if self.driven else "the ground"
-        return {self.named(f"{{name}}_{role}"): (units, text.format(name=self.section, a=self.driving, b=b))
-                for role, (units, text) in _COLUMNS.items()}
+        if self.on_line:
+            b = f"mass {self.driven}" if self.driven else "the ground"
+            texts = {role: _LINE_TEXT.get(role, text) for role, (_, text) in _COLUMNS.items()}
+        else:
+            b = f"the {self.driven} shaft" if self.driven else "the ground"
+            texts = {role: text for role, (_, text) in _COLUMNS.items()}
+        return {self.role_name(role): (self._units(units), texts[role].format(name=self.section, a=self.driving, b=b))
+                for role, (units, _) in _COLUMNS.items()}
 
     def joins(self) -> tuple:
         return (self.driving, self.driven)
@@ -179,7 +199,7 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
         return {
             self.named("{name}_lockup_time"): ("first", mode == STUCK),
             self.named("{name}_slip_duration"): ("duration", (mode == SLIP_FORWARD) | (mode == SLIP_BACKWARD)),
-            self.named("{name}_peak_torque"): ("max", jnp.abs(x.coupling_torque(self.section))),
+            self.role_name("peak_torque"): ("max", jnp.abs(x.coupling_torque(self.section))),
             self.named("{name}_peak_slip_speed"): ("max", jnp.abs(x.relative_speed(self.section))),
         }
 
@@ -188,7 +208,7 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
 
     def outputs(self, x) -> dict:
         name, mode = self.section, x.mode(self.section)
-        return {self.named("{name}_torque"): x.coupling_torque(name),
+        return {self.role_name("torque"): x.coupling_torque(name),
                 self.named("{name}_slip"): x.relative_speed(name),
                 self.named("{name}_locked"): (mode == STUCK).astype(jnp.int8),
                 self.named("{name}_force"): self.force(x),
