@@ -3,9 +3,9 @@ and motion sources driving them, against Dymola's published trajectories of Mode
 and closed forms.
 
 - Accelerate, SignConvention, Sensors, Damper, Oscillator, InitialConditions, WhyArrows, ElastoGap,
-  EddyCurrentBrake, Brake and GenerationOfFMUs (scenarios/modelica/translational/) within 1e-3 of each comparison signal's range at every
-  reference row; Modelica's s_rel of a part runs between masses' ends (or an end and a wall), worked out from
-  their centres (a mass's length is Modelica's L).
+  EddyCurrentBrake, Brake and GenerationOfFMUs (scenarios/modelica/translational/) within 1e-3 of each
+  comparison signal's range at every reference row; Modelica's s_rel of a part runs between masses' ends (or an
+  end and a wall), worked out from their centres (a mass's length is Modelica's L).
 - A sine force on a mass (Sensors), a mass on a spring-damper (Damper's third), a block braked to rest by
   Coulomb friction (Brake) and a mass arriving on an elasto-gap (its contact time, its damping's limit and its
   force at every row) in closed form.
