@@ -104,6 +104,8 @@ def scene_paths(folder: Path) -> dict[str, Path]:
             out[path.stem] = path
     for path in sorted((SCENARIOS / "modelica").glob("*.yaml")):
         out[f"modelica/{path.stem}"] = path
+    for path in sorted((SCENARIOS / "modelica" / "translational").glob("*.yaml")):
+        out[f"modelica/translational/{path.stem}"] = path
     chain = folder / "stick_slip_chain.yaml"
     chain.write_text(STICK_SLIP)
     out["stick-slip chain"] = chain
@@ -726,7 +728,8 @@ def chains_report(counts: list[int], folder: Path, limit: float) -> None:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--scenes", nargs="*", default=None, help="names (a file's stem; modelica/NAME or NAME)")
+    parser.add_argument("--scenes", nargs="*", default=None, help="names (a file's stem; modelica/NAME, "
+                        "modelica/translational/NAME or NAME)")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--no-split", action="store_true", help="leave out the fit over 4 tolerances")
     parser.add_argument("--no-runs", action="store_true", help="leave out the warm runs' table")

@@ -3,7 +3,7 @@ and motion sources driving them, against Dymola's published trajectories of Mode
 and closed forms.
 
 - Accelerate, SignConvention, Sensors, Damper, Oscillator, InitialConditions, WhyArrows, ElastoGap,
-  EddyCurrentBrake, Brake and GenerationOfFMUs (scenarios/modelica/translational/) within 1e-3 of each
+  EddyCurrentBrake, Brake, GenerationOfFMUs and PreLoad (scenarios/modelica/translational/) within 1e-3 of each
   comparison signal's range at every reference row; Modelica's s_rel of a part runs between masses' ends (or an
   end and a wall), worked out from their centres (a mass's length is Modelica's L).
 - A sine force on a mass (Sensors), a mass on a spring-damper (Damper's third), a block braked to rest by
@@ -47,6 +47,13 @@ def _comparison(example: str, run) -> dict:
                 "sd1.v_rel": run["m2_velocity"] - run["m1_velocity"],
                 "sd2.s_rel": run["m4_position"] - run["m3_position"] - 4.0,
                 "sd2.v_rel": run["m4_velocity"] - run["m3_velocity"]}
+    if example == "PreLoad":  # the parts' s_rel from the centres, the rods and the fixed points (PreLoad.yaml)
+        return {"friction.v_rel": run["spool_velocity"],
+                "innerContactA.s_rel": run["springPlateA_position"] - run["spool_position"] + 0.10875,
+                "innerContactB.s_rel": run["spool_position"] - run["springPlateB_position"] - 0.08125,
+                "outerContactA.v_rel": run["springPlateA_velocity"],
+                "outerContactB.s_rel": -run["springPlateB_position"] - 0.066,
+                "outerContactB.v_rel": -run["springPlateB_velocity"]}
     if example == "EddyCurrentBrake":
         return {"eddyCurrentForce.lossPower": run["eddyCurrentForce_loss_power"], "mass.s": run["mass_position"],
                 "heatCapacitor.T": run["heatCapacitor_temperature"]}
@@ -68,9 +75,9 @@ def _comparison(example: str, run) -> dict:
 # 1.7e-5, WhyArrows 3.2e-6, ElastoGap 5.8e-6 (its contacts within 1e-7 s of Dymola's events, its separations where
 # the force falls to zero, before the gap's length is reached, Dymola's event: the row gap_edge), EddyCurrentBrake
 # 1.2e-5, Brake 2.1e-7, GenerationOfFMUs 9.3e-4 (its undamped spring's mass3a.v: Dymola's own error, hoistsim's
-# 2.6e-9 of the range against an independent integration, below)
+# 2.6e-9 of the range against an independent integration, below), PreLoad 1.9e-5
 EXAMPLES = ("Accelerate", "SignConvention", "Sensors", "Damper", "Oscillator", "InitialConditions", "WhyArrows",
-            "ElastoGap", "EddyCurrentBrake", "Brake", "GenerationOfFMUs")
+            "ElastoGap", "EddyCurrentBrake", "Brake", "GenerationOfFMUs", "PreLoad")
 
 
 @pytest.fixture(scope="module")
