@@ -7,8 +7,10 @@ from typing import ClassVar
 
 import jax.numpy as jnp
 
+from ..._pytree import static
 from ..core.element import AbstractCoupling
 from ._shaft_work import AbstractWorkOnShaft
+from ._signal import signal_fields, signal_tables
 
 
 class AbstractMotionSource(AbstractWorkOnShaft, AbstractCoupling):
@@ -17,11 +19,32 @@ class AbstractMotionSource(AbstractWorkOnShaft, AbstractCoupling):
     couplings lock or a boundary is passed).  The torque it applies to the shaft is its output
     ``<section>_torque``; its work on the shaft (that torque times the shaft's speed, and its impulses' work where
     the speed it holds jumps) is the state ``<section>_work`` and a work term of the energy ledger.  Subclasses
-    declare ``shaft``, ``on_line`` (a mass's: a force, m and m/s) and ``section``."""
+    say what the reference (``reference``, a signal of time: a speed, an angle or an acceleration, in a mass's units
+    on a line) holds the shaft at."""
+
+    reference_times: object  # s
+    reference_values: object  # rad/s, rad or rad/s^2 (m/s, m or m/s^2 on a line)
+    reference_amplitudes: object
+    reference_frequencies: object  # Hz
+    reference_phases: object  # rad
+    reference_envelope_times: object = None  # s, the harmonics' envelope (None: none)
+    reference_envelope_values: object = None
+    filter_frequency: object = None  # Hz: Modelica's f_crit (None: exactly)
+    on_line: bool = static(False)  # it drives a mass (m, m/s, m/s^2; a force)
+    shaft: str = static("")
+    section: str = static("")  # its key in drivetrain.motion_sources
 
     can_slip: ClassVar[bool] = False
     reports_switches: ClassVar[bool] = False
     drives: ClassVar[bool] = True
+
+    @classmethod
+    def from_spec(cls, spec) -> "AbstractMotionSource":
+        return cls(**signal_fields(spec.reference, "reference"), filter_frequency=spec.filter_frequency,
+                   on_line=spec.resolved("on_line"), shaft=spec.shaft, section=spec.name)
+
+    def tables(self) -> dict:
+        return signal_tables(self, "reference")
 
     @abc.abstractmethod
     def motion(self, x) -> tuple:
