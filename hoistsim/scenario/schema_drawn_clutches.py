@@ -3,12 +3,15 @@
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 from pydantic import Field, model_validator
 
 from ..errors import ScenarioError
 from . import tables
 from . import units as u
 from .schema_clutch import ConeSpec, FrictionSpec
+from .schema_masses import LineKeys
 from .schema_parts import ClutchHeatingSpec, fade_tables, kinetic_within_static
 from .schema_shaft_parts import OnShaft
 from .signals import signal
@@ -24,6 +27,8 @@ class FrictionClutchSpec(OnShaft, FrictionSpec):
     factor over the kinetic friction at zero slip (Modelica's peak) or as a coefficient."""
 
     alternatives = (("static_friction", "peak"), ("effective_radius", "cone"))
+    line_keys: ClassVar[LineKeys] = LineKeys("between", line_only=("geometry_constant",),
+                                             shafts_only=("effective_radius", "cone", "heating"))
     static_friction: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = Field(None, description="mu_s: the faces stick "
                                                                         "below it")
     # a constant, or rows [slip speed, coefficient]: the friction at a slip either way, flat beyond the rows

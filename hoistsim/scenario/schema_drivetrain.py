@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import re
+import typing
 
 from pydantic import Field, model_validator
 
@@ -165,6 +166,13 @@ class ShaftMotorSpec(OnShaft, MotorSpec):
     name: str = Field("", exclude=True)  # its key in drivetrain.motors (set there, never written)
 
 
+def _part_spec(field: tuple) -> tuple:
+    """(a drivetrain key, the spec of each of its parts: a dict's values' or a list's items'; None otherwise)."""
+    name, info = field
+    args = typing.get_args(info.annotation)
+    return name, (args[-1] if args and isinstance(args[-1], type) else None)
+
+
 class DrivetrainSpec(Section):
     """A machine drawn as shafts and the parts on and between them; each part's key names it and its outputs."""
 
@@ -221,8 +229,8 @@ class DrivetrainSpec(Section):
                                             f"({word}1, ...)")
                 data[kind] = [{**entry, "name": f"{word}{i + 1}"} if isinstance(entry, dict) else entry
                               for i, entry in enumerate(listed)]
-        check_line_parts(data, lambda kind, key: u.dimension_of(
-            {"springs": SpringSpec, "motion_sources": MotionSourceSpec}[kind].model_fields[key]))
+        check_line_parts(data, {kind: spec for kind, spec in map(_part_spec, cls.model_fields.items())
+                                if getattr(spec, "line_keys", None) is not None})
         return data
 
     @model_validator(mode="after")

@@ -5,6 +5,8 @@ values must be written in.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from pydantic import Field
 
 from ..errors import ScenarioError
@@ -36,18 +38,16 @@ class ForceSpec(Section):
     name: str = Field("", exclude=True)  # force1, force2, ... in the order of drivetrain.forces (set there)
 
 
-# the parts that may join masses, the key that names their bodies, and their keys measured otherwise on a line
-LINE_PARTS = {"springs": ("between", ("stiffness", "damping")),
-              "motion_sources": ("shaft", ("acceleration",)),
-              "eddy_current_brakes": ("shaft", ()),
-              "clutches": ("between", ())}
-# keys a part has on one kind of body only: on shafts, on a line
-ROTATION_ONLY = {"springs": ("unstretched_angle", "shear_modulus", "diameter", "inner_diameter", "length",
-                             "backlash"),
-                 "motion_sources": ("speed", "angle"), "eddy_current_brakes": ("nominal_torque", "nominal_speed"),
-                 "clutches": ("effective_radius", "cone", "heating")}
-LINE_ONLY = {"springs": ("unstretched_length",), "motion_sources": ("velocity", "position"),
-             "eddy_current_brakes": ("nominal_force", "nominal_velocity"), "clutches": ("geometry_constant",)}
+@dataclass(frozen=True)
+class LineKeys:
+    """What a kind of part that may join masses says of its keys (its spec's ``line_keys``): the key that names
+    the bodies it joins, its keys measured otherwise on a line (a stiffness: N/m there), and its keys of one kind
+    of body only."""
+
+    bodies: str  # "between" or "shaft"
+    measured: tuple = ()
+    line_only: tuple = ()
+    shafts_only: tuple = ()
 
 
 def written_on_line(value: object, dimension: u.Dimension) -> bool | None:
@@ -72,12 +72,15 @@ def written_on_line(value: object, dimension: u.Dimension) -> bool | None:
         return None
 
 
-def check_line_parts(data: dict, dimensions) -> None:
+def check_line_parts(data: dict, kinds: dict) -> None:
     """In a drivetrain's plain data: each part joins bodies of one kind (masses, or shafts), and its values are
     written in that kind's units (a stiffness in N/m between masses, N*m/rad between shafts) with that kind's
-    keys.  ``dimensions(kind, key)``: the dimension the schema reads a part's key in."""
+    keys.  ``kinds``: each kind of part (its key in the drivetrain) -> its spec, those whose spec says its
+    ``line_keys``."""
     masses = data.get("masses") if isinstance(data.get("masses"), dict) else {}
-    for kind, (bodies_key, measured) in LINE_PARTS.items():
+    for kind, spec in kinds.items():
+        said: LineKeys = spec.line_keys
+        bodies_key = said.bodies
         parts = data.get(kind)
         for name, part in (parts.items() if isinstance(parts, dict) else ()):
             if not isinstance(part, dict):
@@ -89,12 +92,12 @@ def check_line_parts(data: dict, dimensions) -> None:
                 raise ScenarioError(f"drivetrain.{kind}.{name}.{bodies_key}", "joins a mass to a shaft: a part "
                                     "joins masses (on a line) or shafts, and a drum or a rack links the two")
             line = bool(on_line) and all(on_line)
-            for key in (LINE_ONLY if not line else ROTATION_ONLY)[kind]:
+            for key in (said.shafts_only if line else said.line_only):
                 if key in part:
                     where = "on a line (of masses)" if line else "of shafts"
                     raise ScenarioError(f"drivetrain.{kind}.{name}.{key}", f"is no key of a part {where}")
-            for key in measured:
-                dimension = dimensions(kind, key)
+            for key in said.measured:
+                dimension = u.dimension_of(spec.model_fields[key])
                 written = written_on_line(part.get(key), dimension)
                 if written is not None and written != line:
                     kind_of = dimension.line if line else dimension.rotational

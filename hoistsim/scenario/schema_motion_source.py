@@ -4,11 +4,14 @@ as a signal of time, whatever torque that takes (Modelica's Rotational.Sources S
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 from pydantic import Field, model_validator
 
 from ..errors import ScenarioError
 from . import units as u
 from .schema_base import Section
+from .schema_masses import LineKeys
 from .signals import signal
 from .units import Text
 
@@ -28,6 +31,8 @@ class MotionSourceSpec(Section):
     an acceleration keeps the speed it starts with and accelerates as told."""
 
     alternatives = (MOTIONS,)
+    line_keys: ClassVar[LineKeys] = LineKeys("shaft", measured=("acceleration",), line_only=("velocity", "position"),
+                                             shafts_only=("speed", "angle"))
     shaft: Text = Field(description="the shaft or the mass it drives (its inertia, and what its parts take, are "
                         "the source's torque too)")
     speed: signal(u.ANGULAR_SPEED) | None = Field(None, description="the speed it drives the shaft at: a "

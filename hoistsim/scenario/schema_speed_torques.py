@@ -6,7 +6,7 @@ a load on a level path (Modelica's QuadraticSpeedDependentForce).
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import ClassVar, Literal
 
 from pydantic import Field, model_validator
 
@@ -14,6 +14,7 @@ from ..errors import ScenarioError
 from . import tables
 from . import units as u
 from .schema_base import Section
+from .schema_masses import LineKeys
 from .signals import TimeSignal, signal
 from .units import Dimension, Text
 
@@ -97,6 +98,8 @@ class EddyCurrentBrakeSpec(Section):
     (``heat_to``), whose temperature is T, or T is ``temperature``."""
 
     alternatives = (("heat_to", "temperature"), ("nominal_torque + nominal_speed", "nominal_force + nominal_velocity"))
+    line_keys: ClassVar[LineKeys] = LineKeys("shaft", line_only=("nominal_force", "nominal_velocity"),
+                                             shafts_only=("nominal_torque", "nominal_speed"))
     shaft: Text = Field(description="the shaft (or the mass) it brakes")
     nominal_torque: u.quantity(u.TORQUE, gt=0.0) | None = Field(None, description="the most it brakes, at "
                                                                 "nominal_speed")

@@ -4,6 +4,7 @@ and ``ground`` (values in SI)."""
 from __future__ import annotations
 
 import math
+from typing import ClassVar
 
 from pydantic import Field, model_validator
 
@@ -11,7 +12,7 @@ from ..errors import ScenarioError
 from . import plausible
 from . import units as u
 from .schema_base import Section
-from .schema_masses import start_positions
+from .schema_masses import LineKeys, start_positions
 from .units import Text
 
 # between shafts, or between masses (on a line: N/m and N*s/m)
@@ -27,6 +28,10 @@ class SpringSpec(Section):
     distance of their centres."""
 
     alternatives = (("stiffness", "shear_modulus + diameter + length", "damping alone (a damper)"),)
+    line_keys: ClassVar[LineKeys] = LineKeys("between", measured=("stiffness", "damping"),
+                                             line_only=("unstretched_length",),
+                                             shafts_only=("unstretched_angle", "shear_modulus", "diameter",
+                                                          "inner_diameter", "length", "backlash"))
     between: tuple[Text, Text] = Field(description="[shaft a, shaft b]: either may be ground (the housing), not "
                                        "both")
     stiffness: u.quantity(STIFFNESS, ge=0.0) | None = Field(None, description="c (absent: a damper)")

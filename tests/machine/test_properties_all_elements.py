@@ -8,6 +8,7 @@ balance closes to 1e-8 at rtol 1e-10.
 from __future__ import annotations
 
 import copy
+import os
 
 import numpy as np
 import pytest
@@ -18,7 +19,9 @@ from hypothesis import strategies as st
 from hoistsim import scenario_from_dict, simulate
 from hoistsim.references.model import STICK_TOLERANCE
 
-SETTINGS = property_settings(40)
+# The same scenes every run (a check that passes or fails by the code alone); HOISTSIM_PROPERTY_SEARCH=1 draws
+# new ones, to search.
+SETTINGS = property_settings(40, derandomize=not os.environ.get("HOISTSIM_PROPERTY_SEARCH"))
 
 
 def build(force, mass, motor_rpm, drum_rpm, brake, ratchet_release, efficiency, backdrive):
@@ -109,3 +112,16 @@ def test_a_load_of_nothing_but_round_off_through_a_lossy_mesh():
     assert run.time[-1] == scene.simulation.duration
     assert run.energy_balance["relative_residual"] < 1e-8
 
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="known: the solver stops on too small a step (at 0.0656 s, at 0.1055 s) in "
+                   "these scenes without a load, with a lossy mesh, a brake and no pawl; why is not yet found")
+@pytest.mark.parametrize("args", [
+    # found by the random search: tsit5 stops at t = 0.0656 s
+    ([["0 s", "0 N"], ["0.5 s", "3996.0 N"]], 0.0, 0.0, 1.0, (0.5, 101.0, 0.94140625, None), None, 0.658203125, 1.0),
+    # and at t = 0.1055 s
+    ([["0 s", "0 N"], ["0.25 s", "6804.0 N"]], 0.0, 0.0, 2.0, (0.0, 2984.0, 0.203125, 0.05), None, 0.765625, 0.5),
+])
+def test_scenes_the_search_found_the_solver_stopping_on(args):
+    simulate(build(*args))
