@@ -214,3 +214,23 @@ def test_a_mass_arriving_on_a_gap_pushes_off_as_its_closed_form():
                      [c * later(s - t1)[0] + d * later(s - t1)[1] if s >= t1 else 0.0 for s in tau])
     np.testing.assert_allclose(-run["buffer_force"][rows], force, rtol=0, atol=1e-6 * np.max(force))
     assert run.summary["energy_relative_residual"] < 1e-9
+
+
+def test_new_values_of_the_lines_keys_compile_nothing(runs):
+    """A mass, a line spring's stiffness and length, a gap's damping, a brake's geometry constant, an eddy-current
+    brake's force and velocity, a force's amplitude: numbers of the program each example already compiled."""
+    from hoistsim.machine.core import loop
+
+    changes = {"Oscillator": ["drivetrain.masses.mass1.mass=2 kg", "drivetrain.springs.spring1.stiffness=2e4 N/m",
+                              "drivetrain.springs.spring2.unstretched_length=0.4 m"],
+               "ElastoGap": ["drivetrain.springs.elastoGap1.damping=3 N*s/m", "drivetrain.masses.mass2.position=1 m"],
+               "Brake": ["drivetrain.clutches.brake.geometry_constant=2", "drivetrain.masses.mass1.velocity=2 m/s"],
+               "EddyCurrentBrake": ["drivetrain.eddy_current_brakes.eddyCurrentForce.nominal_force=150 N",
+                                    "drivetrain.eddy_current_brakes.eddyCurrentForce.nominal_velocity=5 m/s"]}
+    moving = {"Oscillator": "mass1_position", "ElastoGap": "mass2_position", "Brake": "mass1_position",
+              "EddyCurrentBrake": "mass_position"}
+    traced = loop.trace_count
+    for example, overrides in changes.items():
+        changed = simulate(load_scenario(FOLDER / f"{example}.yaml", overrides=overrides))
+        assert changed[moving[example]][-1] != pytest.approx(runs[example][moving[example]][-1])  # a new run
+    assert loop.trace_count == traced
