@@ -3,13 +3,13 @@ beside the external torques, a panel of their currents and one of their voltages
 
 from __future__ import annotations
 
-from .panel import Panel, Trace
+from .panel import Panel, Trace, drawn_parts
 
 
 def machine_panels(run: dict, kind: str, current: str, voltage: str) -> tuple:
     """The panels of the machines of ``kind`` (drivetrain.<kind>) in ``run``, their currents' and voltages'
     panels labelled ``current`` and ``voltage`` (panels of one name from several kinds are one panel)."""
-    machines = (run.get("parameters", {}).get("drivetrain") or {}).get(kind) or {}
+    machines = drawn_parts(run, kind)
     if not machines:
         return ()
     return (Panel("shaft_torques", "external torque [N*m]", 5,

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .panel import RPM, Display, Outcome, Panel, Phase, SummaryPanel, Trace
+from .panel import RPM, Display, Outcome, Panel, Phase, SummaryPanel, Trace, on_line
 
 # the drivetrain's kinds of friction coupling, each drawn as a clutch: the torque it passes, its slip, its heat
 KINDS = ("clutches", "one_way_clutches", "bearing_frictions")
@@ -92,12 +92,6 @@ def _headline(summary: dict) -> str | None:
     return "; ".join(_story(name, summary) for name in names) if names else None
 
 
-def _on_line(run: dict, spec: dict) -> bool:
-    """Whether a coupling joins masses (a brake on a line): its friction force where a shaft's passes a torque."""
-    masses = ((run.get("parameters") or {}).get("drivetrain") or {}).get("masses") or {}
-    return any(side in masses for side in spec.get("between") or ())
-
-
 def _passed(name: str, on_line: bool) -> str:
     """The column of what a coupling passes: ``<name>_torque``, on a line ``<name>_friction``."""
     return f"{name}_{'friction' if on_line else 'torque'}"
@@ -153,7 +147,7 @@ def _panels_for(run: dict) -> tuple:
     names = [name for _, name, _ in found]
     lone = len(found) == 1
     rpm = not (run.get("parameters") or {}).get("drivetrain")
-    line = [_on_line(run, spec) for _, _, spec in found]
+    line = [on_line(run, *(spec.get("between") or ())) for _, _, spec in found]  # a brake on a line: a force
     units = "m/s" if all(line) else "rpm" if rpm else "rad/s"
     slips = tuple(Trace(name, f"{name}_slip", marks=("lock",), marks_of=name) for name in names)
     slip = Panel("clutch_slips", f"clutch slip [{units}]\n(driving - driven half)", 10, slips,

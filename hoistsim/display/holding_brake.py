@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .panel import Display, Panel, Phase, Trace
+from .panel import Display, Panel, Phase, Trace, drawn_parts
 
 
 def _brake_panel(label: str, where: str = "at the drum") -> Panel:
@@ -19,7 +19,7 @@ def _panels_for(run: dict) -> tuple:
     # a brake that holds a load lifted against it (a motor starting against a slipping brake) holds it down:
     # its legend says which sign is which, not "holding the load up" over a negative torque; a drawn brake is
     # on the shaft the user put it on (the hoist's is on the drum)
-    drawn = ((run.get("parameters") or {}).get("drivetrain") or {}).get("brakes") or {}
+    drawn = drawn_parts(run, "brakes")
     where = f"on shaft {drawn['brake']['shaft']}" if "brake" in drawn else "at the drum"
     torque = run.get("brake_torque")
     if torque is not None and (np.asarray(torque) < 0).any():

@@ -2,19 +2,15 @@
 
 from __future__ import annotations
 
-from .panel import Display, Panel, Trace
-
-
-def _drawn(run: dict, key: str):
-    return (run.get("parameters", {}).get("drivetrain") or {}).get(key) or {}
+from .panel import Display, Panel, Trace, drawn_parts
 
 
 def _panels_for(run: dict) -> tuple:
-    masses = _drawn(run, "masses")
+    masses = drawn_parts(run, "masses")
     if not masses:
         return ()
     forces = tuple(Trace(f"force{i + 1} on {entry['mass']}", f"force{i + 1}")
-                   for i, entry in enumerate(_drawn(run, "forces")))
+                   for i, entry in enumerate(drawn_parts(run, "forces")))
     return (Panel("mass_velocities", "velocity [m/s]", 1, tuple(Trace(name, f"{name}_velocity") for name in masses)),
             Panel("mass_positions", "position [m]\n(centres)", 2, tuple(Trace(name, f"{name}_position")
                                                                        for name in masses), height=0.8),

@@ -2,19 +2,15 @@
 
 from __future__ import annotations
 
-from .panel import Display, Panel, Trace
-
-
-def _sources(run: dict) -> dict:
-    return (run.get("parameters", {}).get("drivetrain") or {}).get("motion_sources") or {}
+from .panel import Display, Panel, Trace, drawn_parts, on_line
 
 
 def _panels_for(run: dict) -> tuple:
-    masses = (run.get("parameters", {}).get("drivetrain") or {}).get("masses") or {}
     panels = []
-    for word, units, on_line in (("torque", "N*m", False), ("force", "N", True)):
-        traces = tuple(Trace(f"{name} on {spec['shaft']}", f"{name}_{word}") for name, spec in _sources(run).items()
-                       if (spec["shaft"] in masses) == on_line)
+    for word, units, line in (("torque", "N*m", False), ("force", "N", True)):
+        traces = tuple(Trace(f"{name} on {spec['shaft']}", f"{name}_{word}")
+                       for name, spec in drawn_parts(run, "motion_sources").items()
+                       if on_line(run, spec["shaft"]) == line)
         if traces:
             panels.append(Panel(f"motion_source_{word}s", f"motion source's\n{word} [{units}]", 4, traces,
                                 zero_line=True, height=0.8))

@@ -114,6 +114,17 @@ class Outcome:
     marker: str
 
 
+def drawn_parts(run: dict, kind: str) -> dict | list:
+    """A run's drawn parts of a kind (its ``parameters``' drivetrain.<kind>, a hoist's none): empty where none."""
+    return ((run.get("parameters") or {}).get("drivetrain") or {}).get(kind) or {}
+
+
+def on_line(run: dict, *sides: str) -> bool:
+    """Whether a part joins masses (on a line: forces in N, speeds in m/s), by the bodies it names."""
+    masses = drawn_parts(run, "masses")
+    return any(side in masses for side in sides)
+
+
 def speed_panel(*traces: Trace, right_axis=None) -> Panel:
     """The shaft-speed panel, on top: each element that turns a shaft adds its curve to it."""
     return Panel("speed", "shaft speed [rpm]", 0, traces, scale=RPM, height=1.5, right_axis=right_axis)

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-from .panel import Display, Panel, Trace
+from .panel import Display, Panel, Trace, drawn_parts
 
 
 def _panels_for(run: dict) -> tuple:
-    shafts = (run.get("parameters", {}).get("drivetrain") or {}).get("shafts") or {}
+    shafts = drawn_parts(run, "shafts")
     traces = tuple(Trace(name, f"{name}_speed") for name in shafts)
     return (Panel("shaft_speeds", "shaft speed [rad/s]", 0, traces, height=1.5),) if traces else ()
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .panel import Display, Panel, SummaryPanel, Trace
+from .panel import Display, Panel, SummaryPanel, Trace, drawn_parts
 
 
 def _limit(name: str, key: str, default_sign: float = 1.0):
@@ -19,7 +19,7 @@ def _limit(name: str, key: str, default_sign: float = 1.0):
 
 
 def _panels_for(run: dict) -> tuple:
-    controllers = (run.get("parameters", {}).get("drivetrain") or {}).get("speed_controllers") or {}
+    controllers = drawn_parts(run, "speed_controllers")
     if not controllers:
         return ()
     references = tuple(Trace(f"{name} reference", f"{name}_reference", style="--") for name in controllers)

@@ -65,7 +65,7 @@ def decide(plan, segment, c, columns: bool):
     boundary_modes, boundary_candidates = static_check.candidates_at_boundary(layout, segment, y, plan.speed_scale)
     modes = jnp.where(at, boundary_modes, c.pending_modes).astype(c.modes.dtype)
     candidates = [jnp.where(at, b, c.pending_candidates[k]) for k, b in enumerate(boundary_candidates)]
-    decided, met = static_check.settle(layout, segment, c.t, y, modes, candidates)
+    decided, met = static_check.settle(layout, segment, c.t, y, modes, candidates, held)
     # at a boundary the stuck ones' sides take their common speed; after a switch the candidates' met already
     met = jnp.where(at, keep_momentum(layout, y, [m == STUCK for m in decided], held), met)
     decided_y = switching.with_impacts(layout, y, met, c.modes, decided)

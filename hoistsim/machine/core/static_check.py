@@ -186,7 +186,7 @@ def _giving_way(layout: Layout, segment, t, met, modes, candidate):
     return modes, done
 
 
-def settle(layout: Layout, segment, t, y, modes, candidates):
+def settle(layout: Layout, segment, t, y, modes, candidates, held=None):
     """The static check: which candidates stay stuck, which slip (and which way).
 
     The candidates' speeds are met (momentum kept).  A way of leaving them is consistent where every
@@ -197,9 +197,10 @@ def settle(layout: Layout, segment, t, y, modes, candidates):
     couplings that hold each other (a chain locking in a cascade) is decided together, not one by
     one.  Each search is one loop whose body is one try, however many couplings there are.  Should no
     way be consistent (round-off at an exact tie), the one that breaks the fewest conditions is
-    taken.  Returns the new modes and the met speeds.
+    taken.  ``held``: the relative speed each coupling holds (a drive's, :meth:`Instant.held_speeds`; None: no
+    drives).  Returns the new modes and the met speeds.
     """
-    met = keep_momentum(layout, y, candidates, Instant(layout, t, y, table=segment.table).held_speeds())
+    met = keep_momentum(layout, y, candidates, held)
     couplings = layout.coupling_elements
     if not couplings:
         return modes, met
