@@ -18,18 +18,17 @@ class Dimension:
     # what the key measures where its part is on a line, between masses (a stiffness in N/m where it is
     # torsional between shafts): a value of either kind is read, and the drivetrain checks which its part needs
     line: "Dimension | None" = None
+    shafts: "Dimension | None" = None  # with ``line``: the dimension between shafts alone
 
     def on_line(self, line: "Dimension") -> "Dimension":
         """This dimension, or ``line``'s where the part is on a line (:attr:`line`)."""
         return Dimension(f"{self.name} (between masses: {line.name})", self.si_unit,
-                         f"{self.example} or {line.example}", self.radians, self.shown_in, line=line)
+                         f"{self.example} or {line.example}", self.radians, self.shown_in, line=line, shafts=self)
 
     @property
     def rotational(self) -> "Dimension":
         """The dimension alone, without its line's counterpart."""
-        return Dimension(self.name.split(" (between masses:")[0], self.si_unit, self.example.split(" or ")[0],
-                         self.radians, self.shown_in)
-
+        return self if self.shafts is None else self.shafts
 
 TORQUE = Dimension("torque", "N*m", "'500 N*m'")
 ANGULAR_SPEED = Dimension("angular speed", "rad/s", "'300 rpm'", radians=1, shown_in="rpm")
