@@ -28,14 +28,15 @@ def events(times):
     return np.unique(times[1:][np.diff(times) == 0.0])
 
 
-def deviations(run, example: str, ours: dict) -> dict:
+def deviations(run, example: str, ours: dict, until: float = np.inf) -> dict:
     """Each comparison signal's worst deviation from the reference, over its range (:func:`_range`), at every
-    reference row more than 1 ms from a reference event (``ours``: signal -> our series on the run's rows)."""
+    reference row more than 1 ms from a reference event (``ours``: signal -> our series on the run's rows), before
+    ``until`` (s)."""
     table = reference(example)
     times = table["time"]
     instants = events(times)
     far = (np.min(np.abs(times[:, None] - instants[None, :]), axis=1) > 1e-3 if len(instants)
-           else np.ones(times.shape, bool))
+           else np.ones(times.shape, bool)) & (times < until)
     return {signal: float(np.max(np.abs(np.interp(times, run.time, series) - table[signal])[far])
                           / _range(table[signal])) for signal, series in ours.items()}
 

@@ -11,6 +11,7 @@ from .bearings import DRUM_SHAFT_LOADS
 from .clutch_heating import CLUTCH_HEATING
 from .dc_machine import DC_MACHINE
 from .eddy_current_brake import EDDY_CURRENT_BRAKE
+from .end_stop import END_STOP
 from .friction_brake import FRICTION_BRAKE
 from .friction_clutch import FRICTION_CLUTCH
 from .gear_pair import GEAR_PAIR
@@ -32,11 +33,12 @@ from .shaft import SHAFT
 from .shaft_torque import SHAFT_TORQUE
 from .speed_controller import SPEED_CONTROLLER
 from .spring_damper import SPRING_DAMPER
+from .vehicle import VEHICLE
 
 DISPLAYS: tuple[Display, ...] = (MOTOR, GEAR_PAIR, MESH_FRICTION, FRICTION_CLUTCH, CLUTCH_HEATING, LOAD, ROPE,
                                  GROUND, HOLDING_BRAKE, FRICTION_BRAKE, RATCHET, DRUM_SHAFT_LOADS, PERIODIC_REGIME,
-                                 SHAFT, MASS, SHAFT_TORQUE, MOTION_SOURCE, DC_MACHINE, INDUCTION_MACHINE,
-                                 SPEED_CONTROLLER, LINKAGE, SPRING_DAMPER, EDDY_CURRENT_BRAKE)
+                                 SHAFT, MASS, END_STOP, VEHICLE, SHAFT_TORQUE, MOTION_SOURCE, DC_MACHINE,
+                                 INDUCTION_MACHINE, SPEED_CONTROLLER, LINKAGE, SPRING_DAMPER, EDDY_CURRENT_BRAKE)
 
 
 def headline(summary: dict, names: dict | None = None) -> list[str]:

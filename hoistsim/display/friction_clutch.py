@@ -103,9 +103,11 @@ def _mirrored(name: str, passed: str):
 
 
 def _static_torque(spec: dict) -> float:
-    """A bearing friction's static torque (N*m): peak times its friction torque at rest (a table's first row)."""
-    torque = spec["torque"]
-    return float(spec.get("peak", 1.0)) * float(torque[0][1] if isinstance(torque, (list, tuple)) else torque)
+    """A bearing friction's static torque (N*m; on a line its static force, N): peak times its friction at rest (a
+    table's first row, or a constant with its Stribeck curve's excess at rest)."""
+    friction = spec["torque"] if spec.get("torque") is not None else spec["force"]
+    at_rest = friction[0][1] if isinstance(friction, (list, tuple)) else friction + float(spec.get("stribeck") or 0.0)
+    return float(spec.get("peak", 1.0)) * float(at_rest)
 
 
 def _capacities(kind: str, name: str, spec: dict, passed: str) -> tuple:
@@ -120,12 +122,10 @@ def _capacities(kind: str, name: str, spec: dict, passed: str) -> tuple:
     if kind == "one_way_clutches":  # driving shaft a forwards past b, the freewheel holds any torque
         return (Trace("- static capacity", f"{name}_capacity", style=":", limit=True,
                       needs=tuple(f"{name}_{w}" for w in both), value=lambda run: -run[f"{name}_capacity"]),)
-    static = _static_torque(spec)
-    return (Trace("static torque", f"{name}_torque", style=":", limit=True,
-                  value=lambda run: np.full(np.shape(run[f"{name}_torque"]), static)),
-            Trace("- static torque", f"{name}_torque", style=":", limit=True,
-                  value=lambda run: np.full(np.shape(run[f"{name}_torque"]), -static)
-                  if (run[f"{name}_torque"] < 0).any() else None))
+    static, what = _static_torque(spec), "static force" if passed.endswith("_friction") else "static torque"
+    return (Trace(what, passed, style=":", limit=True, value=lambda run: np.full(np.shape(run[passed]), static)),
+            Trace(f"- {what}", passed, style=":", limit=True,
+                  value=lambda run: np.full(np.shape(run[passed]), -static) if (run[passed] < 0).any() else None))
 
 
 def _heat_panel(names: list[str], run: dict) -> tuple:

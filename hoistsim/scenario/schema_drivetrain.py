@@ -23,15 +23,16 @@ from .schema_motor import MotorSpec, RippleSpec
 from .schema_load import LoadOnShaftSpec
 from .schema_loss_table import LossTable
 from .schema_bearing_friction import BearingFrictionSpec
-from .schema_gear_groups import beyond_stage, gear_groups
+from .schema_gear_groups import beyond_stage, check_gear_sides, gear_groups, given_speed, speed_key
 from .schema_drawn_clutches import FrictionClutchSpec, OneWayClutchSpec
 from .schema_spring import SpringSpec
 from .schema_drive import (DRIVE_PARTS, DcMachineSpec, InductionMachineSpec, SpeedControllerSpec,
                            check_drive_parts)
 from .schema_speed_torques import SPEED_PARTS, EddyCurrentBrakeSpec, HeatCapacitorSpec, SpeedLaws, check_speed_parts
 from .schema_linkage import PlanetarySpec, check_linkages, start_speeds
-from .schema_masses import ForceSpec, MassSpec, check_line_parts
+from .schema_masses import ForceSpec, MassSpec, StopsSpec, check_line_parts
 from .schema_motion_source import MotionSourceSpec
+from .schema_vehicle import VehicleSpec
 from .schema_shaft_parts import (SHAFT_PARTS, BrakeOnShaftSpec, OnShaft, RatchetOnShaftSpec, RotorSpec,
                                  SliderCrankSpec, check_shaft_parts)
 from .signals import signal
@@ -98,15 +99,22 @@ class MeshSpec(Section):
 
 
 class GearStageSpec(MeshSpec):
-    """A gear stage: shafts geared together turn as one body; lossy with an efficiency or a loss table."""
+    """A gear stage: shafts geared together turn as one body; lossy with an efficiency or a loss table.  It may join
+    a shaft to a mass (its ``radius``: a pinion and its rack, a drum and its rope, a wheel rolling on the line) or
+    two masses (a ``ratio``, a lever; 1: joined rigidly), ideal: the mass moves with the shaft's body, its mass m
+    reaching the shaft as m r^2."""
 
-    alternatives = (("ratio", "teeth"),)
-    between: tuple[Text, Text] = Field(description="[input shaft, output shaft]")
+    alternatives = (("ratio", "teeth", "radius"),)
+    between: tuple[Text, Text] = Field(description="[input shaft, output shaft], or two masses, or [shaft, mass]")
     loss_table: LossTable | None = Field(None, description="Modelica's LossyGear lossTable: rows [speed, efficiency "
                                          "when the input drives, when the output drives, bearing torque when the "
                                          "input drives, when the output drives], at the input's speed")
     ratio: u.quantity(u.DIMENSIONLESS, gt=0.0) | None = Field(None, description="the input's speed over the output's")
     teeth: tuple[u.whole("teeth"), u.whole("teeth")] | None = Field(None, description="[z_in, z_out]: z_out / z_in")
+    radius: u.quantity(u.LENGTH, gt=0.0) | None = Field(None, description="between [shaft, mass]: the mass moves "
+                                                        "radius times the shaft's angle (a pinion and its rack, a "
+                                                        "drum and its rope, a wheel rolling on the line: Modelica's "
+                                                        "IdealGearR2T with ratio 1 / radius, IdealRollingWheel)")
     # a stage on a housing is a linkage of three shafts (schema_linkage)
     housing: Text | None = Field(None, description="a third shaft its housing turns with, the ratio against it (ideal)")
     name: str = Field("", exclude=True)  # its key in drivetrain.gears (set there, never written)
@@ -150,11 +158,13 @@ class GearStageSpec(MeshSpec):
             raise ScenarioError(f".{given}", "give either loss_table or efficiency (and backdrive_efficiency), not "
                                 "both: constant efficiencies are the table's one row [0, efficiency, "
                                 "backdrive_efficiency, 0, 0]")
-        if (self.ratio is None) == (self.teeth is None):
+        if sum(given is not None for given in (self.ratio, self.teeth, self.radius)) != 1:
             raise ScenarioError(".ratio", "give either ratio (the input's speed over the output's) or teeth "
-                                "[input, output], one of them")
+                                "[input, output], or between a shaft and a mass its radius, one of them")
         if self.teeth is not None:
             self._derive("ratio", self.teeth[1] / self.teeth[0])
+        if self.radius is not None:  # rad/s of the shaft over m/s of the mass
+            self._derive("ratio", 1.0 / self.radius)
         return self
 
 
@@ -198,6 +208,8 @@ class DrivetrainSpec(Section):
     motion_sources: dict[str, MotionSourceSpec] = {}
     masses: dict[str, MassSpec] = {}
     forces: list[ForceSpec] = []
+    stops: dict[str, StopsSpec] = {}
+    vehicles: dict[str, VehicleSpec] = {}
 
     @model_validator(mode="before")
     @classmethod
@@ -208,7 +220,8 @@ class DrivetrainSpec(Section):
             return data
         data = dict(data)
         for kind in ("shafts", "clutches", "one_way_clutches", "bearing_frictions", "springs", "gears", "motors",
-                     *SHAFT_PARTS, *SPEED_PARTS, *DRIVE_PARTS, "planetaries", "masses"):
+                     *SHAFT_PARTS, *SPEED_PARTS, *DRIVE_PARTS, "planetaries", "masses", "stops",
+                     "vehicles"):
             parts = data.get(kind)
             if not isinstance(parts, dict):
                 continue
@@ -248,6 +261,10 @@ class DrivetrainSpec(Section):
                 if name in self.shafts:
                     raise ScenarioError(f"drivetrain.{kind}.{name}", "is also the name of a shaft: names must "
                                         "differ (they name the outputs)")
+        for stops in self.stops.values():
+            stops.check_start(self.masses)
+        for vehicle in self.vehicles.values():
+            vehicle.check_mass(self.masses)
         for i, force in enumerate(self.forces):
             if force.mass not in self.masses:
                 raise ScenarioError(f"drivetrain.forces.{i}.mass", f"there is no mass {force.mass!r} (masses: "
@@ -264,7 +281,7 @@ class DrivetrainSpec(Section):
                 key = "shaft" if kind == "bearing_frictions" and part.between is None else "between"
                 for side in (a, b):
                     grounded = side == GROUND and (side == b or kind == "springs")  # a spring's housing: either
-                    massed = kind in ("springs", "clutches") and side in self.masses  # a part on a line
+                    massed = kind in ("springs", "clutches", "bearing_frictions") and side in self.masses  # on a line
                     if side not in self.shafts and not massed and not (grounded and kind != "one_way_clutches"):
                         raise ScenarioError(f"drivetrain.{kind}.{name}.{key}", f"there is no shaft {side!r} "
                                             f"(shafts: {known}{_GROUNDED[kind]})")
@@ -311,9 +328,11 @@ class DrivetrainSpec(Section):
     def _parts_named(self):
         seen = ({name: "shafts" for name in self.shafts} | {name: "clutches" for name in self.clutches}
                 | {name: "masses" for name in self.masses})
-        for kind in ("one_way_clutches", "bearing_frictions", "springs"):
-            for name in getattr(self, kind):
-                if not _NAME.match(name) or name == GROUND or name in seen:
+        for kind in ("one_way_clutches", "bearing_frictions", "springs", "stops", "vehicles"):
+            for name, part in getattr(self, kind).items():
+                # a vehicle may be named after its own mass (vehicle on vehicle: vehicle_velocity, vehicle_drag_force)
+                own = kind == "vehicles" and part.mass == name and seen.get(name) == "masses"
+                if not _NAME.match(name) or name == GROUND or (name in seen and not own):
                     raise ScenarioError(f"drivetrain.{kind}.{name}", "a name is a word of letters, digits and "
                                         f"underscores starting with a letter, not {GROUND!r} and not the name of "
                                         "another part (they name the outputs)")
@@ -330,14 +349,10 @@ class DrivetrainSpec(Section):
                                         f"underscores starting with a letter, not {GROUND!r} and not the name of "
                                         "another part (they name the outputs)")
                 seen[name] = kind
-                shafts = part.between if kind == "gears" else (part.shaft,)
-                for shaft in shafts if kind in ("gears", "motors") else ():  # the others': check_shaft_parts
-                    if shaft not in self.shafts:
-                        where = "between" if kind == "gears" else "shaft"
-                        raise ScenarioError(f"drivetrain.{kind}.{name}.{where}", f"there is no shaft {shaft!r} "
-                                            f"(shafts: {known})")
-                if kind == "gears" and shafts[0] == shafts[1]:
-                    raise ScenarioError(f"drivetrain.gears.{name}.between", f"gears shaft {shafts[0]!r} to itself")
+                if kind == "motors" and part.shaft not in self.shafts:  # the others': check_shaft_parts
+                    raise ScenarioError(f"drivetrain.{kind}.{name}.shaft", f"there is no shaft {part.shaft!r} "
+                                        f"(shafts: {known})")
+        check_gear_sides(self)
         if self.load is not None and self.load.shaft not in self.shafts:
             raise ScenarioError("drivetrain.load.shaft", f"there is no shaft {self.load.shaft!r} (shafts: {known})")
         taken = set(seen)
@@ -347,17 +362,17 @@ class DrivetrainSpec(Section):
 
     def _speeds_agree(self, groups, speeds):
         for name, (root, ratio) in groups.items():
-            expected = speeds[name]
-            given = self.shafts[name].speed
-            if name != root and "speed" in self.shafts[name].model_fields_set and not math.isclose(
-                    given, expected, rel_tol=1e-9, abs_tol=1e-12):
-                raise ScenarioError(f"drivetrain.shafts.{name}.speed", f"is geared to shaft {root!r}: its speed "
-                                    f"must be {expected:.12g} rad/s (or left out), got {given:.12g} rad/s")
+            expected, given = speeds[name], given_speed(self, name)
+            units = "rad/s" if name in self.shafts else "m/s"
+            if name != root and given is not None and not math.isclose(given, expected, rel_tol=1e-9,
+                                                                         abs_tol=1e-12):
+                raise ScenarioError(speed_key(self, name), f"is geared to {root!r}: its speed must be "
+                                    f"{expected:.12g} {units} (or left out), got {given:.12g} {units}")
 
     def _every_body_has_inertia(self, groups):
         inertia = {root: 0.0 for root, _ in groups.values()}
-        for name, (root, ratio) in groups.items():
-            inertia[root] += self.shafts[name].inertia * ratio**2
+        for name, (root, ratio) in groups.items():  # a mass's m reaches a shaft as m r^2
+            inertia[root] += (self.shafts[name].inertia if name in self.shafts else self.masses[name].mass) * ratio**2
         for motor in self.motors.values():
             root, ratio = groups[motor.shaft]
             inertia[root] += motor.moment_of_inertia * ratio**2

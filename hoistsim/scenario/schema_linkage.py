@@ -16,6 +16,7 @@ from pydantic import Field, model_validator
 from ..errors import ScenarioError
 from . import units as u
 from .schema_base import Section
+from .schema_gear_groups import given_speed
 from .units import Text
 
 _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")  # as every part's name (schema_drivetrain)
@@ -99,12 +100,16 @@ def check_linkages(drivetrain, seen: dict) -> None:
 
 
 def start_speeds(drivetrain, groups: dict) -> dict:
-    """Each shaft's speed at the start (rad/s): its gear train's (``groups``: shaft -> (root, speed over the
-    root's)), the root's as given; a root left out that a linkage ties to shafts of known speeds takes the
-    speed the relation gives it (in turn, as far as the linkages reach), any other left out is at rest.
+    """Each shaft's speed at the start (rad/s; a mass's velocity, m/s): its gear train's (``groups``: shaft -> (root,
+    speed over the root's)), the root's as given (or, left out, the first speed given in its train); a root left
+    out that a linkage ties to shafts of known speeds takes the speed the relation gives it (in turn, as far as
+    the linkages reach), any other left out is at rest.
     Given speeds that break a linkage's relation are refused, naming the last given shaft (or the linkage)."""
-    shafts = drivetrain.shafts
-    known = {root: shafts[root].speed for root, _ in groups.values() if "speed" in shafts[root].model_fields_set}
+    known = {root: speed for root, _ in groups.values() if (speed := given_speed(drivetrain, root)) is not None}
+    for name, (root, ratio) in groups.items():  # a train whose first body is left out: a speed given in it
+        speed = given_speed(drivetrain, name)
+        if root not in known and speed is not None:
+            known[root] = speed / ratio
     given = set(known)
     rows = []  # (linkage key, relation, members, root -> weight on the root's speed)
     for key, relation, members in linkages(drivetrain):

@@ -7,12 +7,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from pydantic import Field
+from pydantic import Field, model_validator
 
 from ..errors import ScenarioError
 from . import unit_words as words
 from . import units as u
 from .schema_base import Section
+from .schema_gear_groups import gear_groups
+from .schema_linkage import start_speeds
 from .signals import signal
 from .units import Text
 
@@ -25,8 +27,16 @@ class MassSpec(Section):
 
     mass: u.quantity(u.MASS, gt=0.0) = Field(description="m")
     position: u.quantity(u.LENGTH) = Field(0.0, description="s at t = 0 (its centre)")
-    velocity: u.quantity(u.VELOCITY) = Field(0.0, description="v at t = 0")
+    velocity: u.quantity(u.VELOCITY) = Field(0.0, description="v at t = 0 (a mass geared to a shaft: the shaft's "
+                                             "speed times the radius)")
     name: str = Field("", exclude=True)  # its key in drivetrain.masses (set there, never written)
+
+    def lowered(self, scenario) -> "MassSpec":
+        """With its gear train written in: (the first shaft or mass of the body it moves with, its velocity over
+        that one's speed, its velocity at the start), as a shaft's (:meth:`ShaftSpec.train`)."""
+        groups = gear_groups(scenario.drivetrain)
+        root, ratio = groups[self.name]
+        return self.with_resolved(train=(root, ratio, start_speeds(scenario.drivetrain, groups)[self.name]))
 
 
 class ForceSpec(Section):
@@ -38,13 +48,53 @@ class ForceSpec(Section):
     name: str = Field("", exclude=True)  # force1, force2, ... in the order of drivetrain.forces (set there)
 
 
+class StopsSpec(Section):
+    """Hard stops at the ends of a mass's travel (Modelica's MassWithStopAndFriction's smin and smax, given for its
+    centre): the mass meets one in an impact, rebounding at ``restitution`` times the speed it arrived at (0: it
+    stays, Modelica's), and rests against it while pushed into it, leaving when pulled away; each end writes
+    ``<name>_lower_force`` / ``<name>_upper_force`` (its push on the mass, N, in the line's sense) and
+    ``_contact``, and the kinetic energy its impacts take (``_impact_loss``, a loss of the ledger)."""
+
+    alternatives = (("lower", "upper", "lower + upper"),)
+    mass: Text = Field(description="the mass it stops")
+    lower: u.quantity(u.LENGTH) | None = Field(None, description="the lowest position of the mass's centre")
+    upper: u.quantity(u.LENGTH) | None = Field(None, description="the highest position of the mass's centre")
+    restitution: u.quantity(u.DIMENSIONLESS, ge=0.0, le=1.0) = Field(0.0, description="e: the mass leaves a stop "
+                                                                     "at e times the speed it met it at")
+    rest_speed: u.quantity(u.VELOCITY, gt=0.0) = Field(1e-3, description="a rebound slower than this rests against "
+                                                       "the stop instead (a bounce that would never end)")
+    name: str = Field("", exclude=True)  # its key in drivetrain.stops (set there, never written)
+
+    @model_validator(mode="after")
+    def _an_end_or_two(self):
+        if self.lower is None and self.upper is None:
+            raise ScenarioError(".lower", "required: a lower stop, an upper stop or both (the positions of the mass's "
+                                "centre where it stops)")
+        if self.lower is not None and self.upper is not None and self.lower >= self.upper:
+            raise ScenarioError(".upper", f"must be above the lower stop ({self.lower:g} m), got {self.upper:g} m")
+        return self
+
+    def check_start(self, masses: dict) -> None:
+        """Its mass is a mass of the drivetrain and starts between the stops."""
+        where = f"drivetrain.stops.{self.name}"
+        if self.mass not in masses:
+            raise ScenarioError(f"{where}.mass", f"there is no mass {self.mass!r} (masses: "
+                                f"{', '.join(masses) or 'none'})")
+        start = masses[self.mass].position
+        for key, end, beyond in (("lower", self.lower, start < (self.lower or 0.0)),
+                                 ("upper", self.upper, start > (self.upper or 0.0))):
+            if end is not None and beyond:
+                raise ScenarioError(f"{where}.{key}", f"is {'above' if key == 'lower' else 'below'} the start of mass "
+                                    f"{self.mass!r} ({start:g} m): a mass starts between its stops")
+
+
 @dataclass(frozen=True)
 class LineKeys:
     """What a kind of part that may join masses says of its keys (its spec's ``line_keys``): the key that names
     the bodies it joins, its keys measured otherwise on a line (a stiffness: N/m there), and its keys of one kind
     of body only."""
 
-    bodies: str  # "between" or "shaft"
+    bodies: str | tuple  # "between" or "shaft", or the keys either of which names them
     measured: tuple = ()
     line_only: tuple = ()
     shafts_only: tuple = ()
@@ -80,11 +130,12 @@ def check_line_parts(data: dict, kinds: dict) -> None:
     masses = data.get("masses") if isinstance(data.get("masses"), dict) else {}
     for kind, spec in kinds.items():
         said: LineKeys = spec.line_keys
-        bodies_key = said.bodies
         parts = data.get(kind)
         for name, part in (parts.items() if isinstance(parts, dict) else ()):
             if not isinstance(part, dict):
                 continue
+            keys = (said.bodies,) if isinstance(said.bodies, str) else said.bodies
+            bodies_key = next((key for key in keys if key in part), keys[0])
             sides = part.get(bodies_key)
             sides = [sides] if isinstance(sides, str) else sides if isinstance(sides, list) else []
             on_line = [side in masses for side in sides if isinstance(side, str) and side != GROUND]

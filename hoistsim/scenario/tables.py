@@ -22,6 +22,7 @@ from .units import (
     TEMPERATURE,
     TIME,
     TORQUE,
+    VELOCITY,
     Dimension,
     UnitError,
     check_range,
@@ -121,13 +122,15 @@ def torque_speed_table(value: object) -> tuple[tuple[float, float], ...]:
     return pair_table(value, ANGULAR_SPEED, TORQUE, "speeds", "like [[0 rpm, 500 N*m], [300 rpm, 0 N*m]]")
 
 
-def slip_speed_table(value: object, second: Dimension, what: str, example: str) -> tuple[tuple[float, float], ...]:
+def slip_speed_table(value: object, second: Dimension, what: str, example: str,
+                     speed: Dimension = ANGULAR_SPEED) -> tuple[tuple[float, float], ...]:
     """A friction against the slip speed: rows ``[speed, value]``, at least two, speeds rising from zero or
-    more (the friction at a slip either way: its speed's size), each value not negative (``what`` names it)."""
-    rows = pair_table(value, ANGULAR_SPEED, second, "speeds", example)
-    for i, (speed, friction) in enumerate(rows):
+    more (the friction at a slip either way: its speed's size), each value not negative (``what`` names it);
+    ``speed`` the slip's dimension (a line's: a velocity)."""
+    rows = pair_table(value, speed, second, "speeds", example)
+    for i, (slip, friction) in enumerate(rows):
         try:
-            check_range(speed, value[i][0], ANGULAR_SPEED, ge=0, hint=" (a slip speed's size)")
+            check_range(slip, value[i][0], speed, ge=0, hint=" (a slip speed's size)")
             check_range(friction, value[i][1], second, ge=0, hint=f" ({what} opposes the slip)")
         except UnitError as exc:
             raise TableError(i, str(exc)) from None
@@ -198,15 +201,15 @@ KineticFrictionTable = Annotated[tuple[tuple[float, float], ...], BeforeValidato
     FirstColumn(TEMPERATURE), _FRICTION_COLUMNS]
 
 
-def constant_or_slip_table(dimension: Dimension, what: str, example: str):
+def constant_or_slip_table(dimension: Dimension, what: str, example: str, speed: Dimension = ANGULAR_SPEED):
     """A field given as a constant not below zero, or as a table of the slip speed (rows [speed, value]): a float
-    or the table's rows (``what`` names the value, ``example`` a table)."""
+    or the table's rows (``what`` names the value, ``example`` a table, ``speed`` the slip's dimension)."""
 
     def convert(value: Any):
         if isinstance(value, tuple):  # already read
             return value
         if isinstance(value, list):
-            return slip_speed_table(value, dimension, what, example)
+            return slip_speed_table(value, dimension, what, example, speed)
         try:
             number = to_si(value, dimension)
         except UnitError as exc:
@@ -214,12 +217,12 @@ def constant_or_slip_table(dimension: Dimension, what: str, example: str):
         return check_range(number, value, dimension, ge=0, hint=f" ({what} opposes the slip)")
 
     return Annotated[float | tuple[tuple[float, float], ...], BeforeValidator(convert), dimension,
-                     FirstColumn(ANGULAR_SPEED), Columns((("slip speed", ANGULAR_SPEED), (what.split(" ", 1)[1],
-                                                                                         dimension)))]
+                     FirstColumn(speed), Columns((("slip speed", speed), (what.split(" ", 1)[1], dimension)))]
 
 
 SlipFriction = constant_or_slip_table(DIMENSIONLESS, "a friction coefficient", "like [[0 rad/s, 0.5], [10 rad/s, 0.4]]")
 SlipTorque = constant_or_slip_table(TORQUE, "a friction torque", "like [[0 rad/s, 2 N*m], [100 rad/s, 3 N*m]]")
+SlipForce = constant_or_slip_table(FORCE, "a friction force", "like [[0 m/s, 15 N], [12 m/s, 13 N]]", VELOCITY)
 AngleTorqueTable = Annotated[tuple[tuple[float, float], ...], BeforeValidator(
     lambda value: value if isinstance(value, tuple) else angle_torque_table(value)),
     Columns((("angle", ANGLE), ("torque", TORQUE)))]

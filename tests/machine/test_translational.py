@@ -90,8 +90,10 @@ def test_the_example_against_dymolas_published_trajectories(runs, example):
     run = runs[example]
     worst = deviations(run, f"translational/{example}", _comparison(example, run))
     assert max(worst.values()) < 1e-3, worst
-    # measured: the Oscillator's 2.2e-9 (its resonance swinging up at rtol 1e-10), the others 4e-11 and below
-    assert run.summary["energy_relative_residual"] < 1e-8
+    # measured: the Oscillator's 2.2e-9 (its resonance swinging up at rtol 1e-10), PreLoad's 3.6e-8 (at its rtol
+    # 1e-8; 1e-8 and below on another machine's floating point), the others 4e-11 and below
+    rtol = float(load_scenario(FOLDER / f"{example}.yaml").simulation.rtol)
+    assert run.summary["energy_relative_residual"] < max(1e-8, 10 * rtol)
 
 
 def test_a_sine_force_on_a_mass_is_its_closed_form(runs):

@@ -196,9 +196,10 @@ class Bodies:
 
     @property
     def order(self) -> list:
-        """The couplings in the order they take a torque that two of them could hold: those that yield last."""
+        """The couplings in the order they take a torque that two of them could hold: those that hold first, then
+        the rest, those that yield last."""
         couplings = self.layout.coupling_elements
-        return sorted(range(len(couplings)), key=lambda k: couplings[k].yields)
+        return sorted(range(len(couplings)), key=lambda k: (not couplings[k].holds_first, couplings[k].yields))
 
     def relative(self, k, values):
         """Coupling k's relative speed (or acceleration) for the bodies' speeds (or accelerations)."""

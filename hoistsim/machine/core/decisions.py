@@ -12,7 +12,7 @@ import functools
 import equinox as eqx
 import jax.numpy as jnp
 
-from . import static_check, switching
+from . import impacts, static_check, switching
 from .bodies import keep_momentum
 from .dynamics import Instant, slip_sign
 from .element import SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STUCK
@@ -65,11 +65,12 @@ def decide(plan, segment, c, columns: bool):
     boundary_modes, boundary_candidates = static_check.candidates_at_boundary(layout, segment, y, plan.speed_scale)
     modes = jnp.where(at, boundary_modes, c.pending_modes).astype(c.modes.dtype)
     candidates = [jnp.where(at, b, c.pending_candidates[k]) for k, b in enumerate(boundary_candidates)]
+    when = at | c.pending
+    c, y, modes, candidates, plastic = impacts.meet(plan, c, y, modes, candidates, held, when)
     decided, met = static_check.settle(layout, segment, c.t, y, modes, candidates, held)
     # at a boundary the stuck ones' sides take their common speed; after a switch the candidates' met already
     met = jnp.where(at, keep_momentum(layout, y, [m == STUCK for m in decided], held), met)
-    decided_y = switching.with_impacts(layout, y, met, c.modes, decided)
-    when = at | c.pending
+    decided_y = impacts.with_losses(layout, y, met, plastic)
     before = c.modes
     new_modes = jnp.where(when, decided, c.modes)
     c = eqx.tree_at(lambda k: (k.y, k.modes, k.pending), c,
@@ -77,6 +78,7 @@ def decide(plan, segment, c, columns: bool):
     for index, element in enumerate(layout.elements):
         for kind, happens in element.boundary_events(c.t):
             c = record(c, at & happens, c.t, layout.kind_code(kind), index, c.y, new_modes, jnp.nan)
+    c = impacts.record_impacts(plan, c, plastic, new_modes)
     # The first decision (t = 0) sets the initial modes; it is not an event.
     before = jnp.where(c.segments == 0, -1, before)
     return _record_transitions(plan, segment, c, when, c.t, c.y, before, new_modes, columns)
@@ -151,6 +153,14 @@ def apply_event(plan, segment, c, t, y, masks: dict, hit, coinciding: dict,
         together = meeting & (slip_sign(modes[k]) != 0.0) & switching.touching(coupling, x) & shared
         modes = modes.at[k].set(jnp.where(together, STUCK, modes[k]))
         candidates[k] = candidates[k] | together
+        # A contact let go where its sides still touch (a mass pulled off its stop and held there by its friction)
+        # has a gap guard that starts at or below zero and cannot fire: at every switch it is tried stuck again.
+        gap = coupling.gap(x)
+        if gap is not None:
+            resting = hit & (modes[k] == SLIP_FORWARD) & (gap <= 0.0) & (
+                x.relative_speed(coupling.section) <= SLIP_RESOLUTION * plan.speed_scale)
+            modes = modes.at[k].set(jnp.where(resting, STUCK, modes[k]))
+            candidates[k] = candidates[k] | resting
     # decided where the next pass starts, with the boundary's decision (one static check a step)
     return eqx.tree_at(lambda k: (k.pending, k.pending_modes, k.pending_candidates), c,
                        (hit, modes.astype(c.modes.dtype), jnp.stack(candidates) if candidates else c.pending_candidates))

@@ -210,6 +210,8 @@ class AbstractCoupling(AbstractElement):
     # Stuck together with others that already hold the same motion (two holds on one shaft), the torque is
     # statically indeterminate: the couplings take it in their order, those that yield after the rest.
     yields: ClassVar[bool] = False
+    # ... and one that takes the torque before every other (a stop, before the friction that also holds its mass)
+    holds_first: ClassVar[bool] = False
     # its slip's peaks are rows (the peak slip speed of a friction coupling); False where the slip is a
     # shaft turning freely (a pawl clicking over, a mesh rolling): its peaks say nothing its speed does not
     observes_slip_peak: ClassVar[bool] = True
@@ -281,5 +283,11 @@ class AbstractCoupling(AbstractElement):
 
     def gap(self, x):
         """For a contact, how far apart its sides are (m or rad, <= 0 touching); None: its sides always touch."""
+        return None
+
+    def restitution(self, x) -> tuple | None:
+        """For a contact whose sides rebound where they meet: (e, the slowest rebound): they part again at e times
+        the relative speed they met at, or stay together where that would be slower (rad/s or m/s).  None: they
+        meet in a plastic impact and stay together."""
         return None
 

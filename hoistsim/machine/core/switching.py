@@ -337,18 +337,6 @@ def kink_anchors(layout: Layout, instant_at, t, y) -> dict:
     return {name: (values[name], rates[name]) for name in values}
 
 
-def with_impacts(layout: Layout, y_before, y_after, modes_before, modes_after):
-    """``y_after`` with the kinetic energy that a contact's impact took (its sides met and moved on
-    together, momentum kept) added to the contact's ``impact_state``: a plastic impact's loss."""
-    for k, coupling in enumerate(layout.coupling_elements):
-        if coupling.impact_state is None:
-            continue
-        lost = Instant(layout, 0.0, y_before).kinetic_energy() - Instant(layout, 0.0, y_after).kinetic_energy()
-        landed = (modes_after[k] == STUCK) & (modes_before[k] != STUCK)
-        y_after = y_after.at[layout.state_index(coupling.impact_state)].add(jnp.where(landed, lost, 0.0))
-    return y_after
-
-
 def transition_kind(previous, new):
     """Event kind recorded when a coupling's mode changes (NO_EVENT if it does not)."""
     slipping_before = (previous == SLIP_FORWARD) | (previous == SLIP_BACKWARD)

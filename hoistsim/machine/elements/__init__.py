@@ -38,6 +38,7 @@ from .linear_motor import LinearMotor as LinearMotor
 from .linear_torque import LinearTorque as LinearTorque
 from .load_drag import LoadDrag as LoadDrag
 from .lossy_gear import LossyGear as LossyGear
+from .lower_stop import LowerStop as LowerStop
 from .mass import Mass as Mass
 from .mesh_friction import MeshFriction as MeshFriction
 from .motor import Motor as Motor
@@ -59,6 +60,8 @@ from .speed_controller import SpeedController as SpeedController
 from .speed_source import SpeedSource as SpeedSource
 from .speed_table_torque import SpeedTableTorque as SpeedTableTorque
 from .spring_damper import SpringDamper as SpringDamper
+from .upper_stop import UpperStop as UpperStop
+from .vehicle import Vehicle as Vehicle
 from .wire_rope import WireRope as WireRope
 
 # A drawn drivetrain's part (each part of a kind: "*"; a key within a part: dotted after it) -> its element, or the
@@ -82,10 +85,14 @@ REGISTRY: dict[str, object] = {
     "drivetrain.torques.*": {"time": ShaftTorque, "speed_table": SpeedTableTorque, "quadratic": QuadraticTorque,
                              "linear": LinearTorque},
     "drivetrain.forces.*": LineForce,
+    "drivetrain.vehicles.*": Vehicle,
     # linkages of three shafts, before the friction couplings: where stuck couplings hold one motion twice,
     # the first in order takes the torque, and these hold any
     "drivetrain.gears.*.housing": HousedGear,  # a stage whose housing turns
     "drivetrain.planetaries.*": Planetary,
+    # a mass's stops, before its friction: resting against one, the stop takes a push before the friction would
+    "drivetrain.stops.*.lower": LowerStop,
+    "drivetrain.stops.*.upper": UpperStop,
     "drivetrain.clutches.*": FrictionClutch,
     "drivetrain.clutches.*.heating": ClutchHeating,
     "drivetrain.one_way_clutches.*": OneWayClutch,

@@ -13,16 +13,22 @@ VELOCITY_SCALE_FLOOR = 1.0  # m/s
 class Mass(AbstractElement):
     """A body as a shaft is, on a line: kg for kg*m^2, N for N*m, m and m/s for rad and rad/s.  Its position is a
     state whatever reads it, its outputs ``<name>_position`` (m) and ``<name>_velocity`` (m/s), so that Modelica's
-    s_rel and v_rel of a part between two masses are the second's less the first's."""
+    s_rel and v_rel of a part between two masses are the second's less the first's.  Geared to a shaft (a rack on
+    its pinion, a wheel rolling on the line) or to another mass, it moves with that body (``geared_to``: its
+    velocity ``speed_ratio`` times that one's speed), its mass m reaching a shaft as m r^2."""
 
     mass: object  # kg
     initial_velocity: object  # m/s
     initial_position: object = 0.0  # m
+    speed_ratio: object = 1.0  # its velocity over the speed of the body it is geared to (m/rad from a shaft)
     section: str = static("")  # the mass's name
+    geared_to: str = static("")  # the first shaft (or mass) of its gear train ("": it is that body)
 
     @classmethod
     def from_spec(cls, spec) -> "Mass":
-        return cls(mass=spec.mass, initial_velocity=spec.velocity, initial_position=spec.position, section=spec.name)
+        root, ratio, velocity = spec.resolved("train")
+        return cls(mass=spec.mass, initial_velocity=velocity, initial_position=spec.position, speed_ratio=ratio,
+                   section=spec.name, geared_to="" if root == spec.name else root)
 
     @property
     def columns(self) -> dict:
@@ -33,7 +39,10 @@ class Mass(AbstractElement):
         return {f"final_{self.section}_velocity": "m/s"}
 
     def bodies(self) -> dict:
-        return {self.section: self.initial_velocity}
+        return {} if self.geared_to else {self.section: self.initial_velocity}
+
+    def shafts(self) -> dict:
+        return {self.section: (self.geared_to, self.speed_ratio)} if self.geared_to else {}
 
     def inertias(self) -> tuple:
         return ((self.section, self.mass),)
