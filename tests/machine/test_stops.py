@@ -223,6 +223,7 @@ def test_new_values_of_stops_and_stribeck_curves_compile_nothing(runs):
     already compiled."""
     from hoistsim.machine.core import loop
 
+    simulate(load_scenario(FOLDER / "Friction.yaml"))  # its program in hand (a long suite's process may let it go)
     traced = loop.trace_count
     changed = simulate(load_scenario(FOLDER / "Friction.yaml", overrides=[
         "drivetrain.stops.stop2_ends.lower=-0.3 m", "drivetrain.stops.stop2_ends.restitution=0.5",
