@@ -17,9 +17,10 @@ import jax.numpy as jnp
 
 from .bodies import keep_momentum
 from .dynamics import Instant, slip_sign
-from .element import SLIP_BACKWARD, SLIP_FORWARD, SLIP_RESOLUTION, STUCK
+from .element import SLIP_FORWARD, SLIP_RESOLUTION, STUCK
 from .eventlog import record
 from .layout import LOCK
+from .static_check import slip_mode
 
 
 def meet(plan, c, y, modes, candidates, held, when):
@@ -67,11 +68,13 @@ def meet(plan, c, y, modes, candidates, held, when):
 def with_losses(layout, y_before, y_after, plastic_impacts):
     """``y_after`` with the kinetic energy a contact's plastic impact took (its sides met and moved on together,
     momentum kept; ``plastic_impacts`` from :func:`meet`) added to the contact's ``impact_state``."""
-    for k, coupling in enumerate(layout.coupling_elements):
-        if coupling.impact_state is None:
-            continue
-        lost = Instant(layout, 0.0, y_before).kinetic_energy() - Instant(layout, 0.0, y_after).kinetic_energy()
-        y_after = y_after.at[layout.state_index(coupling.impact_state)].add(jnp.where(plastic_impacts[k], lost, 0.0))
+    contacts = [k for k, coupling in enumerate(layout.coupling_elements) if coupling.impact_state is not None]
+    if not contacts:
+        return y_after
+    lost = Instant(layout, 0.0, y_before).kinetic_energy() - Instant(layout, 0.0, y_after).kinetic_energy()
+    for k in contacts:
+        state = layout.state_index(layout.coupling_elements[k].impact_state)
+        y_after = y_after.at[state].add(jnp.where(plastic_impacts[k], lost, 0.0))
     return y_after
 
 
@@ -79,8 +82,9 @@ def record_impacts(plan, c, plastic_impacts, modes):
     """An event row for each plastic impact after which the static check let the contact's sides part at once (a
     lock and an unlock at one instant, which no change of its mode records): the contact's lock."""
     layout = plan.layout
+    x = Instant(layout, c.t, c.y)
     for k, coupling in enumerate(layout.coupling_elements):
-        if coupling.gap(Instant(layout, c.t, c.y)) is None:
+        if coupling.gap(x) is None:
             continue
         parted = plastic_impacts[k] & (modes[k] != STUCK)
         c = record(c, parted, c.t, layout.switch_code(coupling, LOCK), layout.couplings[k], c.y, modes, jnp.nan)
@@ -99,7 +103,7 @@ def _slipping_as_they_part(plan, t, y, modes, candidates, impact):
             continue
         slip = x.relative_speed(coupling.section)
         slipping = impact & (slip_sign(modes[j]) != 0.0) & ~candidates[j]
-        way = jnp.where(slip > tiny, SLIP_FORWARD, jnp.where(slip < -tiny, SLIP_BACKWARD, STUCK))
+        way = slip_mode(slip, tiny)
         modes = modes.at[j].set(jnp.where(slipping, way, modes[j]))
         candidates[j] = candidates[j] | (slipping & (way == STUCK))
     return modes, candidates

@@ -23,6 +23,11 @@ from .layout import Layout
 from .switching import holding_capacity, touching
 
 
+def slip_mode(slip, tiny):
+    """The mode a relative speed says: slipping its way, or stuck (a candidate) within ``tiny`` of zero."""
+    return jnp.where(slip > tiny, SLIP_FORWARD, jnp.where(slip < -tiny, SLIP_BACKWARD, STUCK))
+
+
 def candidates_at_boundary(layout: Layout, segment, y, speed_scale):
     """Modes at a scheduled boundary before the static check, and which couplings may stick.
 
@@ -37,7 +42,7 @@ def candidates_at_boundary(layout: Layout, segment, y, speed_scale):
         is_open = jnp.asarray(coupling.is_open(segment))
         if coupling.can_slip:
             slip = x.relative_speed(coupling.section)
-            mode = jnp.where(slip > tiny, SLIP_FORWARD, jnp.where(slip < -tiny, SLIP_BACKWARD, STUCK))
+            mode = slip_mode(slip, tiny)
             if coupling.gap(x) is not None:  # a contact's sides apart move freely (slip forwards) however fast
                 mode = jnp.where(touching(coupling, x), jnp.where(slip > tiny, SLIP_FORWARD, STUCK), SLIP_FORWARD)
         else:
