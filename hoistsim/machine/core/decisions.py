@@ -145,12 +145,20 @@ def apply_event(plan, segment, c, t, y, masks: dict, hit, coinciding: dict,
     meeting = functools.reduce(jnp.logical_or, [masks[GuardId(e.section, SLIP)] for e in layout.coupling_elements
                                                 if e.can_slip], jnp.zeros((), bool))
     x = Instant(layout, t, y)
+    due = jnp.zeros((), bool)
     for k, coupling in enumerate(layout.coupling_elements):
         if not coupling.can_slip:
             continue
         shared = coinciding.get(GuardId(coupling.section, SLIP), jnp.zeros((), bool)) | (
             jnp.abs(x.relative_speed(coupling.section)) <= SHARED_ZERO * SLIP_RESOLUTION * plan.speed_scale)
         together = meeting & (slip_sign(modes[k]) != 0.0) & switching.touching(coupling, x) & shared
+        # A slip already at or past its zero where a pass ended (its guard at or below zero, so that it could never
+        # fire in the next): the pass ended at another guard's root within the search's resolution of the slip's
+        # own, or a pass solved again with the switches held off reached the switch's instant.  Decided here.
+        behind = (coupling.gap(x) is None) & (slip_sign(modes[k]) != 0.0) & (
+            slip_sign(modes[k]) * x.relative_speed(coupling.section) + SLIP_RESOLUTION * plan.speed_scale <= 0.0)
+        together = together | behind
+        due = due | behind
         modes = modes.at[k].set(jnp.where(together, STUCK, modes[k]))
         candidates[k] = candidates[k] | together
         # A contact let go where its sides still touch (a mass pulled off its stop and held there by its friction)
@@ -163,4 +171,5 @@ def apply_event(plan, segment, c, t, y, masks: dict, hit, coinciding: dict,
             candidates[k] = candidates[k] | resting
     # decided where the next pass starts, with the boundary's decision (one static check a step)
     return eqx.tree_at(lambda k: (k.pending, k.pending_modes, k.pending_candidates), c,
-                       (hit, modes.astype(c.modes.dtype), jnp.stack(candidates) if candidates else c.pending_candidates))
+                       (hit | due, modes.astype(c.modes.dtype),
+                        jnp.stack(candidates) if candidates else c.pending_candidates))

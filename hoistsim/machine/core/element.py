@@ -196,6 +196,12 @@ class AbstractElement:
         """A speed typical of the element (rad/s), for the slip resolution; None: none."""
         return None
 
+    def longest_step(self):
+        """The longest step (s) its torques in time allow, None: any.  A machine held at rest has nothing else to
+        bound its steps, and a step over a whole swing of a harmonic torque would hide its rise over what a hold
+        carries and its fall back (the guards read at the steps' ends, the margins' valleys too)."""
+        return None
+
 
 class AbstractCoupling(AbstractElement):
     """A friction coupling between two shafts, or a shaft and the ground.

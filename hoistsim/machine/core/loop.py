@@ -158,7 +158,13 @@ def _solve_segment(plan: Plan, segment: Segment, c: _Carry, solver, guards, repl
         kept=c.kept, count=c.kept_count, modes=c.modes, first_step=c.step_guess, bends=guard_roles.bends(guards),
         slopes0=guard_roles.bend_slopes(plan.layout, guards, anchors, kinking),
         values0=starting, crossing_step_kept=not lanes, passed_over=passed_over,
-        partners=guard_roles.knot_partners(plan.layout, guards))
+        partners=guard_roles.knot_partners(plan.layout, guards), longest=_longest_step(plan))
+
+
+def _longest_step(plan: Plan):
+    """The longest step the machine's torques in time allow (s; inf: any)."""
+    limits = [limit for limit in (e.longest_step() for e in plan.elements) if limit is not None]
+    return functools.reduce(jnp.minimum, limits, jnp.full((), jnp.inf))
 
 
 def _decided(plan: Plan, segment: Segment, c: _Carry, columns: bool, lanes: bool) -> _Carry:
@@ -279,7 +285,9 @@ def _step(plan: Plan, solver, columns: bool, lanes: bool, c: _Carry) -> _Carry:
         c,
         (t_reached, kept & (~hit | (t_end >= segment.end)), status,
          jnp.where(shrink, cap, jnp.inf), jnp.where(shrink, c.shrinks + 1, 0), jnp.where(shrink, t_end, jnp.inf),
-         jnp.where(found_first, t_end, -jnp.inf),
+         # (a pass solved again with the switches held off keeps them held off through its shorter steps: let
+         # go, it would locate the switch first again and be solved again held off, without end)
+         jnp.where(found_first, t_end, jnp.where(shrink, c.switches_from, -jnp.inf)),
          # a pass that ended at a table's knot (the rate bends there, nothing jumps) hands its steps on; after
          # anything else the next pass guesses its own (after an observation or a valley too: a machine held at
          # rest has nothing to bound its steps but that fresh start, and a step grown over a whole swing of a

@@ -99,11 +99,12 @@ class _Carry(eqx.Module):
 def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, dtmax, max_steps: int,
                    kept: Steps | None = None, count=0, modes=None, field: Callable = vector_field,
                    cap_until=jnp.inf, first_step=jnp.nan, bends=None, slopes0=None, values0=None,
-                   crossing_step_kept: bool = True, passed_over=None, partners=None) -> Pass:
+                   crossing_step_kept: bool = True, passed_over=None, partners=None, longest=jnp.inf) -> Pass:
     """Step dy/dt = ``field(t, y, args)`` from (t0, y0) towards ``end`` until a guard (``guards(t, y, args)``:
     an array) falls to zero.  Steps start no longer than ``dtmax`` before ``cap_until`` (a pass solved again
     so that crossings found in one step get a step each: beyond the crossing that sent it back, a pass that
-    has not crossed again steps as the error allows, rather than creep on capped).
+    has not crossed again steps as the error allows, rather than creep on capped), and never longer than
+    ``longest`` (what the machine's torques in time allow: :meth:`.element.AbstractElement.longest_step`).
 
     A guard crosses where it goes from positive at a step's start to zero or
     below at its end.  Each accepted step, and the crossing's step up to the
@@ -161,7 +162,7 @@ def integrate_pass(solver, args, guards: Callable, t0, y0, end, *, rtol, atol, d
     first = jnp.where(fresh, guess, t0 + carried)
 
     def capped(start, t1):  # the controller's dtmax, up to cap_until (t + min(dt, dtmax): the same float)
-        return jnp.where(start < cap_until, jnp.minimum(t1, start + dtmax), t1)
+        return jnp.minimum(jnp.where(start < cap_until, jnp.minimum(t1, start + dtmax), t1), start + longest)
 
     t_next = jnp.minimum(capped(t0, first), end)
     values = read(t0, y0, args) if values0 is None else values0

@@ -2,13 +2,22 @@
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 import jax.numpy as jnp
 
 
 class OneWayHold:
     """A coupling that holds any torque pushing its side a backwards (a load that would lower the drum,
     a load pressing on the ground) and none pushing it forwards: a drive that lifts frees it, and it
-    "slips" forwards passing nothing."""
+    "slips" forwards passing nothing.
+
+    Its capacity is infinite one way and nothing the other, so its margin to breakaway is finite only one way:
+    that way's margin has a valley guard of its own (``margin_each_way``), so that a machine held at rest, with
+    nothing to limit its steps, cannot hide within one step a torque that turns to pull the hold off and back
+    (a mass resting on its stop, the push of a spring and a harmonic force turning round)."""
+
+    margin_each_way: ClassVar[bool] = True
 
     def capacity(self, x):
         return jnp.inf

@@ -40,6 +40,16 @@ def signal_at(element, x, prefix: str):
     return x.table(f"{element.section}.{prefix}") + harmonics
 
 
+def harmonics_step(element, *prefixes: str):
+    """The longest step the harmonics of an element's signals ``prefixes`` allow (s): an eighth of the shortest
+    period, so that every quarter swing has a step's end in it; None where no signal has harmonics."""
+    frequencies = [getattr(element, f"{prefix}_frequencies") for prefix in prefixes]
+    frequencies = [f for f in frequencies if f is not None and f.shape[0] > 0]
+    if not frequencies:
+        return None
+    return 1.0 / (8.0 * jnp.max(jnp.abs(jnp.concatenate(frequencies))))
+
+
 def harmonics_at(t, amplitudes, frequencies, phases):
     """sum A sin(2 pi f t + phi) (0 with no harmonics: no term is traced)."""
     if amplitudes.shape[0] == 0:

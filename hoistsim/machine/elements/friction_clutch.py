@@ -9,7 +9,7 @@ import numpy as np
 
 from ..._pytree import static
 from ..core.element import SLIP_BACKWARD, SLIP_FORWARD, STUCK
-from ._signal import signal_at, signal_fields, signal_tables
+from ._signal import harmonics_step, signal_at, signal_fields, signal_tables
 from ._names import NamedOutputs
 from ._knots import interpolate, knots_passed
 from ._slip_heat import AbstractSlipHeat
@@ -134,6 +134,9 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
 
     def force(self, x):
         return signal_at(self, x, "force")
+
+    def longest_step(self):
+        return harmonics_step(self, "force")
 
     def pressing(self, x):
         """The force that presses the faces: F, or 0 where F <= 0 (the clutch is open)."""

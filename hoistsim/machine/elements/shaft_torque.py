@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from ..._pytree import static
 from ._shaft_work import AbstractShaftWork
-from ._signal import signal_at, signal_fields, signal_tables
+from ._signal import harmonics_step, signal_at, signal_fields, signal_tables
 
 
 class ShaftTorque(AbstractShaftWork):
@@ -35,6 +35,9 @@ class ShaftTorque(AbstractShaftWork):
 
     def torque(self, x):
         return signal_at(self, x, "torque")
+
+    def longest_step(self):
+        return harmonics_step(self, "torque")
 
     def outputs(self, x) -> dict:
         return {self.section: self.torque(x)}
