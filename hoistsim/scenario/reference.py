@@ -185,7 +185,9 @@ class _Writer:
 
     def section(self, heading: str, model: type[Section], kind: str, level: int) -> None:
         self.placed[model] = heading
-        self.lines += ["", f"{'#' * level} {heading}", ""]
+        # <name> written as entities: raw, Markdown renderers other than GitHub's take it for an HTML tag and drop it
+        shown = heading.replace("<", "&lt;").replace(">", "&gt;")
+        self.lines += ["", f"{'#' * level} {shown}", ""]
         intro = _first_line(model.__doc__) if model.__doc__ and model.__doc__ != Section.__doc__ else ""
         if kind == "by name":
             intro += (" " if intro else "") + "Sections by name: each name (a word) names the part and its outputs."

@@ -3,6 +3,7 @@ schema writes now (regenerate with ``python -m hoistsim.scenario.reference``).""
 
 from __future__ import annotations
 
+import html
 import re
 import types
 import typing
@@ -53,7 +54,7 @@ def tables_of(text: str) -> dict[str, dict[str, str]]:
     heading = None
     for line in text.splitlines():
         if line.startswith("#"):
-            heading = line.lstrip("#").strip()
+            heading = html.unescape(line.lstrip("#").strip())  # <name> is written as entities
             found[heading] = {}
         elif heading is not None and (match := re.match(r"\| `([A-Za-z_0-9]+)` \|", line)):
             found[heading][match.group(1)] = line
@@ -104,7 +105,7 @@ def test_every_row_says_what_its_key_means():
 
 def test_every_link_reaches_a_heading():
     text = DOC.read_text(encoding="utf-8")
-    targets = {anchor(line.lstrip("#").strip()) for line in text.splitlines() if line.startswith("#")}
+    targets = {anchor(html.unescape(line.lstrip("#").strip())) for line in text.splitlines() if line.startswith("#")}
     links = re.findall(r"\]\(#([^)]+)\)", text)
     assert links and not [link for link in links if link not in targets]
 
