@@ -8,8 +8,8 @@ import re
 import subprocess
 import sys
 
-import yaml
 from helpers import ROOT
+from ruamel.yaml import YAML
 
 DOCS = ROOT / "docs"
 
@@ -26,7 +26,7 @@ def test_the_site_builds_strictly_and_every_page_is_there(tmp_path):
     built = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "--site-dir", str(tmp_path)],
                            cwd=ROOT, capture_output=True, text=True, timeout=300)
     assert built.returncode == 0, built.stderr[-3000:]
-    pages = _nav_pages(yaml.safe_load((ROOT / "mkdocs.yml").read_text(encoding="utf-8"))["nav"])
+    pages = _nav_pages(YAML(typ="safe").load((ROOT / "mkdocs.yml").read_text(encoding="utf-8"))["nav"])
     assert sorted(pages) == sorted(path.name for path in DOCS.glob("*.md"))
     for page in pages:
         html = (tmp_path / page.replace(".md", ".html")).read_text(encoding="utf-8")
