@@ -201,7 +201,7 @@ def _friction_independent(m, starts, velocities, ends, frictions, springs, force
                            rtol=1e-12, atol=1e-14, max_step=5e-3)
         end = solved.t[-1]
         inside = times[(times >= t) & (times <= end)]
-        out.append((inside, solved.sol(inside)[:3]) if len(inside) else (inside, np.zeros((3, 0))))
+        out.append(solved.sol(inside)[:3] if len(inside) else np.zeros((3, 0)))
         if solved.status == 0:
             break
         fired = [k for k, hits in enumerate(solved.t_events) if len(hits)]
@@ -230,7 +230,7 @@ def _friction_independent(m, starts, velocities, ends, frictions, springs, force
         times = times[times > end]
     else:
         raise _NoProgress
-    return np.concatenate([piece for _, piece in out], axis=1)
+    return np.concatenate(out, axis=1)
 
 
 frictions = st.tuples(st.floats(0.5, 5.0), st.floats(0.0, 3.0), st.floats(0.0, 5.0), st.floats(0.0, 2.0),

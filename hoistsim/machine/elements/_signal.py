@@ -40,14 +40,13 @@ def signal_at(element, x, prefix: str):
     return x.table(f"{element.section}.{prefix}") + harmonics
 
 
-def harmonics_step(element, *prefixes: str):
-    """The longest step the harmonics of an element's signals ``prefixes`` allow (s): an eighth of the shortest
-    period, so that every quarter swing has a step's end in it; None where no signal has harmonics."""
-    frequencies = [getattr(element, f"{prefix}_frequencies") for prefix in prefixes]
-    frequencies = [f for f in frequencies if f is not None and f.shape[0] > 0]
-    if not frequencies:
+def harmonics_step(element, prefix: str):
+    """The longest step the harmonics of an element's signal ``prefix`` allow (s): an eighth of their shortest
+    period, so that every quarter swing has a step's end in it; None where it has none (or no such signal)."""
+    frequencies = getattr(element, f"{prefix}_frequencies")
+    if frequencies is None or frequencies.shape[0] == 0:
         return None
-    return 1.0 / (8.0 * jnp.max(jnp.abs(jnp.concatenate(frequencies))))
+    return 1.0 / (8.0 * jnp.max(jnp.abs(frequencies)))
 
 
 def harmonics_at(t, amplitudes, frequencies, phases):

@@ -7,7 +7,7 @@ import jax.numpy as jnp
 from ..._pytree import static
 from ..core.element import AbstractElement
 from ._knots import knots_passed
-from ._signal import signal_at, signal_fields, signal_tables
+from ._signal import harmonics_step, signal_at, signal_fields, signal_tables
 
 
 class Vehicle(AbstractElement):
@@ -68,6 +68,10 @@ class Vehicle(AbstractElement):
 
     def tables(self) -> dict:
         return signal_tables(self, "inclination") if self.inclined else {}
+
+    def longest_step(self):
+        # a grade swinging in time swings the force a held vehicle's friction carries
+        return harmonics_step(self, "inclination")
 
     def _angle_cos_sin(self, x):
         if not self.inclined:
