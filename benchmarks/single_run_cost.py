@@ -1,7 +1,7 @@
 """What one run costs: a step attempt and a pass of each shipped scene against a fused one-lane Dormand-Prince step.
 
 For every single-run scenario (``scenarios/*.yaml`` without a ``sweep:``), every Modelica example
-(``scenarios/modelica/*.yaml``), the README's drawn drivetrain with every kind of part, and a stick-slip
+(``scenarios/modelica/*.yaml``), the drawing guide's drivetrain with every kind of part, and a stick-slip
 chain (a drive turning a hub through a clutch, a spring from the hub to a block, the block dragged by a
 clutch to the ground; 20 s), in this one process:
 
@@ -64,6 +64,8 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+# the page of the site that draws a drivetrain with every kind of part
+EVERY_PART_PAGE = "docs/how-to/draw-a-drivetrain.md"
 SCENARIOS = ROOT / "scenarios"
 
 # a drive pulling a block through a clutch and a spring, the block dragged by a clutch to the ground: it sticks
@@ -88,16 +90,16 @@ def chain_yaml(n: int) -> str:
 
 
 def every_part_drivetrain() -> str:
-    """The README's drawn drivetrain with every kind of part (its block that starts ``name: every-drawn-part``)."""
-    text = (ROOT / "README.md").read_text()
+    """The drawing guide's drivetrain with every kind of part (its block that starts ``name: every-drawn-part``)."""
+    text = (ROOT / EVERY_PART_PAGE).read_text()
     block = re.search(r"```yaml\n(name: every-drawn-part.*?)```", text, re.DOTALL)
-    assert block, "README.md no longer has the every-part drivetrain's block"
+    assert block, f"{EVERY_PART_PAGE} no longer has the every-part drivetrain's block"
     return block.group(1)
 
 
 def scene_paths(folder: Path) -> dict[str, Path]:
     """Every single-run scene by name: the scenarios without a sweep, the Modelica examples, the stick-slip
-    chain and the README's every-part drivetrain (written to ``folder``)."""
+    chain and the drawing guide's every-part drivetrain (written to ``folder``)."""
     out = {}
     for path in sorted(SCENARIOS.glob("*.yaml")):
         if not re.search(r"^sweep:", path.read_text(), re.MULTILINE):

@@ -1,13 +1,15 @@
-"""Run every command of the README from a clean clone, as a newcomer would: a maintainer's check before a release.
+"""Run every command of the README and the documentation site from a clean clone, as a newcomer would: a
+maintainer's check before a release.
 
-    python docs/check_readme.py [REPO] [--venv PATH] [--tests quick|all] [--long] [--keep] [--list]
+    python docs/check_readme.py [REPO] [--venv PATH] [--tests quick|all] [--long] [--keep] [--list] [--pages P,..]
 
-The commands are read from README.md's ```sh blocks (a line that starts with a space, or follows one
-ending in a backslash, goes on the command above; ``# ...`` is a comment) and from its inline code
-that begins with ``hoistsim``, ``python`` or ``pip`` (with or without ``.venv/bin/``) and says more
+The pages are README.md, then the site's (docs/) in the order of mkdocs.yml's navigation, then any other page of
+docs/ (``--pages`` names some of them instead).  The commands are read from each page's ```sh blocks (a line
+that starts with a space, or follows one ending in a backslash, goes on the command above; ``# ...`` is a
+comment) and from its inline code that begins with ``hoistsim``, ``python`` or ``pip`` (with or without ``.venv/bin/``) and says more
 than a bare subcommand.  REPO (default: the repository this file sits in, its checked-out branch) is
 cloned into a temporary folder, the environment made there as the README says (or ``--venv`` linked
-in as ``.venv``, skipping the install), and each command run in README order from the clone, with
+in as ``.venv``, skipping the install), and each command run in the pages' order from the clone's root, with
 ``.venv/bin`` first on PATH (the README's "activate it") and an empty folder of compiled programs
 (the first run compiles, as a newcomer's does).  A table gives each command's exit status and wall
 time; any failure makes the exit status 1.
@@ -48,7 +50,9 @@ PLACEHOLDERS = {
            "OUT.h5": "reference_out.h5", "FIG.png": "reference_fig.png"},
     # a flywheel is sized for a machine with a periodic regime: the README's own example
     "flywheel": {"SCENARIO.yaml": "scenarios/motor_ripple_tredgold.yaml"},
-    "sensitivity": {"KEY,KEY": "load.mass,clutch.kinetic_friction"},
+    # a sensitivity of every run of a sweep: the sensitivities guide's own (one program for both)
+    "sensitivity": {"SCENARIO.yaml": "scenarios/force_sweep_engage_at_speed.yaml",
+                    "KEY,KEY": "clutch.kinetic_friction,load.mass"},
     # a fit needs a trace of its scene: the README's own rig
     "fit": {"SCENARIO.yaml": "scenarios/clutch_rig.yaml", "TRACE.csv": "scenarios/clutch_rig_trace.csv",
             "SERIES,..": "motor_speed,drum_speed", "KEY,..": "clutch.static_friction,clutch.kinetic_friction",
@@ -70,10 +74,15 @@ _PLACEHOLDER = re.compile(r"^[A-Z][A-Z0-9_]*(?:\.[a-z0-9]+)?$")
 class Command:
     """One command of the README: where it is written and its words (comments dropped)."""
 
-    line: int  # the README's line (1-based) where it starts
+    line: int  # the page's line (1-based) where it starts
     text: str  # as written, continuation lines joined
     inline: bool  # written in a sentence, not in a ```sh block
     words: list[str] = field(default_factory=list)
+    page: str = "README.md"  # the page it is written on, relative to the repository
+
+    @property
+    def where(self) -> str:
+        return f"{self.page}:{self.line}"
 
     def steps(self) -> list[list[str]]:
         """The commands of an ``a && b`` chain, each a list of words."""
@@ -113,7 +122,7 @@ class Step:
 # --- reading the README ----------------------------------------------------------------------------
 
 def sh_blocks(text: str) -> list[tuple[int, list[str]]]:
-    """Each ```sh block: the README line of its first line (1-based) and its lines."""
+    """Each ```sh block: the page's line of its first line (1-based) and its lines."""
     blocks, lines, start, inside = [], text.splitlines(), 0, None
     for number, line in enumerate(lines, 1):
         fence = line.strip()
@@ -130,7 +139,7 @@ def sh_blocks(text: str) -> list[tuple[int, list[str]]]:
     return blocks
 
 
-def block_commands(text: str) -> list[Command]:
+def block_commands(text: str, page: str = "README.md") -> list[Command]:
     """Every command of every ```sh block."""
     found = []
     for start, body in sh_blocks(text):
@@ -142,14 +151,14 @@ def block_commands(text: str) -> list[Command]:
             if found and (continues or line[:1].isspace()) and found[-1].line >= start:
                 found[-1].text += "\n" + line
             else:
-                found.append(Command(start + offset, line, inline=False))
+                found.append(Command(start + offset, line, inline=False, page=page))
             continues = line.rstrip().endswith("\\")
     for command in found:
         command.words = shlex.split(command.text.replace("\\\n", " "), comments=True)
     return found
 
 
-def inline_commands(text: str) -> list[Command]:
+def inline_commands(text: str, page: str = "README.md") -> list[Command]:
     """Commands written inline (`hoistsim run scenarios/x.yaml -o x.h5`), outside fenced blocks.
 
     A bare subcommand (`hoistsim plot`) names the command and is not one.
@@ -171,13 +180,27 @@ def inline_commands(text: str) -> list[Command]:
         program = Path(words[0]).name
         if program == "hoistsim" and len(words) < 3:
             continue
-        found.append(Command(prose.count("\n", 0, match.start()) + 1, span, inline=True, words=words))
+        found.append(Command(prose.count("\n", 0, match.start()) + 1, span, inline=True, words=words, page=page))
     return found
 
 
-def commands(text: str) -> list[Command]:
-    """Every command of the README in the order it is written."""
-    return sorted(block_commands(text) + inline_commands(text), key=lambda command: command.line)
+def commands(text: str, page: str = "README.md") -> list[Command]:
+    """Every command of a page in the order it is written."""
+    return sorted(block_commands(text, page) + inline_commands(text, page), key=lambda command: command.line)
+
+
+def site_pages(repo: Path) -> list[str]:
+    """README.md, then the site's pages in the order of mkdocs.yml's navigation, then any other page of docs/."""
+    listed = re.findall(r"^\s*-\s*(?:[^\n]*?:\s+)?([\w./-]+\.md)\s*$", _nav_text(repo), flags=re.M)
+    others = sorted(path.relative_to(repo / "docs").as_posix() for path in (repo / "docs").rglob("*.md"))
+    ordered = list(dict.fromkeys(listed + others))
+    return ["README.md", *(f"docs/{page}" for page in ordered if (repo / "docs" / page).exists())]
+
+
+def _nav_text(repo: Path) -> str:
+    config = repo / "mkdocs.yml"
+    text = config.read_text(encoding="utf-8") if config.exists() else ""
+    return text[text.find("\nnav:"):] if "\nnav:" in text else ""
 
 
 def _without_optional(words: list[str]) -> tuple[list[str], list[str]]:
@@ -201,10 +224,12 @@ def _sweep_runs(words: list[str]) -> int:
     return runs
 
 
-def plan(text: str, *, tests: str = "none", long: bool = False, venv: bool = False) -> list[Step]:
-    """The README's commands as steps to run, each with what is done with it and why."""
-    steps, previous = [], {}
-    for command in commands(text):
+def plan(text: str, *, page: str = "README.md", tests: str = "none", long: bool = False, venv: bool = False,
+         earlier_steps: list[Step] | None = None) -> list[Step]:
+    """A page's commands as steps to run, each with what is done with it and why (``earlier_steps``: the
+    pages' before it, whose test suite is not run twice)."""
+    steps, previous, before = [], {}, earlier_steps or []
+    for command in commands(text, page):
         for words in command.steps():
             words, optional = _without_optional(words)
             step = Step(command, words, optional)
@@ -217,10 +242,19 @@ def plan(text: str, *, tests: str = "none", long: bool = False, venv: bool = Fal
             if sub:
                 previous[sub] = step.words[2:]
             _decide(step, tests=tests, long=long, venv=venv)
-            earlier = [s for s in steps if s.shell == step.shell and s.handling == step.handling == "run"]
+            earlier = [s for s in before + steps if s.shell == step.shell and s.handling == step.handling == "run"]
             if earlier and "pytest" in step.words:  # the suite written twice is run once
-                step.handling, step.reason = "skip", f"run above, README line {earlier[0].command.line}"
+                step.handling, step.reason = "skip", f"run above, {earlier[0].command.where}"
             steps.append(step)
+    return steps
+
+
+def plan_site(repo: Path, pages: list[str] | None = None, **options) -> list[Step]:
+    """Every page's steps, README.md first (``pages``: these only, in this order)."""
+    steps = []
+    for page in pages or site_pages(repo):
+        text = (repo / page).read_text(encoding="utf-8")
+        steps += plan(text, page=page, earlier_steps=steps, **options)
     return steps
 
 
@@ -233,7 +267,7 @@ def _decide(step: Step, *, tests: str, long: bool, venv: bool) -> None:
         else:
             step.handling = "skip"
             step.reason = ("the quick test loop, minutes: --tests quick runs it" if quick
-                           else "the whole test suite, about 13 minutes here: --tests all runs it")
+                           else "the whole test suite, tens of minutes: --tests all runs it")
     elif venv and (words[:3] == ["python3", "-m", "venv"] or program == "pip"):
         step.handling, step.reason = "skip", "the environment given with --venv"
     elif program.startswith("python") and words[1:2] == ["docs/check_readme.py"]:
@@ -356,13 +390,14 @@ def _short(text: str, width: int) -> str:
 
 
 def table(rows: list[tuple[Step, Outcome]]) -> str:
-    out = [f"{'#':>2}  {'line':>4}  {'exit':>4}  {'wall s':>7}  command", "-" * 100]
+    width = max([len(step.command.where) for step, _ in rows] + [5])
+    out = [f"{'#':>3}  {'where':<{width}}  {'exit':>4}  {'wall s':>7}  command", "-" * (width + 100)]
     for number, (step, outcome) in enumerate(rows, 1):
         status = "skip" if outcome.status is None else str(outcome.status)
         wall = "" if outcome.status is None else f"{outcome.wall:7.1f}"
-        out.append(f"{number:>2}  {step.command.line:>4}  {status:>4}  {wall:>7}  {_short(step.shell, 78)}")
+        out.append(f"{number:>3}  {step.command.where:<{width}}  {status:>4}  {wall:>7}  {_short(step.shell, 78)}")
         if outcome.note:
-            out.append(f"{'':>24}({outcome.note})")
+            out.append(f"{'':>{width + 22}}({outcome.note})")
     return "\n".join(out)
 
 
@@ -376,21 +411,23 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--keep", action="store_true", help="keep the clone (its path is printed)")
     parser.add_argument("--list", action="store_true", help="print the commands and what is done with each; run none")
     parser.add_argument("--timeout", type=float, default=1800.0, help="seconds one command may take")
+    parser.add_argument("--pages", help="only these pages, comma-separated (README.md, docs/how-to/lift-off.md, ...)")
     args = parser.parse_args(argv)
 
-    readme = (Path(args.repo) / "README.md").read_text(encoding="utf-8")
-    steps = plan(readme, tests=args.tests, long=args.long, venv=bool(args.venv))
+    pages = args.pages.split(",") if args.pages else None
+    options = dict(tests=args.tests, long=args.long, venv=bool(args.venv))
+    steps = plan_site(Path(args.repo), pages, **options)
     if args.list:
         for step in steps:
-            print(f"{step.command.line:>4}  {step.handling:<5}  {step.shell}" + (f"   ({step.reason})" if step.reason else ""))
+            reason = f"   ({step.reason})" if step.reason else ""
+            print(f"{step.command.where}  {step.handling:<5}  {step.shell}{reason}")
         return 0
 
     folder = Path(tempfile.mkdtemp(prefix="check_readme_"))
     clone, cache = folder / "hoistsim", folder / "compiled"
     cache.mkdir()
     print(f"cloning {args.repo} into {clone}: {clone_repository(Path(args.repo), clone)}", flush=True)
-    readme = (clone / "README.md").read_text(encoding="utf-8")  # the clone's, which is what is run
-    steps = plan(readme, tests=args.tests, long=args.long, venv=bool(args.venv))
+    steps = plan_site(clone, pages, **options)  # the clone's pages, which is what is run
     if args.venv:
         (clone / ".venv").symlink_to(Path(args.venv).resolve())
     env = _environment(clone, cache)
@@ -400,7 +437,7 @@ def main(argv: list[str] | None = None) -> int:
             outcome = run_step(step, clone, env, args.timeout)
             rows.append((step, outcome))
             status = "skip" if outcome.status is None else f"exit {outcome.status}, {outcome.wall:.1f} s"
-            print(f"line {step.command.line}: {status}: {step.shell}", flush=True)
+            print(f"{step.command.where}: {status}: {step.shell}", flush=True)
             if outcome.status:
                 print("    " + outcome.tail.replace("\n", "\n    "), flush=True)
     finally:

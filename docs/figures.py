@@ -1,4 +1,4 @@
-"""Regenerate the README's figures from the shipped scenarios, with the commands the README shows.
+"""Regenerate the site's figures from the shipped scenarios, with the commands its pages show.
 
     python docs/figures.py                      # every figure, into docs/ (about 6 minutes on 2 cores)
     python docs/figures.py force_sweep ...      # only these
@@ -60,13 +60,13 @@ def _flywheel(scenario: str, irregularity: str, name: str):
 def _work_precision(output: Path, work: Path) -> list[Path]:
     from hoistsim.studies.work_precision import read_csv, write_figure
 
-    results = ROOT / "benchmarks" / "results"
-    target = output / "work_precision.png" if output != ROOT / "docs" else results / "work_precision.png"
-    write_figure(read_csv(results / "work_precision.csv"), target)
+    # drawn from the study's kept numbers (benchmarks/work_precision.py measures them, minutes), for the site
+    target = output / "work_precision.png"
+    write_figure(read_csv(ROOT / "benchmarks" / "results" / "work_precision.csv"), target)
     return [target]
 
 
-# name -> (what it runs, how to make it); the README shows each under docs/ (work_precision: benchmarks/results/)
+# name -> (what it runs, how to make it); the site shows each from docs/
 FIGURES = {
     "first_scenario": ("hoistsim run + plot scenarios/first_scenario.yaml",
                        _run_and_plot("first_scenario.yaml", {"": "first_scenario.png"})),

@@ -60,8 +60,8 @@ def _compiled_programs_within_the_map_limit():
 
 
 # What one test process may hold before it lets its compiled programs go: the machine's memory (24 GB on
-# CI's 2 cores) is shared by the two test processes and what they compile (the README's every-part
-# drivetrain peaks at some 7 GB while XLA compiles it); a process that kept every program of the modules it
+# CI's 2 cores) is shared by the two test processes and what they compile (the drawing guide's
+# every-part drivetrain peaks at some 7 GB while XLA compiles it); a process that kept every program of the modules it
 # ran grew past 10 GB, and two of them and a compile ran the machine out of memory.
 RESIDENT_BUDGET = 5e9  # bytes
 

@@ -3,8 +3,8 @@ run), the file opened with h5py and as the README says (``hoistsim.open_results`
 figures drawn from that file and held to what every figure must be (legible.py).
 
 The scenes are the shipped scenarios (``scenarios/*.yaml``), the Modelica examples (``scenarios/modelica``) and
-every ``yaml`` block of README.md and docs/*.md that is a whole scene; each has a test module of its own,
-so the two test processes share them out.  A scene that simulates but cannot be written (a bearing friction
+every ``yaml`` block of README.md and the site's pages (docs/, every folder) that is a whole scene; each has a test
+module of its own, so the two test processes share them out.  A scene that simulates but cannot be written (a bearing friction
 once named its heat ``<name>_energy`` both as a series and as a summary) fails here, a block a user would copy
 that does not load at all fails here, and so does a figure whose names run over each other or its curves.
 
@@ -32,12 +32,12 @@ from hoistsim.figures.files import draw_figures  # noqa: E402
 from hoistsim.figures.frames import FreshFrames  # noqa: E402
 from hoistsim.scenario.sweep_runs import SweepRuns  # noqa: E402
 
-DOCUMENTS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+DOCUMENTS = [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]
 _YAML_BLOCK = re.compile(r"^```ya?ml[ \t]*\n(.*?)^```", re.S | re.M)
 
 # Blocks of the documents that are not a whole scene, by their file and first line: why each is not.
 FRAGMENTS = {
-    ("README.md", "name: exercise6-direct-start"):
+    ("docs/scenario-files.md", "name: exercise6-direct-start"):
         "the reference of every key of a hoist scene: alternatives side by side (`gears:` given twice), "
         "not one scene",
 }

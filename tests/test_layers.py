@@ -18,7 +18,7 @@ PACKAGE = Path(hoistsim.__file__).parent
 # lowest first; each entry is a module or a folder of hoistsim
 LAYERS = (
     ("foundation", ("errors", "cache_folders", "program_pool", "program_origin", "stored_programs", "program_hints",
-                    "_jax", "_pytree", "__init__")),
+                    "_jax", "_pytree", "switch_kinds", "__init__")),
     ("components", ("components",)),
     ("display", ("display",)),
     ("scenario", ("scenario",)),

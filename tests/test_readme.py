@@ -1,5 +1,6 @@
-"""The README's commands as docs/check_readme.py reads them: all found, every file and option real; its
-first screen a quick-start, and its first scenario the shipped template, whose numbers are the runs'.
+"""The commands of the README and the site's pages as docs/check_readme.py reads them: all found, every file and
+option real; the README short, its first screen a quick-start and its ten-line scenario the shipped template's;
+the walk-through's numbers the runs'.
 
 No command is run here (docs/check_readme.py runs them from a clean clone, minutes): the commands are
 read, and each one's subcommand and options are looked up in the command line itself. The template and
@@ -17,6 +18,7 @@ import pytest
 from helpers import ROOT
 
 README = (ROOT / "README.md").read_text(encoding="utf-8")
+GETTING_STARTED = (ROOT / "docs" / "getting-started.md").read_text(encoding="utf-8")
 
 
 def _load_checker():
@@ -28,7 +30,8 @@ def _load_checker():
 
 
 check_readme = _load_checker()
-STEPS = check_readme.plan(README)
+PAGES = check_readme.site_pages(ROOT)
+STEPS = check_readme.plan_site(ROOT)
 
 
 def _options(subcommand: str | None) -> set[str]:
@@ -40,16 +43,23 @@ def _options(subcommand: str | None) -> set[str]:
             if name.startswith("-")} | {"--help", "-h"}
 
 
-def test_every_line_of_every_sh_block_is_in_a_command():
+def test_the_pages_are_the_readme_and_every_page_of_the_site():
+    assert PAGES[0] == "README.md"
+    assert set(PAGES[1:]) == {f"docs/{path.relative_to(ROOT / 'docs').as_posix()}"
+                              for path in (ROOT / "docs").rglob("*.md")}
+    assert PAGES.index("docs/index.md") < PAGES.index("docs/getting-started.md") < PAGES.index("docs/scenario.md")
+
+
+@pytest.mark.parametrize("page", PAGES)
+def test_every_line_of_every_sh_block_is_in_a_command(page):
     """A line of a ```sh block is blank, a comment of its own, or part of one command found."""
-    blocks = check_readme.sh_blocks(README)
-    assert len(blocks) >= 5
-    found = check_readme.block_commands(README)
+    text = (ROOT / page).read_text(encoding="utf-8")
+    found = check_readme.block_commands(text, page)
     covered = {command.line + offset for command in found for offset in range(command.text.count("\n") + 1)}
-    for start, body in blocks:
+    for start, body in check_readme.sh_blocks(text):
         for number, line in enumerate(body, start):
             if line.strip() and not line.startswith("#"):
-                assert number in covered, f"README line {number} is in no command: {line!r}"
+                assert number in covered, f"{page} line {number} is in no command: {line!r}"
     assert all(command.words for command in found)
     assert all(not command.text[:1].isspace() for command in found)
 
@@ -62,22 +72,22 @@ def test_the_opening_commands_are_read_whole():
 
 
 def test_inline_commands_are_found_and_mentions_left():
-    inline = [command.text for command in check_readme.inline_commands(README)]
+    inline = [step.command.text for step in STEPS if step.command.inline]
     assert "hoistsim check scenarios/lift_off_the_ground.yaml" in inline
     assert "hoistsim statics scenarios/exercise6_constant_speed.yaml" in inline
     assert not [text for text in inline if re.fullmatch(r"(\.venv/bin/)?hoistsim \w+", text)]
 
 
-@pytest.mark.parametrize("step", [s for s in STEPS if s.subcommand], ids=lambda s: f"line{s.command.line}")
+@pytest.mark.parametrize("step", [s for s in STEPS if s.subcommand], ids=lambda s: s.command.where)
 def test_every_subcommand_and_option_exists(step):
     from hoistsim.cli import main
 
-    assert step.subcommand in main.commands, f"line {step.command.line}: no `hoistsim {step.subcommand}`"
+    assert step.subcommand in main.commands, f"{step.command.where}: no `hoistsim {step.subcommand}`"
     known = _options(step.subcommand)
     for word in step.words[2:] + step.optional:
         option = word.split("=", 1)[0]
         if option.startswith("-") and not re.fullmatch(r"-\d.*", option):
-            assert option in known, f"line {step.command.line}: `hoistsim {step.subcommand}` has no {option}"
+            assert option in known, f"{step.command.where}: `hoistsim {step.subcommand}` has no {option}"
 
 
 def test_required_options_are_given():
@@ -89,22 +99,22 @@ def test_required_options_are_given():
             for parameter in main.commands[step.subcommand].params:
                 if parameter.required and parameter.opts[0].startswith("-"):
                     assert set(parameter.opts) & set(step.words), \
-                        f"line {step.command.line}: `{step.shell}` lacks {parameter.opts[0]}"
+                        f"{step.command.where}: `{step.shell}` lacks {parameter.opts[0]}"
 
 
 def test_every_file_a_command_names_exists():
     for step in STEPS:
         for word in step.words + step.optional:
             if re.match(r"(scenarios|benchmarks|docs|tests)/", word):
-                assert (ROOT / word).exists(), f"line {step.command.line}: {word} is not in the repository"
+                assert (ROOT / word).exists(), f"{step.command.where}: {word} is not in the repository"
 
 
 def test_every_placeholder_is_filled_in():
     for step in STEPS:
         if step.handling != "skip":
             left = [word for word in step.words if check_readme._PLACEHOLDER.match(word) and word != "...."]
-            assert not left, f"line {step.command.line}: {left} not in check_readme.PLACEHOLDERS"
-            assert "..." not in step.words, f"line {step.command.line}: `...` with no command above to stand for"
+            assert not left, f"{step.command.where}: {left} not in check_readme.PLACEHOLDERS"
+            assert "..." not in step.words, f"{step.command.where}: `...` with no command above to stand for"
 
 
 def test_long_commands_are_handled_deliberately():
@@ -116,8 +126,10 @@ def test_long_commands_are_handled_deliberately():
     million = [step for step in STEPS if "1000000" in step.shell]
     assert million and all(step.handling == "skip" and "--long" in step.reason for step in million)
     assert all(step.handling == "skip" for step in STEPS if step.words[1:2] and step.words[1].startswith("benchmarks/"))
-    assert check_readme.plan(README, tests="all", long=True)  # the flags that run them do not break the plan
-    assert {step.handling for step in check_readme.plan(README, venv=True) if step.program == "pip"} == {"skip"}
+    assert check_readme.plan_site(ROOT, tests="all", long=True)  # the flags that run them do not break the plan
+    assert {step.handling for step in check_readme.plan_site(ROOT, venv=True) if step.program == "pip"} == {"skip"}
+    suites = [step for step in check_readme.plan_site(ROOT, tests="all") if step.shell == ".venv/bin/python -m pytest"]
+    assert [step.handling for step in suites] == ["run"] + ["skip"] * (len(suites) - 1)  # the suite run once
 
 
 def test_the_list_mode_runs_nothing(capsys):
@@ -141,7 +153,7 @@ def test_a_clone_runs_the_commands_and_a_failure_fails(tmp_path, capsys):
     venv = tmp_path / "venv"
     (venv / "bin").mkdir(parents=True)
     assert check_readme.main([str(repo), "--venv", str(venv)]) == 1
-    table = capsys.readouterr().out.split(" #  line")[1].split("\n\n")[0].splitlines()[2:]
+    table = capsys.readouterr().out.split("#  where")[1].split("\n\n")[0].splitlines()[2:]
     assert [row.split()[2] for row in table if row.split()[:1] and row.split()[0].isdigit()] == ["skip", "0", "0", "0", "1"]
     assert "the environment given with --venv" in "\n".join(table)
 
@@ -149,14 +161,14 @@ def test_a_clone_runs_the_commands_and_a_failure_fails(tmp_path, capsys):
 # --- the first screen and the first scenario --------------------------------------------------------
 
 FIRST_SCENARIO = ROOT / "scenarios" / "first_scenario.yaml"
-FIRST_SCREEN = "\n".join(README.splitlines()[:60])
+FIRST_SCREEN = "\n".join(README.splitlines()[:40])
 
 
-def _section(title: str) -> str:
-    """The README's ``## title`` section, up to the next ``## `` heading."""
-    start = README.index(f"\n## {title}\n")
-    end = README.find("\n## ", start + 1)
-    return README[start:end if end > 0 else None]
+def _section(title: str, text: str = GETTING_STARTED) -> str:
+    """A page's ``## title`` section (getting-started.md's by default), up to the next ``## `` heading."""
+    start = text.index(f"\n## {title}\n")
+    end = text.find("\n## ", start + 1)
+    return text[start:end if end > 0 else None]
 
 
 def _fenced(text: str, language: str) -> list[str]:
@@ -177,9 +189,30 @@ def test_the_first_screen_is_the_quick_start():
     assert "the first run of a scene: it compiles the scene's solver first" in FIRST_SCREEN
     assert "a later run of the same structure" in FIRST_SCREEN and "0.9 s" in FIRST_SCREEN
     assert "compiles again" in FIRST_SCREEN
-    assert "[Your first scenario](#your-first-scenario)" in FIRST_SCREEN
-    assert FIRST_SCREEN.count("\n## ") <= 1  # the quick-start, then at most the walk-through's heading
+    assert FIRST_SCREEN.count("\n## ") <= 1  # the quick-start, then at most the next heading
     assert "benchmarks/README.md" in FIRST_SCREEN  # where the measurements' history went
+
+
+def test_the_readme_fits_on_two_screens_and_leads_into_the_site():
+    """At most 200 lines: what it is, a figure, the two commands, a ten-line scenario, and every page of the
+    site's navigation linked (the pages read as Markdown on the repository's host too)."""
+    assert len(README.splitlines()) <= 200
+    assert README.count("![") == 1
+    linked = set(re.findall(r"\]\((docs/[^)#\s]+)", README))
+    for target in linked:
+        assert (ROOT / target).exists(), f"README links {target}, which is not there"
+    nav = set(re.findall(r":\s+([\w./-]+\.md)\s*$", check_readme._nav_text(ROOT), flags=re.M))
+    assert {f"docs/{page}" for page in nav if not page.startswith("gallery/") and page != "index.md"} <= linked
+    assert "docs/gallery/index.md" in linked
+
+
+def test_the_readme_scenario_in_ten_lines_is_the_template():
+    """The README's scenario is scenarios/first_scenario.yaml without its comments: the same keys and values."""
+    from ruamel.yaml import YAML
+
+    block = _fenced(_section("Your first scenario, in ten lines", README), "yaml")[0]
+    assert len(block.splitlines()) <= 10
+    assert YAML(typ="safe").load(block) == YAML(typ="safe").load(FIRST_SCENARIO.read_text(encoding="utf-8"))
 
 
 def test_the_readme_shows_the_first_scenario_whole():

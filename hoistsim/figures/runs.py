@@ -18,6 +18,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..display import DISPLAYS, headline
+from ..switch_kinds import SWITCH_KINDS
 from .base import colour_scale, flat_where_round_off, row_text, swept_label
 from .frames import FrameSpec, FreshFrames
 from .marks import draw_marks, time_limits
@@ -233,10 +234,11 @@ def _shade(axes, run, shading):
 
 
 def _event_text(row) -> str:
-    """What a line's label says: a coupling's switch names the coupling ("mesh unlock"), a scheduled event
-    names itself ("brake release")."""
+    """What a line's label says: a coupling's switch of the core's kinds names the coupling ("mesh unlock"); a
+    switch its part renamed ("rope taut", "lift off") and a scheduled event name themselves ("brake release")."""
     kind = _kind(row)
-    text = f"{row_text(row, 'element')} {kind}" if row_text(row, "category") == "switch" else kind
+    text = f"{row_text(row, 'element')} {kind}" if row_text(row, "category") == "switch" and kind in SWITCH_KINDS \
+        else kind
     return text.replace("_", " ")
 
 

@@ -11,7 +11,7 @@ breakaway, the rope going slack or taut, the load lifting off or landing.  The
 roots are bracketed on a fine sampling of the trajectory and refined by Brent's
 method to round-off.
 
-Written from the equations (the rope's law in the README), not from the elements:
+Written from the equations (the rope's law in docs/how-to/lift-off.md), not from the elements:
 the bodies, the clutch's static check and the rope's law are stated here again.
 """
 

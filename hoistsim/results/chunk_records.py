@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..machine.core.element import MODE_NAMES
-from ..machine.core.layout import SWITCH_KINDS, Layout
+from ..machine.core.layout import Layout
 from ..machine.core.ledger import balance_columns
 from ..machine.core.readout import EVENT_COUNT, PASSES, REJECTED, STEPS, SWITCHES, BatchReadout
 from .records import INSTANT_COLUMNS, TEXT_COLUMNS, Record, summary_values
@@ -30,7 +30,7 @@ def instant_categories(layout: Layout, kinds) -> np.ndarray:
     limits = {layout.name(kind) for element in layout.elements for kind in element.limits}
     cycles = [kind for _, _, kind in layout.cycles]
     return np.asarray(["limit" if k in limits else "observation" if k in layout.observation_kinds
-                       else "cycle" if k in cycles else "switch" if k in SWITCH_KINDS else "scheduled"
+                       else "cycle" if k in cycles else "switch" if k in layout.switch_kinds else "scheduled"
                        for k in kinds], dtype=object)
 
 

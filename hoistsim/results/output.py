@@ -6,7 +6,7 @@ one run written at once (one record, handed over in memory) and a sweep streamed
 as its chunks finish (records kept as files, :mod:`hoistsim.running.streaming`)
 take the same path.  Reading is :mod:`hoistsim.results.reading`.
 
-Format 2 (the contract's names; see README), one layout for one run or a million:
+Format 2 (its names and units are docs/output.md), one layout for one run or a million:
 
     /runs          ``xarray.open_dataset(path, group="runs", engine="h5netcdf")`` is one Dataset:
                    run (run) and time (time, the output grid) dimension scales; every series on

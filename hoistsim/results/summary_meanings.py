@@ -81,6 +81,9 @@ _PATTERNS = [
     (r"(?P<part>.+)_proven_torque", "torque drive {part} had proven when its brake let go",
      "NaN: never released"),
     (r"(?P<part>.+)_release_time", "time drive {part}'s brake lets go", "NaN: never released"),
+    (r"(?P<part>.+)_(?P<end>lower|upper)_impact_loss", "kinetic energy taken by the {end} stop of {part} in its "
+                                                       "impacts over the run", "0: never struck (or struck at rest)"),
+    (r"(?P<part>.+)_peak_friction", "largest friction force {part} passes (magnitude)", ""),
     (r"(?P<part>.+)_peak_slip_speed", "largest slip speed of {part} (magnitude)", _NEVER_SLIPPED),
     (r"(?P<part>.+)_overheat_time", "time {part} first reaches its limit temperature", "NaN: never reached"),
     (r"peak_(?P<part>.+)_temperature", "highest temperature of {part}", ""),
@@ -106,7 +109,7 @@ def summary_meaning(name: str) -> tuple[str, str]:
     for pattern, text, comment in _PATTERNS:
         found = re.fullmatch(pattern, name)
         if found:
-            return text.format(part=found["part"]), comment
+            return text.format(**found.groupdict()), comment
     return "", ""
 
 
@@ -128,4 +131,6 @@ def extra_meaning(name: str) -> str:
         return "heat balance's residual: the heat the parts account for less the loss"
     if term.endswith("residual"):
         return summary_meaning(term if term.startswith("heat") else name)[0]
-    return f"energy ledger: {term.removesuffix('_change').replace('_', ' ')} over the run (a stored energy: its change)"
+    if term.endswith("_change"):  # a stored energy: what the run changed it by
+        return f"energy ledger: change of the {term.removesuffix('_change').replace('_', ' ')} over the run"
+    return f"energy ledger: {term.replace('_', ' ')} over the run"

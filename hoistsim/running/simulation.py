@@ -12,7 +12,6 @@ from .. import _jax
 from ..errors import ScenarioError
 from ..machine.assemble import build_plan, log_rows, step_room
 from ..machine.core.element import MODE_NAMES
-from ..machine.core.layout import SWITCH_KINDS
 from ..machine.core.plan import CHATTERING, OK, SOLVER_FAILED, STATUS_TEXT
 from ..machine.core.readout import Readout
 from ..results.chunk_records import instant_categories
@@ -79,7 +78,7 @@ def failure_message(scenario: Scenario, raw: Readout) -> str:
     t = raw.end_time
     if raw.status == CHATTERING:
         _, kinds, elements, _ = raw.events()
-        switching = np.isin(kinds, SWITCH_KINDS)
+        switching = np.isin(kinds, raw.layout.switch_kinds)
         switches = [f"{e} {k}" for k, e in zip(kinds[switching], elements[switching])]
         culprit = max(set(elements[switching]), key=list(elements[switching]).count, default="a coupling")
         return (f"{name}: the {culprit} chatters: more than {scenario.simulation.max_switches} mode switches "

@@ -167,8 +167,11 @@ def range_of(field) -> str:
 
 
 def _first_line(text: str | None) -> str:
-    """A docstring's first paragraph, or a description, on one line (Markdown's quotes for reST's)."""
-    return " ".join((text or "").strip().split("\n\n")[0].split()).replace("``", "`")
+    """A docstring's first paragraph, or a description, on one line (Markdown's quotes for reST's; a ``<name>``
+    outside quotes escaped, which a browser would take for a tag and drop)."""
+    line = " ".join((text or "").strip().split("\n\n")[0].split()).replace("``", "`")
+    parts = line.split("`")  # the even ones are outside code spans
+    return "`".join(part if i % 2 else part.replace("<", "&lt;").replace(">", "&gt;") for i, part in enumerate(parts))
 
 
 def _first_sentence(text: str | None) -> str:

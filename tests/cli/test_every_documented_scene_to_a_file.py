@@ -1,6 +1,6 @@
-"""Every yaml block of README.md and docs/*.md that is a whole scene, saved as a user saves it and run through
-``hoistsim run`` to a file that opens with rows, its figures legible (tests/every_scene.py); every other block
-said to be a fragment, with the reason.  The README's every-part drivetrain compiles for minutes: slow."""
+"""Every yaml block of README.md and the site's pages (docs/) that is a whole scene, saved as a user saves it and run
+through ``hoistsim run`` to a file that opens with rows, its figures legible (tests/every_scene.py); every other block
+said to be a fragment, with the reason.  The drawing guide's every-part drivetrain compiles for minutes: slow."""
 
 from __future__ import annotations
 
@@ -21,6 +21,7 @@ def test_every_block_of_the_documents_is_a_scene_or_a_fragment_said_so():
     listed in FRAGMENTS; and each fragment listed is still there and still does not load."""
     found = blocks()
     assert any(path == "README.md" for path, _, _ in found)
+    assert any(path == "docs/how-to/draw-a-drivetrain.md" for path, _, _ in found)
     listed = set()
     for path, line, text in found:
         said = fragment(path, text)

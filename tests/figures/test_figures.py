@@ -283,8 +283,8 @@ def test_the_script_regenerates_the_readme_figures(tmp_path):
                                                 "force_sweep_summary.png", "work_precision.png"]
     for path in written:
         assert path.stat().st_size > 30_000
-    readme = (ROOT / "README.md").read_text()
-    shown = {name for name in script.FIGURES if f"{name}.png" in readme}
+    pages = "\n".join(page.read_text() for page in [ROOT / "README.md", *(ROOT / "docs").rglob("*.md")])
+    shown = {name for name in script.FIGURES if f"{name}.png" in pages}
     assert shown >= {"engage_at_speed_with_brake", "force_sweep", "engine_periodic", "engine_flywheel",
                      "work_precision"}
 

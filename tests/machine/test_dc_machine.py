@@ -16,7 +16,7 @@ import math
 import numpy as np
 import pytest
 from helpers import SCENARIOS, part_keys_set, refused_in_one_line
-from modelica_reference import deviations
+from modelica_reference import deviations, signals
 from scipy.linalg import expm
 
 from hoistsim import load_scenario, scenario_from_text, simulate
@@ -59,8 +59,7 @@ def dcpm_start():
 def test_dcpm_start_against_dymolas_published_trajectories(dcpm_start):
     """Within 1e-3 of each signal's range (measured: the current 8.7e-5, the speed 2.6e-6, the angle 1.3e-7)."""
     run = dcpm_start
-    worst = deviations(run, "DCPM_Start", {"dcpm.la.i": run["dcpm_current"], "loadInertia.phi":
-                                           run["loadInertia_angle"], "loadInertia.w": run["loadInertia_speed"]})
+    worst = deviations(run, "DCPM_Start", signals("DCPM_Start", run))
     assert max(worst.values()) < 2e-4, worst
     assert run.summary["energy_relative_residual"] < 1e-10
 

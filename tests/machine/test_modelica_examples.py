@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from helpers import SCENARIOS
-from modelica_reference import deviations
+from modelica_reference import deviations, signals
 from modelica_reference import events as _events
 from modelica_reference import reference as _reference
 
@@ -25,41 +25,21 @@ def mode_changes(example: str, element: str) -> np.ndarray:
     return reference["time"][1:][np.diff(reference[f"{element}.mode"]) != 0.0]
 
 
-def _relative(run, a: str, b: str) -> dict:
-    """Modelica's phi_rel and w_rel of a part from shaft a to shaft b: b's less a's."""
-    return {"phi_rel": run[f"{b}_angle"] - run[f"{a}_angle"], "w_rel": run[f"{b}_speed"] - run[f"{a}_speed"]}
-
-
-def _shaft(run, shaft: str) -> dict:
-    return {f"{shaft}.phi": run[f"{shaft}_angle"], f"{shaft}.w": run[f"{shaft}_speed"]}
-
-
-# example -> (its comparison signals from a run, the parts whose mode changes are compared with our switches)
-EXAMPLES = {
-    "Friction": (lambda run: {**_shaft(run, "inertia3"),
-                              **{f"clutch.{k}": v for k, v in _relative(run, "inertia3", "inertia2").items()},
-                              "spring.phi_rel": run["spring_twist"], "spring.w_rel": run["spring_twist_speed"]},
-                 ("clutch", "brake")),
-    "OneWayClutch": (lambda run: {**_shaft(run, "inertiaIn"), **{f"oneWayClutch.{k}": v for k, v in
-                                                                _relative(run, "inertiaIn", "inertiaOut").items()}},
-                     ()),
-    "SimpleGearShift": (lambda run: {**_shaft(run, "engine"), **_shaft(run, "load"), **{
-        f"clutch.{k}": v for k, v in _relative(run, "engine", "ring").items()}}, ("clutch", "brake")),
-    "OneWayClutchDisengaged": (lambda run: {**_shaft(run, "inertiaIn"), **{
-        f"oneWayClutch.{k}": v for k, v in _relative(run, "inertiaIn", "inertiaOut").items()}}, ()),
-}
+# example -> the parts whose mode changes are compared with our switches (its comparison signals: the package's,
+# hoistsim.references.modelica_signals)
+MODED = {"Friction": ("clutch", "brake"), "OneWayClutch": (), "SimpleGearShift": ("clutch", "brake"),
+         "OneWayClutchDisengaged": ()}
 
 
 @pytest.mark.slow  # a program of its own to compile for each (some 6 s)
-@pytest.mark.parametrize("example", sorted(EXAMPLES))
+@pytest.mark.parametrize("example", sorted(MODED))
 def test_an_example_against_dymolas_published_trajectories(example):
     """Every comparison signal within 1e-3 of its range (measured: within 8.3e-5), every switch of the parts
     whose modes the reference gives within 1e-4 s of its mode change, and the ledger closed."""
     run = simulate(load_scenario(SCENARIOS / "modelica" / f"{example}.yaml"))
-    signals, moded = EXAMPLES[example]
-    worst = deviations(run, example, signals(run))
+    worst = deviations(run, example, signals(example, run))
     assert max(worst.values()) < 1e-3, worst
-    for element in moded:
+    for element in MODED[example]:
         changes = mode_changes(example, element)
         ours = run.events["time"][run.events["element"] == element]
         assert len(ours) == len(changes), (element, ours, changes)
@@ -77,12 +57,7 @@ def test_coupled_clutches_against_dymolas_published_trajectories():
     times = reference["time"]
     events = _events(times)
     far = np.min(np.abs(times[:, None] - events[None, :]), axis=1) > 1e-3
-    ours = {"J1.phi": run["J1_angle"], "J1.w": run["J1_speed"]}
-    for k in (1, 2, 3):
-        a, b = f"J{k}", f"J{k + 1}"
-        ours[f"clutch{k}.phi_rel"] = run[f"{b}_angle"] - run[f"{a}_angle"]
-        ours[f"clutch{k}.w_rel"] = run[f"{b}_speed"] - run[f"{a}_speed"]
-    for signal, series in ours.items():
+    for signal, series in signals("CoupledClutches", run).items():
         worst = np.max(np.abs(np.interp(times, run.time, series) - reference[signal])[far]) / np.ptp(reference[signal])
         assert worst < 1e-3, (signal, worst)
     for k in (1, 2, 3):

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from helpers import SCENARIOS, part_keys_set, refused_in_one_line
-from modelica_reference import deviations, reference
+from modelica_reference import deviations, reference, signals
 from scipy.linalg import expm
 
 from hoistsim import load_scenario, scenario_from_text, simulate
@@ -31,10 +31,7 @@ def test_pid_controller_against_dymolas_published_trajectories(pid_controller):
     """Measured: PI.I.y 1.5e-5, inertia1.phi 2e-8, .w 5.2e-7, integrator.y 3e-15, spring.phi_rel 8.6e-6, .w_rel
     5.9e-5 of their ranges; the limiter's corners within 1e-7 s of Dymola's events (its tolerance)."""
     run = pid_controller
-    worst = deviations(run, "PID_Controller", {
-        "PI.I.y": run["PI_integral"], "inertia1.phi": run["inertia1_angle"], "inertia1.w": run["inertia1_speed"],
-        "integrator.y": run["integrator_output"], "spring.phi_rel": run["inertia2_angle"] - run["inertia1_angle"],
-        "spring.w_rel": run["inertia2_speed"] - run["inertia1_speed"]})
+    worst = deviations(run, "PID_Controller", signals("PID_Controller", run))
     assert max(worst.values()) < 2e-4, worst
     times = reference("PID_Controller")["time"]
     dymola = np.unique(times[1:][np.diff(times) == 0.0])

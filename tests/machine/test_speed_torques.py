@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from helpers import SCENARIOS
+from modelica_reference import signals
 from scipy.integrate import solve_ivp
 from test_modelica_examples import deviations
 
@@ -35,9 +36,7 @@ def test_eddy_current_brake_against_dymolas_published_trajectories():
     """MSL 4.0's EddyCurrentBrake: inertia.phi, heatCapacitor.T and eddyCurrentTorque.lossPower within 1e-5 of
     their ranges (measured 9.8e-7, 4.2e-6, 1.4e-6); the capacitor's heat C (T - T_0) is the brake's loss."""
     run = simulate(load_scenario(SCENARIOS / "modelica" / "EddyCurrentBrake.yaml"))
-    worst = deviations(run, "EddyCurrentBrake", {
-        "inertia.phi": run["inertia_angle"], "heatCapacitor.T": run["heatCapacitor_temperature"],
-        "eddyCurrentTorque.lossPower": run["eddyCurrentTorque_loss_power"]})
+    worst = deviations(run, "EddyCurrentBrake", signals("EddyCurrentBrake", run))
     assert all(value < 1e-5 for value in worst.values()), worst
     balance = run.energy_balance
     heat = 1.0 * (run["heatCapacitor_temperature"][-1] - 293.15)  # C (T - T_0), C = 1 J/K
@@ -53,8 +52,7 @@ def test_rolling_wheel_against_dymolas_published_trajectories():
     """MSL 4.0's RollingWheel: inertia.phi and inertia.w within 1e-5 of their ranges (measured 3.7e-7, 7.2e-7);
     the drag's heat and the kinetic energy account for the torque's work."""
     run = simulate(load_scenario(SCENARIOS / "modelica" / "RollingWheel.yaml"))
-    worst = deviations(run, "RollingWheel", {"inertia.phi": run["inertia_angle"],
-                                                    "inertia.w": run["inertia_speed"]})
+    worst = deviations(run, "RollingWheel", signals("RollingWheel", run))
     assert all(value < 1e-5 for value in worst.values()), worst
     np.testing.assert_allclose(run["load_position"], run["inertia_angle"], rtol=0, atol=1e-12)  # radius 1 m
     _closes(run)

@@ -18,9 +18,11 @@ import math
 import numpy as np
 import pytest
 from helpers import SCENARIOS, TESTS, drawn
+from modelica_reference import signals
 
 from hoistsim import load_scenario, simulate
 from hoistsim.errors import ScenarioError
+
 
 def _drawn(duration="1 s", interval="1 ms", **parts):
     return drawn("springs", duration, interval, **parts)
@@ -93,20 +95,16 @@ def test_modelica_first_as_its_equations_solved_independently(first):
     assert first.summary["energy_relative_residual"] < 1e-9
 
 
-# Modelica's signal -> the column it is here (Modelica's phi_rel, w_rel: flange_b's less flange_a's)
-FIRST_SIGNALS = {"damper.phi_rel": "damper_twist", "damper.w_rel": "damper_twist_speed",
-                 "inertia3.phi": "inertia3_angle", "inertia3.w": "inertia3_speed"}
-
-
 def test_modelica_first_against_dymolas_published_trajectories(first):
     """Dymola 2020x, DASSL at tolerance 1e-6, MSL 4.0: every comparison signal within 1e-3 of its range at
     every reference row (the largest, inertia3.w, 3.1e-4 of its range: Dymola's own tolerance)."""
     with (TESTS / "data" / "modelica" / f"{first.example}.csv").open() as f:
         rows = list(csv.reader(f))
     names, table = rows[0], np.asarray([[float(v) for v in row] for row in rows[1:]])
-    assert names[1:] == list(FIRST_SIGNALS)
+    series = signals(first.example, first)  # Modelica's phi_rel, w_rel: flange_b's less flange_a's
+    assert names[1:] == list(series)
     for k, signal in enumerate(names[1:], start=1):
-        ours = np.interp(table[:, 0], first.time, first[FIRST_SIGNALS[signal]])
+        ours = np.interp(table[:, 0], first.time, series[signal])
         worst = np.max(np.abs(ours - table[:, k])) / np.ptp(table[:, k])
         assert worst < 1e-3, (signal, worst)
 
@@ -258,10 +256,6 @@ def test_backlash_damping_lets_go_where_the_contact_stops_pressing():
     assert set(contact) == {-1, 0, 1}
 
 
-BACKLASH_SIGNALS = {"elastoBacklash.phi_rel": "elastoBacklash_twist", "elastoBacklash.w_rel": "elastoBacklash_twist_speed",
-                    "springDamper.phi_rel": "springDamper_twist", "springDamper.w_rel": "springDamper_twist_speed"}
-
-
 def test_modelica_backlash_against_dymolas_published_trajectories():
     """Every signal within 1e-3 of its range at every reference row more than 1 ms from one of its events (worst
     1.1e-5), and each contact where a reference event is (Dymola's events are where the strain crosses the play;
@@ -272,8 +266,9 @@ def test_modelica_backlash_against_dymolas_published_trajectories():
     names, table = rows[0], np.asarray([[float(v) for v in row] for row in rows[1:]])
     events = np.unique(table[1:, 0][np.diff(table[:, 0]) == 0.0])
     far = np.min(np.abs(table[:, :1] - events[None, :]), axis=1) > 1e-3
+    series = signals("Backlash", run)
     for k, signal in enumerate(names[1:], start=1):
-        ours = np.interp(table[:, 0], run.time, run[BACKLASH_SIGNALS[signal]])
+        ours = np.interp(table[:, 0], run.time, series[signal])
         worst = np.max(np.abs(ours - table[:, k])[far]) / np.ptp(table[:, k])
         assert worst < 1e-3, (signal, worst)
     contacts = run.events["time"][run.events["kind"] == "contact"]

@@ -23,29 +23,15 @@ import math
 import numpy as np
 import pytest
 from helpers import SCENARIOS, part_keys_set, refused_in_one_line
-from modelica_reference import deviations, events, reference
+from modelica_reference import deviations, events, reference, signals
 from scipy.integrate import quad, solve_ivp
 
 from hoistsim import load_scenario, scenario_from_dict, simulate
+from hoistsim.references.modelica_signals import HEAT_LOSSES_FIRST_IMPACT
 
 FOLDER = SCENARIOS / "modelica" / "translational"
 # HeatLosses' block (massWithStopAndFriction) first reaches its upper stop here (Dymola's event; ours within 1e-7 s)
-FIRST_IMPACT = 0.428549
-
-
-def _friction_signals(run) -> dict:
-    return {f"{m}.{k}": run[f"{m}_{series}"] for m in ("mass", "stop1", "stop2")
-            for k, series in (("s", "position"), ("v", "velocity"))}
-
-
-def _heat_losses_signals(run) -> dict:
-    """Modelica's s_rel from the blocks' centres (each 0.1 m long), the damper's from mass1's left end to the wall."""
-    s1, v1 = run["mass1_position"], run["mass1_velocity"]
-    s4, v4 = run["massWithStopAndFriction_position"], run["massWithStopAndFriction_velocity"]
-    return {"damper.s_rel": 0.05 - s1, "damper.v_rel": -v1, "massWithStopAndFriction.s": s4,
-            "massWithStopAndFriction.v": v4, "springDamper.s_rel": run["mass2_position"] - s1 - 0.1,
-            "springDamper.v_rel": run["mass2_velocity"] - v1, "springDamper1.s_rel": s4 - run["mass3_position"] - 0.1,
-            "springDamper1.v_rel": v4 - run["mass3_velocity"]}
+FIRST_IMPACT = HEAT_LOSSES_FIRST_IMPACT
 
 
 @pytest.fixture(scope="module")
@@ -58,7 +44,7 @@ def test_friction_against_dymolas_published_trajectories(runs):
     signal within 1e-3 of its range (measured: 4.7e-5 at worst, stop2's velocity); the ledger closes, stop2's impact
     taking its 18.6 J."""
     run = runs["Friction"]
-    worst = deviations(run, "translational/Friction", _friction_signals(run))
+    worst = deviations(run, "translational/Friction", signals("translational/Friction", run))
     assert max(worst.values()) < 1e-3, worst
     assert run.summary["stop2_ends_lower_impact_loss"] == pytest.approx(0.5 * 1.0 * 6.106**2, rel=1e-3)
     assert run.summary["energy_relative_residual"] < 1e-8
@@ -77,7 +63,8 @@ def test_heat_losses_against_dymolas_trajectories_until_its_block_reaches_its_st
     run = runs["HeatLosses"]
     table = reference("translational/HeatLosses")
     times = table["time"]
-    worst = deviations(run, "translational/HeatLosses", _heat_losses_signals(run), until=FIRST_IMPACT)
+    worst = deviations(run, "translational/HeatLosses", signals("translational/HeatLosses", run),
+                       until=FIRST_IMPACT)
     assert max(worst.values()) < 1e-3, worst
     impact = np.flatnonzero((times[1:] == times[:-1]) & (np.abs(times[1:] - FIRST_IMPACT) < 1e-5))[0]
     jump = table["massWithStopAndFriction.v"][impact + 1] - table["massWithStopAndFriction.v"][impact]

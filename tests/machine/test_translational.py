@@ -5,7 +5,8 @@ and closed forms.
 - Accelerate, SignConvention, Sensors, Damper, Oscillator, InitialConditions, WhyArrows, ElastoGap,
   EddyCurrentBrake, Brake, GenerationOfFMUs and PreLoad (scenarios/modelica/translational/) within 1e-3 of each
   comparison signal's range at every reference row; Modelica's s_rel of a part runs between masses' ends (or an
-  end and a wall), worked out from their centres (a mass's length is Modelica's L).
+  end and a wall), worked out from their centres (a mass's length is Modelica's L): the comparison signals are
+  the package's (hoistsim.references.modelica_signals).
 - A sine force on a mass (Sensors), a mass on a spring-damper (Damper's third), a block braked to rest by
   Coulomb friction (Brake) and a mass arriving on an elasto-gap (its contact time, its damping's limit and its
   force at every row) in closed form.
@@ -22,51 +23,11 @@ import math
 import numpy as np
 import pytest
 from helpers import SCENARIOS, part_keys_set, refused_in_one_line
-from modelica_reference import deviations
+from modelica_reference import deviations, signals
 
 from hoistsim import load_scenario, simulate
 
 FOLDER = SCENARIOS / "modelica" / "translational"
-
-
-def _comparison(example: str, run) -> dict:
-    """Modelica's comparison signals from the run's series (each mass 1 m long: its ends half a metre from its
-    centre; the walls of Damper at 4.5 m, of Oscillator at 1 m)."""
-    if example == "Accelerate":  # the source's flange: the mass's left end
-        return {"accelerate.s": run["mass_position"] - 0.5, "accelerate.v": run["mass_velocity"]}
-    if example == "Damper":
-        parts = {"damper1": "mass1", "damper2": "mass2", "springDamper3": "mass3"}
-        return {**{f"{p}.s_rel": 4.0 - run[f"{m}_position"] for p, m in parts.items()},
-                **{f"{p}.v_rel": -run[f"{m}_velocity"] for p, m in parts.items()}}
-    if example == "Oscillator":
-        return {"damper1.s_rel": 0.5 - run["mass2_position"], "damper1.v_rel": -run["mass2_velocity"],
-                "mass1.s": run["mass1_position"], "mass1.v": run["mass1_velocity"]}
-    if example == "InitialConditions":  # sd1 between m1 (1 m) and m2 (2 m), sd2 between m3 (3 m) and m4 (5 m)
-        return {"m1.s": run["m1_position"], "m1.v": run["m1_velocity"], "m3.s": run["m3_position"],
-                "m3.v": run["m3_velocity"], "sd1.s_rel": run["m2_position"] - run["m1_position"] - 1.5,
-                "sd1.v_rel": run["m2_velocity"] - run["m1_velocity"],
-                "sd2.s_rel": run["m4_position"] - run["m3_position"] - 4.0,
-                "sd2.v_rel": run["m4_velocity"] - run["m3_velocity"]}
-    if example == "PreLoad":  # the parts' s_rel from the centres, the rods and the fixed points (PreLoad.yaml)
-        return {"friction.v_rel": run["spool_velocity"],
-                "innerContactA.s_rel": run["springPlateA_position"] - run["spool_position"] + 0.10875,
-                "innerContactB.s_rel": run["spool_position"] - run["springPlateB_position"] - 0.08125,
-                "outerContactA.v_rel": run["springPlateA_velocity"],
-                "outerContactB.s_rel": -run["springPlateB_position"] - 0.066,
-                "outerContactB.v_rel": -run["springPlateB_velocity"]}
-    if example == "EddyCurrentBrake":
-        return {"eddyCurrentForce.lossPower": run["eddyCurrentForce_loss_power"], "mass.s": run["mass_position"],
-                "heatCapacitor.T": run["heatCapacitor_temperature"]}
-    if example == "ElastoGap":  # from the point at -2 m to a mass, or from a mass to the point at 2 m
-        return {"elastoGap1.v_rel": run["mass2_velocity"], "elastoGap2.s_rel": 2.0 - run["mass2_position"],
-                "springDamper1.v_rel": run["mass1_velocity"], "springDamper2.s_rel": 2.0 - run["mass1_position"]}
-    masses = {"SignConvention": ("mass1", "mass2", "mass3"), "Sensors": ("mass",),
-              "WhyArrows": ("inertia2", "mass1"), "Brake": ("mass1", "mass2"),
-              "GenerationOfFMUs": ("mass2a", "mass2b", "mass3a", "mass3b")}[example]
-    signals = {f"{m}.{k}": run[f"{m}_{series}"] for m in masses for k, series in (("s", "position"), ("v", "velocity"))}
-    if example == "GenerationOfFMUs":  # the direct mass's own mass, with the inverse mass it drives: one body
-        signals |= {"directMass.mass.s": run["directMass_position"], "directMass.mass.v": run["directMass_velocity"]}
-    return signals
 
 
 # measured worst deviations, of each signal's range: Dymola's own error at its tolerance 1e-6 where ours is far
@@ -88,7 +49,7 @@ def runs():
 @pytest.mark.parametrize("example", EXAMPLES)
 def test_the_example_against_dymolas_published_trajectories(runs, example):
     run = runs[example]
-    worst = deviations(run, f"translational/{example}", _comparison(example, run))
+    worst = deviations(run, f"translational/{example}", signals(f"translational/{example}", run))
     assert max(worst.values()) < 1e-3, worst
     # measured: the Oscillator's 2.2e-9 (its resonance swinging up at rtol 1e-10), PreLoad's 3.6e-8 (at its rtol
     # 1e-8; 1e-8 and below on another machine's floating point), the others 4e-11 and below

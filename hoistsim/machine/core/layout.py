@@ -10,10 +10,9 @@ from __future__ import annotations
 
 import copy
 
+from ...switch_kinds import SWITCH_KINDS
 from .element import AbstractCoupling
 
-# Kinds of the events the core itself records: coupling mode changes.
-SWITCH_KINDS = ("lock", "unlock", "reversal", "engage", "disengage")
 LOCK, UNLOCK, REVERSAL, ENGAGE, DISENGAGE = range(5)
 NO_EVENT = -1
 

@@ -15,3 +15,9 @@ class NamedOutputs:
 
     def named(self, pattern: str) -> str:
         return pattern.format(name=self.part_name)
+
+
+def called(kind: str, name: str) -> str:
+    """How a description names a part: "clutch c1", or "the clutch" where the part is named by its kind's own word
+    (the hoist's ``clutch``, ``motor``), which would otherwise read twice."""
+    return f"the {kind}" if name == kind else f"{kind} {name}"

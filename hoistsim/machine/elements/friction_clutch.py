@@ -10,19 +10,19 @@ import numpy as np
 from ..._pytree import static
 from ..core.element import SLIP_BACKWARD, SLIP_FORWARD, STUCK
 from ._signal import harmonics_step, signal_at, signal_fields, signal_tables
-from ._names import NamedOutputs
+from ._names import NamedOutputs, called
 from ._knots import interpolate, knots_passed
 from ._slip_heat import AbstractSlipHeat
 from ._slip_table import along_slip, slip_columns, slip_knots
 
 # what each of its outputs is, by its role (named <name>_<role>)
 _COLUMNS = {
-    "torque": ("N*m", "torque clutch {name} passes from the {a} shaft to {b}, positive when the {a} shaft drives"),
+    "torque": ("N*m", "torque {clutch} passes from the {a} shaft to {b}, positive when the {a} shaft drives"),
     "slip": ("rad/s", "speed of the {a} shaft less that of {b}"),
-    "locked": ("1", "1 while clutch {name} sticks, 0 while it slips or is open"),
-    "force": ("N", "force pressing clutch {name} (at or below zero it is open)"),
-    "energy": ("J", "energy dissipated in clutch {name} so far"),
-    "capacity": ("N*m", "static torque capacity of clutch {name} at the force pressing it"),
+    "locked": ("1", "1 while {clutch} sticks, 0 while it slips or is open"),
+    "force": ("N", "force pressing {clutch} (at or below zero it is open)"),
+    "energy": ("J", "energy dissipated in {clutch} so far"),
+    "capacity": ("N*m", "static torque capacity of {clutch} at the force pressing it"),
     "mode": ("1", "0 locked, 1 slipping forwards, 2 slipping backwards, 3 open"),
 }
 _SUMMARIES = {"lockup_time": "s", "slip_duration": "s", "peak_torque": "N*m", "peak_slip_speed": "rad/s",
@@ -30,9 +30,9 @@ _SUMMARIES = {"lockup_time": "s", "slip_duration": "s", "peak_torque": "N*m", "p
 # between masses (a brake on a line): a friction force where a shaft's clutch passes a torque, N and m/s
 LINE_ROLES = {"torque": "friction", "peak_torque": "peak_friction"}
 LINE_UNITS = {"N*m": "N", "rad/s": "m/s"}
-_LINE_TEXT = {"torque": "friction force clutch {name} passes from mass {a} to {b}, positive when mass {a} drives",
+_LINE_TEXT = {"torque": "friction force {clutch} passes from mass {a} to {b}, positive when mass {a} drives",
               "slip": "velocity of mass {a} less that of {b}",
-              "capacity": "static friction force of clutch {name} at the force pressing it"}
+              "capacity": "static friction force of {clutch} at the force pressing it"}
 
 
 class FrictionClutch(NamedOutputs, AbstractSlipHeat):
@@ -119,7 +119,8 @@ class FrictionClutch(NamedOutputs, AbstractSlipHeat):
         else:
             b = f"the {self.driven} shaft" if self.driven else "the ground"
             texts = {role: text for role, (_, text) in _COLUMNS.items()}
-        return {self.role_name(role): (self._units(units), texts[role].format(name=self.section, a=self.driving, b=b))
+        return {self.role_name(role): (self._units(units), texts[role].format(clutch=called("clutch", self.section),
+                                                                     a=self.driving, b=b))
                 for role, (units, _) in _COLUMNS.items()}
 
     def joins(self) -> tuple:

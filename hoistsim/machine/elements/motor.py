@@ -5,6 +5,7 @@ from __future__ import annotations
 from ..._pytree import static
 from ._motor import AbstractMotor
 from ._motor_variants import MOTOR_VARIANTS
+from ._names import called
 from ._shaft_work import AbstractShaftWork
 
 
@@ -26,9 +27,9 @@ class Motor(AbstractShaftWork):
 
     @property
     def columns(self) -> dict:
-        return {f"{self.section}_torque": ("N*m", f"torque of motor {self.section} on shaft {self.shaft}, from its "
-                                                  "characteristic"),
-                f"{self.section}_work": ("J", f"work done by motor {self.section} so far")}
+        motor = called("motor", self.section)
+        return {f"{self.section}_torque": ("N*m", f"torque of {motor} on shaft {self.shaft}, from its characteristic"),
+                f"{self.section}_work": ("J", f"work done by {motor} so far")}
 
     def torque(self, x):
         return self.law.characteristic(x.speed(self.shaft))
