@@ -24,7 +24,8 @@ ROOT = Path(__file__).resolve().parents[1]
 SCENARIOS = ROOT / "scenarios"
 
 
-def _cli(*args: str) -> None:
+def hoistsim_command(*args: str) -> None:
+    """``hoistsim ARGS`` in this process (its compiled programs kept for the next); a failure raises."""
     from hoistsim.cli import main
 
     try:
@@ -38,8 +39,8 @@ def _run_and_plot(scenario: str, keep: dict):
     """`hoistsim run` and `hoistsim plot`; keep maps the plot's outputs (by suffix) to figure names."""
     def make(output: Path, work: Path) -> list[Path]:
         results, figure = work / "results.h5", work / "figure.png"
-        _cli("run", str(SCENARIOS / scenario), "-o", str(results))
-        _cli("plot", str(results), "-o", str(figure))
+        hoistsim_command("run", str(SCENARIOS / scenario), "-o", str(results))
+        hoistsim_command("plot", str(results), "-o", str(figure))
         written = []
         for suffix, name in keep.items():
             shutil.copyfile(work / f"figure{suffix}.png", output / name)
@@ -51,7 +52,7 @@ def _run_and_plot(scenario: str, keep: dict):
 
 def _flywheel(scenario: str, irregularity: str, name: str):
     def make(output: Path, work: Path) -> list[Path]:
-        _cli("flywheel", str(SCENARIOS / scenario), "--irregularity", irregularity, "--plot", str(output / name))
+        hoistsim_command("flywheel", str(SCENARIOS / scenario), "--irregularity", irregularity, "--plot", str(output / name))
         return [output / name]
 
     return make

@@ -25,6 +25,9 @@ from pathlib import Path
 
 import numpy as np
 
+# a run as the site's figures make theirs: the command line in this process (the script's own folder is on the path)
+from figures import hoistsim_command  # noqa: E402
+
 ROOT = Path(__file__).resolve().parents[1]
 SCENARIOS = ROOT / "scenarios"
 GALLERY = ROOT / "docs" / "gallery"
@@ -121,16 +124,6 @@ def markdown(text: str) -> str:
 
 
 # ------------------------------------------------------------------------------------------------- the run
-def _cli(*args: str) -> None:
-    from hoistsim.cli import main
-
-    try:
-        main.main(args=list(args), prog_name="hoistsim", standalone_mode=False)
-    except SystemExit as exc:  # the command line's own failures (exit 2, 3)
-        if exc.code:
-            raise RuntimeError(f"hoistsim {' '.join(args)}: exit {exc.code}") from None
-
-
 def pyplot():
     import matplotlib
 
@@ -307,7 +300,7 @@ def make_page(scene: Scene, work: Path) -> str:
     """Run the scene, draw its figures and write its page; returns its index row."""
     name, said = about(scene.path)
     results = work / f"{scene.slug}.h5"
-    _cli("run", str(scene.path), "-o", str(results))
+    hoistsim_command("run", str(scene.path), "-o", str(results))
     suffixes = plot_figures(results, scene.slug)
     lines = [f"# {markdown(name)}", "", markdown(" ".join(said[:2])), "", "```sh",
              f"hoistsim run {scene.scenario} -o {scene.slug}.h5", f"hoistsim plot {scene.slug}.h5 -o {scene.slug}.png",

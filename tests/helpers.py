@@ -25,6 +25,21 @@ ROOT = TESTS.parent
 SCENARIOS = ROOT / "scenarios"
 EXERCISE6_FILE = SCENARIOS / "exercise6_direct_start.yaml"
 
+
+
+def docs_checker():
+    """docs/check_readme.py, the pages' commands' reader and runner, as a module (loaded once a process)."""
+    import importlib.util
+    import sys
+
+    if "check_readme" not in sys.modules:
+        spec = importlib.util.spec_from_file_location("check_readme", ROOT / "docs" / "check_readme.py")
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[spec.name] = module  # its dataclasses look their module up there
+        spec.loader.exec_module(module)
+    return sys.modules["check_readme"]
+
+
 # ------------------------------------------------------------------------------------ exercise 6 as a text
 SHIPPED = EXERCISE6_FILE.read_text(encoding="utf-8")  # as a user has it
 

@@ -9,27 +9,17 @@ its fix are run once each, in process (two compiles of a few seconds).
 
 from __future__ import annotations
 
-import importlib.util
 import re
 import shlex
-import sys
 
 import pytest
-from helpers import ROOT
+from helpers import ROOT, docs_checker
 
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 GETTING_STARTED = (ROOT / "docs" / "getting-started.md").read_text(encoding="utf-8")
 
 
-def _load_checker():
-    spec = importlib.util.spec_from_file_location("check_readme", ROOT / "docs" / "check_readme.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # its dataclasses look their module up there
-    spec.loader.exec_module(module)
-    return module
-
-
-check_readme = _load_checker()
+check_readme = docs_checker()
 PAGES = check_readme.site_pages(ROOT)
 STEPS = check_readme.plan_site(ROOT)
 

@@ -13,26 +13,16 @@ tests/every_scene.py runs every shipped scenario and Modelica example (the last 
 
 from __future__ import annotations
 
-import importlib.util
 import shlex
 import subprocess
-import sys
 
 import pytest
-from helpers import ROOT
+from helpers import ROOT, docs_checker
 
 SIMULATING = {"run", "plot", "flywheel", "sensitivity", "fit", "bench"}
 
 
-def _load_checker():
-    spec = importlib.util.spec_from_file_location("check_readme_for_commands", ROOT / "docs" / "check_readme.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # its dataclasses look their module up there
-    spec.loader.exec_module(module)
-    return module
-
-
-check_readme = _load_checker()
+check_readme = docs_checker()
 STEPS = check_readme.plan_site(ROOT)
 PAGES = [page for page in check_readme.site_pages(ROOT) if not page.startswith("docs/gallery/")]
 
