@@ -61,7 +61,8 @@ def periodic_regime(scenario, readout: Readout) -> Periodic | None:
     rows = readout.event_rows()
     sim = scenario.simulation
     period = float(element.cycle_angle())
-    regime = analyse(rows, period, scenario.periodic_regime.periods, sim.rtol, sim.duration, loss_columns(layout))
+    regime = analyse(rows, period, scenario.periodic_regime.periods, sim.rtol, sim.duration, loss_columns(layout),
+                     layout.switch_kinds)
     if not regime.settled:
         return Periodic(regime, None)
     # the diagram from where the first analysed period starts (the drum's angle there included)

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...machine.core.layout import SWITCH_KINDS
+from ...switch_kinds import SWITCH_KINDS
 
 # Successive periods agree when their mean, maximum and minimum speeds differ by
 # less than this many times the run's rtol (relative to the mean speed): well
@@ -99,11 +99,13 @@ def period_marks(rows: dict) -> np.ndarray:
     return np.flatnonzero((rows["kind"] == "period") & (rows["motor_speed"] > 0))
 
 
-def period_table(rows: dict, period: float, loss_columns: list[str]) -> dict[str, np.ndarray]:
+def period_table(rows: dict, period: float, loss_columns: list[str],
+                 switch_kinds=SWITCH_KINDS) -> dict[str, np.ndarray]:
     """One entry per complete period between two period rows, from a run's rows (Readout.event_rows).
 
     ``loss_columns``: energy losses (J, growing) whose increase per period is reported as
-    ``<name>_per_period`` (the heat a clutch makes each period of a periodic stick-slip).
+    ``<name>_per_period`` (the heat a clutch makes each period of a periodic stick-slip).  ``switch_kinds``: the
+    machine's switches, the core's and those its parts rename (``Layout.switch_kinds``), counted per period.
     """
     kind = rows["kind"]
     marks = period_marks(rows)
@@ -111,7 +113,7 @@ def period_table(rows: dict, period: float, loss_columns: list[str]) -> dict[str
     out: dict[str, list] = {name: [] for name in PERIOD_UNITS if name != "analysed"}
     out.update({f"{name}_per_period": [] for name in loss_columns})
     speed, angle, energy = rows["motor_speed"], rows["motor_angle"], rows["kinetic_energy"]
-    switches = np.isin(kind, SWITCH_KINDS)
+    switches = np.isin(kind, switch_kinds)
     for j in range(count):
         a, b = marks[j], marks[j + 1]
         inside = slice(a, b + 1)
@@ -174,9 +176,10 @@ def first_settled(table: dict, tolerance: float) -> int | None:
 
 
 def analyse(rows: dict, period: float, periods: int, rtol: float, duration: float,
-            loss_columns: list[str]) -> Regime:
-    """Settle, then analyse ``periods`` periods: the :class:`Regime` of one run."""
-    table = period_table(rows, period, loss_columns)
+            loss_columns: list[str], switch_kinds=SWITCH_KINDS) -> Regime:
+    """Settle, then analyse ``periods`` periods: the :class:`Regime` of one run (``switch_kinds``: as
+    :func:`period_table`'s)."""
+    table = period_table(rows, period, loss_columns, switch_kinds)
     tolerance = settling_tolerance(rtol)
     settled_at = first_settled(table, tolerance)
     count = table["period"].size
