@@ -93,6 +93,8 @@ FIGURES = {
                              _run_and_plot("lift_off_force_sweep.yaml", {"_summary": "lift_off_force_sweep.png"})),
     "snatch_from_slack": ("hoistsim run + plot scenarios/snatch_from_slack.yaml",
                           _run_and_plot("snatch_from_slack.yaml", {"": "snatch_from_slack.png"})),
+    "load_onto_a_buffer": ("hoistsim run + plot scenarios/load_onto_a_buffer.yaml",
+                           _run_and_plot("load_onto_a_buffer.yaml", {"": "load_onto_a_buffer.png"})),
     "coupled_clutches": ("hoistsim run + plot scenarios/coupled_clutches.yaml",
                          _run_and_plot("coupled_clutches.yaml", {"": "coupled_clutches.png"})),
     "two_speed_hoist": ("hoistsim run + plot scenarios/two_speed_hoist.yaml",

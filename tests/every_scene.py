@@ -40,6 +40,8 @@ FRAGMENTS = {
     ("docs/scenario-files.md", "name: exercise6-direct-start"):
         "the reference of every key of a hoist scene: alternatives side by side (`gears:` given twice), "
         "not one scene",
+    ("docs/how-to/buffer.md", "buffer:"): "the buffer's section alone, as it stands in scenarios/load_onto_a_buffer.yaml "
+                                          "(run whole by the shipped scenarios' test)",
 }
 
 # The cheap ones, run by the quick loop too (`-m "not slow"`): a hoist and a Modelica example, seconds each.

@@ -8,6 +8,7 @@ May import: the foundation.
 from __future__ import annotations
 
 from .bearings import DRUM_SHAFT_LOADS
+from .buffer import BUFFER
 from .clutch_heating import CLUTCH_HEATING
 from .dc_machine import DC_MACHINE
 from .eddy_current_brake import EDDY_CURRENT_BRAKE
@@ -36,7 +37,7 @@ from .spring_damper import SPRING_DAMPER
 from .vehicle import VEHICLE
 
 DISPLAYS: tuple[Display, ...] = (MOTOR, GEAR_PAIR, MESH_FRICTION, FRICTION_CLUTCH, CLUTCH_HEATING, LOAD, ROPE,
-                                 GROUND, HOLDING_BRAKE, FRICTION_BRAKE, RATCHET, DRUM_SHAFT_LOADS, PERIODIC_REGIME,
+                                 GROUND, BUFFER, HOLDING_BRAKE, FRICTION_BRAKE, RATCHET, DRUM_SHAFT_LOADS, PERIODIC_REGIME,
                                  SHAFT, MASS, END_STOP, VEHICLE, SHAFT_TORQUE, MOTION_SOURCE, DC_MACHINE,
                                  INDUCTION_MACHINE, SPEED_CONTROLLER, LINKAGE, SPRING_DAMPER, EDDY_CURRENT_BRAKE)
 

@@ -10,6 +10,8 @@ def _headline(summary: dict) -> str | None:
     # a load a speed controller moves goes where it is asked (lowered on purpose); its brake sequence says any
     # rollback: only an uncontrolled hoist's load below its start has run back
     controlled = any(key.endswith("_saturated_time") for key in summary)
+    if float(summary.get("peak_buffer_force", 0.0)) > 0.0:  # brought down onto its buffer: where it stopped
+        return f"load comes down {-lowest:.3g} m onto its buffer, ends {final:+.3g} m"
     if controlled and final < 0:
         return f"load lowered {-final:.3g} m"
     if lowest < 0 and final < 0:

@@ -32,7 +32,9 @@ OPTIONAL_COLUMNS = {"slip_energy": [("peak_clutch_temperature", "peak clutch [de
                     "final_load_position": [("lift_off_time", "lift-off [s]", 1.0),
                                             ("peak_rope_force", "peak rope [kN]", 1e-3),
                                             ("dynamic_factor", "phi", 1.0),
-                                            ("dynamic_factor_standard", "phi2 EN 13001", 1.0)]}
+                                            ("dynamic_factor_standard", "phi2 EN 13001", 1.0),
+                                            ("peak_buffer_force", "peak buffer [kN]", 1e-3),
+                                            ("buffer_force_standard", "buffer EN 13001 [kN]", 1e-3)]}
 
 PERIODIC_COLUMNS = [  # (summary key, header, scale): the motor shaft's periodic regime
     ("mean_speed", "mean speed [rpm]", RPM),

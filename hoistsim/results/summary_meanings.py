@@ -39,6 +39,11 @@ _NAMED = {
     "landing_loss": ("kinetic energy lost as the load lands on the ground", "0: never landed (or landed at rest)"),
     "dynamic_factor_standard": ("EN 13001-2's dynamic factor phi2 for the rope speed at lift-off",
                                 "NaN: never lifted off"),
+    "peak_buffer_force": ("largest push of the buffer on the load", "0: never reached"),
+    "peak_buffer_compression": ("furthest the load presses the buffer in", "0: never reached"),
+    "buffer_impact_speed": ("speed of the load, down positive, where it first meets the buffer", "NaN: never reached"),
+    "buffer_force_standard": ("EN 13001-2's design buffer force for that impact: phi7 (1.25, a linear buffer) times "
+                              "the rigid-body force M g + sqrt((M g)^2 + k_b M v^2)", "NaN: never reached"),
     "lock_events": ("number of lock instants (a coupling sticking) in the run's events", ""),
     "unlock_events": ("number of unlock instants (a coupling breaking loose) in the run's events", ""),
     "energy_residual": ("energy balance's residual: work done less the energy stored and lost", ""),

@@ -136,7 +136,7 @@ def load_as_drawn(spec, scenario) -> LoadOnShaftSpec:
     gears, bearings = scenario.gears, scenario.bearings
     return LoadOnShaftSpec.model_construct(
         mass=spec.mass, shaft="drum", rope_radius=0.5 * scenario.drum.diameter, rope=scenario.rope,
-        ground=scenario.ground,
+        ground=scenario.ground, buffer=scenario.buffer,
         bearings=None if bearings is None else LoadBearingsSpec.model_construct(
             gear_offset=bearings.gear_offset, rope_offset=bearings.rope_offset, span=bearings.span,
             wheel_pitch_diameter=gears.module * gears.wheel_teeth, pressure_angle=gears.pressure_angle),
@@ -182,7 +182,7 @@ def ratchet_as_drawn(spec, scenario) -> RatchetOnShaftSpec:
 
 
 def the_load(spec, scenario) -> LoadOnShaftSpec:
-    """A section of the load's (its rope, the ground, the drum shaft's bearings): the drawn load, which holds it."""
+    """A section of the load's (its rope, the ground, its buffer, the drum shaft's bearings): the drawn load, which holds it."""
     return load_as_drawn(scenario.load, scenario)
 
 
@@ -212,6 +212,7 @@ TEMPLATE: dict[str, tuple[TemplatePart, ...]] = {
     "load": (TemplatePart("drivetrain.load", load_as_drawn),),
     "rope": (TemplatePart("drivetrain.load.rope", the_load),),
     "ground": (TemplatePart("drivetrain.load.ground", the_load),),
+    "buffer": (TemplatePart("drivetrain.load.buffer", the_load),),
     "flywheel": (TemplatePart("drivetrain.rotors.*", flywheel_as_drawn, name="flywheel"),),
     "reciprocating": (TemplatePart("drivetrain.slider_cranks.*", slider_crank_as_drawn, SLIDER_CRANK_NAMES,
                                    "reciprocating"),),

@@ -18,11 +18,11 @@ from . import units as u
 from .schema_base import Section
 from .schema_clutch import ConeSpec, FrictionSpec
 from .schema_drivetrain import DrivetrainSpec, MeshSpec
-from .schema_load import LoadSpec
+from .schema_load import LoadSpec, buffered
 from .schema_motor import MotorSpec, RippleSpec
 from .schema_parts import (BearingsSpec, BrakeSpec, ClutchHeatingSpec, FlywheelSpec, RatchetSpec,
                            ReciprocatingSpec, kinetic_within_static)
-from .schema_rope import GroundSpec, RopeSpec
+from .schema_rope import BufferSpec, GroundSpec, RopeSpec
 from .provenance import Provenance
 from .tables import EngagementForce
 from .units import FreeText, Text
@@ -169,6 +169,8 @@ class Scenario(Section):
     bearings: BearingsSpec | None = Field(None, description="the drum shaft's bearing loads in time")
     rope: RopeSpec | None = Field(None, description="an elastic rope: the load a body of its own")
     ground: GroundSpec | None = Field(None, description="the load starts resting on the ground")
+    buffer: BufferSpec | None = Field(None, description="a buffer under the load at the end of its travel (with "
+                                      "rope:)")
     simulation: SimulationSpec = Field(description="the run's length, output rows and tolerances")
     sweep: dict[str, Any] | None = Field(None, description="one run per value of the keys it names (two keys: "
                                          "every combination)")  # checked by check_sweep
@@ -200,7 +202,7 @@ class Scenario(Section):
                     raise ScenarioError(name, "required section is missing")
             return self
         for name in (*hoist, "flywheel", "reciprocating", "periodic", "brake", "ratchet", "clutch_heating",
-                     "bearings", "rope", "ground"):
+                     "bearings", "rope", "ground", "buffer"):
             if getattr(self, name) is not None:
                 raise ScenarioError(name, "cannot be given with drivetrain: (a scenario draws the hoist by its "
                                     "sections or a machine as a drivetrain, not both)")
@@ -228,6 +230,7 @@ class Scenario(Section):
         if self.rope is not None and self.load.mass <= 0.0:
             raise ScenarioError("load.mass", "must be positive with an elastic rope (rope:): the load is a body "
                                 "of its own on it")
+        buffered(self.buffer, self.rope, self.ground, "")
         if self.ground is not None and self.rope is None and (self.initial.drum_speed != 0.0
                                                                or self.initial.steady_lift):
             key = "initial.steady_lift" if self.initial.steady_lift else "initial.drum_speed"

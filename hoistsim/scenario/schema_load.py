@@ -14,7 +14,7 @@ from . import plausible
 from . import units as u
 from .schema_base import Section
 from .schema_parts import BearingsSpec
-from .schema_rope import GroundSpec, RopeSpec
+from .schema_rope import BufferSpec, GroundSpec, RopeSpec
 from .schema_shaft_parts import OnShaft
 from .schema_speed_torques import DragSpec
 from .units import Text
@@ -47,6 +47,8 @@ class LoadOnShaftSpec(OnShaft, LoadSpec):
         description="where the rope winds: half the drum's diameter")
     rope: RopeSpec | None = Field(None, description="an elastic rope (absent: rigid)")
     ground: GroundSpec | None = Field(None, description="the load starts resting on the ground")
+    buffer: BufferSpec | None = Field(None, description="a buffer under the load at the end of its travel (with "
+                                      "an elastic rope)")
     bearings: LoadBearingsSpec | None = Field(None, description="the shaft's bearing loads in time (a gear "
                                               "stage's output shaft)")
     path: Literal["vertical", "level"] = Field("vertical", description="level: moved along a level path through "
@@ -69,9 +71,24 @@ class LoadOnShaftSpec(OnShaft, LoadSpec):
             raise ScenarioError(".mass", "must be positive with an elastic rope (rope:): the load is a body of "
                                 "its own on it")
         if self.path == "level":
-            lifted = next((key for key in ("rope", "ground", "bearings") if getattr(self, key) is not None), None)
+            lifted = next((key for key in ("rope", "ground", "buffer", "bearings") if getattr(self, key) is not None),
+                          None)
             if lifted is not None:
                 raise ScenarioError(f".{lifted}", "is a hoisted load's: a load on a level path (path: level) "
                                     "moves rigidly with its shaft's radius, with no ground under it")
+        buffered(self.buffer, self.rope, self.ground, ".")
         return self
 
+
+
+def buffered(buffer, rope, ground, prefix: str) -> None:
+    """A buffer is met by a load on an elastic rope (a rigid one would have to push the load into it), and not by
+    one that starts on the ground (which holds it up)."""
+    if buffer is None:
+        return
+    if rope is None:
+        raise ScenarioError(f"{prefix}buffer", "needs an elastic rope (rope:): the buffer stops the load, the rope "
+                            "going slack, which a rigid rope cannot")
+    if ground is not None:
+        raise ScenarioError(f"{prefix}buffer", "cannot be given with ground: a load resting on the ground at the "
+                            "start has no travel below it")

@@ -46,3 +46,15 @@ class GroundSpec(Section):
 
     hoisting_class: Literal["HC1", "HC2", "HC3", "HC4"] | None = Field(None, description="EN 13001-2's, for its "
                                                                        "dynamic factor phi2 beside the run's")
+
+
+class BufferSpec(Section):
+    """A buffer under the load at the end of its travel (a pit's, a shaft's bottom): a spring and a damper that
+    push the load up once it has come down ``clearance`` below its start, and never pull (Modelica's ElastoGap:
+    the damping's push never more than the spring's).  The load on an elastic rope (``rope:``), which goes slack
+    as the buffer stops it."""
+
+    clearance: u.quantity(u.LENGTH, gt=0.0) = Field(description="how far below its start the load meets the "
+                                                    "buffer's top")
+    stiffness: u.quantity(u.STIFFNESS, gt=0.0) = Field(description="k_b, the buffer's spring")
+    damping: u.quantity(u.DAMPING, ge=0.0) = Field(0.0, description="d_b, its damper")

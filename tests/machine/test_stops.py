@@ -75,6 +75,21 @@ def test_heat_losses_against_dymolas_trajectories_until_its_block_reaches_its_st
     assert run.summary["energy_relative_residual"] < 1e-8
 
 
+def test_a_block_resting_against_its_stop_reaches_it_only_where_it_arrives(runs):
+    """HeatLosses' block, pulled off its upper stop, is held there by its friction (its gap closed, its speed nil)
+    until the friction breaks away at another switch: a stop is reached only after the block has come away from
+    it, so the rows alternate reached, left, reached, left (measured: 0.4285 s, 0.7483 s, 1.4992 s, 1.7486 s)."""
+    run = runs["HeatLosses"]
+    kinds, times = np.asarray(run.instants["kind"]), run.instants["time"]
+    stop_rows = np.isin(kinds, ("stop_reached", "stop_left"))
+    assert list(kinds[stop_rows]) == ["stop_reached", "stop_left"] * 2
+    upper = load_scenario(FOLDER / "HeatLosses.yaml").drivetrain.stops["stops"].upper
+    position = run["massWithStopAndFriction_position"]
+    for start, reached in zip(np.concatenate([[0.0], times[kinds == "stop_left"]]), times[kinds == "stop_reached"]):
+        between = (run.time > start) & (run.time < reached)
+        assert upper - position[between].min() > 1e-3  # it came from away from the stop
+
+
 def _block(mass=1.0, position=0.0, velocity=0.0, force=((0.0, 0.0), (10.0, 0.0)), lower=-10.0, upper=10.0,
            restitution=0.0, rest_speed=1e-3, coulomb=0.0, stribeck=0.0, decay=0.0, viscous=0.0, peak=1.0,
            duration=3.0):

@@ -30,16 +30,20 @@ def meet(plan, c, y, modes, candidates, held, when):
     the impact, or is a candidate to stick where they then move together (a mass's friction, which a stop stopped
     or turned round).  Where the couplings are decided now (``when``: a boundary, or a switch pending).  Returns
     (c with a rebound's event row, y, modes, candidates, each coupling's plastic impact: a contact that met and
-    did not rebound, and the kinetic energy that impact would take alone)."""
+    did not rebound, the kinetic energy that impact would take alone, and whether it arrived: closed at more than
+    the slip resolution, not a contact at rest against it tried again at another's switch)."""
     layout = plan.layout
     couplings = layout.coupling_elements
     x = Instant(layout, c.t, y)
     plastic_impacts = [jnp.zeros((), bool)] * len(couplings)
     plastic_losses = [jnp.zeros(())] * len(couplings)
+    arrivals = [jnp.zeros((), bool)] * len(couplings)
+    tiny = SLIP_RESOLUTION * plan.speed_scale
     for k, coupling in enumerate(couplings):
         if coupling.gap(x) is None:
             continue
         meets = when & candidates[k] & (c.modes[k] != STUCK)
+        arrivals[k] = meets & (-x.relative_speed(coupling.section) > tiny)
         # the impulse of the plastic impact, the couplings stuck through the pass kept stuck
         kept = [(c.modes[j] == STUCK) | (j == k) for j in range(len(couplings))]
         plastic = keep_momentum(layout, y, kept, held)
@@ -64,7 +68,7 @@ def meet(plan, c, y, modes, candidates, held, when):
         c = eqx.tree_at(lambda q: q.switches, c, c.switches + bounces)
         modes, candidates = _slipping_as_they_part(plan, c.t, jnp.where(bounces, y, plastic), c.modes, modes,
                                                    candidates, meets)
-    return c, y, modes, candidates, (plastic_impacts, plastic_losses)
+    return c, y, modes, candidates, (plastic_impacts, plastic_losses, arrivals)
 
 
 def with_losses(layout, y_before, y_after, plastic):
@@ -74,7 +78,7 @@ def with_losses(layout, y_before, y_after, plastic):
     The whole loss is booked once, shared among the contacts that met at this instant in proportion to what each
     would take alone: a contact closing again at rest (a mass its friction held off its stop, touching it again)
     takes nothing of another's impact."""
-    impacts, alone = plastic
+    impacts, alone, _ = plastic
     contacts = [k for k, coupling in enumerate(layout.coupling_elements) if coupling.impact_state is not None]
     if not contacts:
         return y_after
@@ -92,14 +96,16 @@ def with_losses(layout, y_before, y_after, plastic):
 
 def record_impacts(plan, c, plastic, modes):
     """An event row for each plastic impact after which the static check let the contact's sides part at once (a
-    lock and an unlock at one instant, which no change of its mode records): the contact's lock."""
+    lock and an unlock at one instant, which no change of its mode records): the contact's lock.  Only where the
+    sides arrived: a contact resting against its stop, let go and held there by a friction, is tried stuck again at
+    every other switch (its gap guard cannot fire), and parting again there is no impact."""
     layout = plan.layout
     x = Instant(layout, c.t, c.y)
-    plastic_impacts, _ = plastic
+    plastic_impacts, _, arrivals = plastic
     for k, coupling in enumerate(layout.coupling_elements):
         if coupling.gap(x) is None:
             continue
-        parted = plastic_impacts[k] & (modes[k] != STUCK)
+        parted = plastic_impacts[k] & arrivals[k] & (modes[k] != STUCK)
         c = record(c, parted, c.t, layout.switch_code(coupling, LOCK), layout.couplings[k], c.y, modes, jnp.nan)
         c = eqx.tree_at(lambda q: q.switches, c, c.switches + parted)
     return c

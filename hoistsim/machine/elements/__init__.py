@@ -36,6 +36,7 @@ from .level_load import LevelLoad as LevelLoad
 from .line_force import LineForce as LineForce
 from .linear_motor import LinearMotor as LinearMotor
 from .linear_torque import LinearTorque as LinearTorque
+from .load_buffer import LoadBuffer as LoadBuffer
 from .load_drag import LoadDrag as LoadDrag
 from .lossy_gear import LossyGear as LossyGear
 from .lower_stop import LowerStop as LowerStop
@@ -105,6 +106,7 @@ REGISTRY: dict[str, object] = {
     "drivetrain.load.drag": LoadDrag,
     "drivetrain.load.rope": {"stiffness": Rope, "modulus": WireRope},
     "drivetrain.load.ground": Ground,
+    "drivetrain.load.buffer": LoadBuffer,
     "drivetrain.brakes.*": {"holding": HoldingBrake, "friction": FrictionBrake, "operated": OperatedBrake},
     "drivetrain.ratchets.*": Ratchet,
     "drivetrain.load.bearings": DrumShaftLoads,
