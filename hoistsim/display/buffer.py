@@ -15,7 +15,8 @@ def _headline(summary: dict) -> str | None:
 
 BUFFER = Display(
     panels=(Panel("buffer", "buffer force [kN]", 33, (
-        Trace("buffer force", "buffer_force", marks=("contact", "separation", "buffer_force_peak")),), scale=1e-3, zero_line=True),),
+        Trace("buffer force", "buffer_force", marks=("contact", "separation", "buffer_force_peak")),),
+        scale=1e-3, zero_line=True),),
     shading=(Phase("load on the buffer", "buffer_contact", 1, "#5aae61", hatch="\\\\"),),
     summary_panels=(
         SummaryPanel("peak_buffer_force", "peak buffer force [kN]", 34, scale=1e-3,

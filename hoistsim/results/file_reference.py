@@ -246,10 +246,11 @@ class Catalogue:
         """The angles some part reads: each a series of the shaft (or mass) it is the angle of."""
         for shaft, (column, units, text) in layout.angle_columns.items():
             part = next(p for p in parts if shaft in p.element.bodies() or shaft in p.element.shafts())
-            said = part.held.angle_columns().get("<name>") or tuple(
+            held = part.held.angle_columns()  # keyed <name>, or by the fixed name a part keeps (the load)
+            said = held.get("<name>") or held.get(shaft) or tuple(
                 _mention(shaft).sub("<name>", t, count=1) for t in (column, units, text))
-            self.kinds[type(part.element).__name__].series.setdefault((said[0], units), []).append(
-                f"{said[2]}; written where a part reads it")
+            self.kinds[type(part.element).__name__].series.setdefault((said[0], units), []).append(  # a mass: always
+                said[2] if shaft in part.element.angles() else f"{said[2]}; written where a part reads it")
 
 
 def specimen() -> dict:

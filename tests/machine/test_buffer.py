@@ -77,7 +77,8 @@ def test_a_load_falling_on_a_slack_rope_meets_its_buffer_as_the_closed_form(fall
 
     def first(tau):  # (d, d') while the damping's push is limited to the spring's
         a = m * G / (2 * k)
-        return a * (1 - math.cos(w1 * tau)) + v0 / w1 * math.sin(w1 * tau), a * w1 * math.sin(w1 * tau) + v0 * math.cos(w1 * tau)
+        return (a * (1 - math.cos(w1 * tau)) + v0 / w1 * math.sin(w1 * tau),
+                a * w1 * math.sin(w1 * tau) + v0 * math.cos(w1 * tau))
 
     t1 = brentq(lambda tau: d * first(tau)[1] - k * first(tau)[0], 1e-9, math.pi / (2 * w1))
     x1, v1 = first(t1)

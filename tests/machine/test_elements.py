@@ -133,7 +133,8 @@ def test_a_scene_names_only_its_elements():
     assert [section for section, _, _ in element_sections(_scene())] == [
         "motor", "gears", "gears", "drum", "motor", "clutch", "load"]
     assert plain.bodies == ["motor", "pinion"]
-    assert plain.state_names == ["motor.speed", "pinion.speed", "motor_work", "clutch_energy", "load_position"]
+    # the load is a mass on a line: its height is its position, the angle the core keeps of a body it is
+    assert plain.state_names == ["motor.speed", "pinion.speed", "motor_work", "clutch_energy", "load_angle"]
     heavy = build_plan(_scene(flywheel={"inertia": "3 kg*m^2"}))[0].layout
     assert heavy.state_names == plain.state_names and heavy.columns() == plain.columns()
 

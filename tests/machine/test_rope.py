@@ -328,3 +328,13 @@ def test_the_shipped_lift_off_scene_says_what_its_header_says():
     # the bearings feel the rope: the rope tension column is the rope's force
     np.testing.assert_allclose(run["rope_tension"], run["rope_force"], rtol=1e-12, atol=1e-9)
     assert s["energy_relative_residual"] < 1e-8
+    # the teeth pass what the pinion side passes (here massless: the clutch's torque, geared up) and the drum
+    # shaft takes it: its inertia's share and the rope's pull on its radius (the drum's momentum balance)
+    wheel_radius, drum_radius, drum_inertia = 0.5 * 4e-3 * 90, 0.2, 40.0
+    teeth = run["tooth_tangential_force"] * wheel_radius
+    np.testing.assert_allclose(teeth, run["clutch_torque"] * PINION_PER_DRUM, rtol=0, atol=1e-9 * teeth.max())
+    inner = (run.time > 0.01) & (np.abs(run.time - s["lockup_time"]) > 0.01) & (np.abs(run.time - s["lift_off_time"])
+                                                                                 > 0.01)
+    drum_acceleration = np.gradient(run["drum_speed"], run.time)
+    taken = drum_inertia * drum_acceleration + run["rope_force"] * drum_radius
+    np.testing.assert_allclose(teeth[inner], taken[inner], rtol=0, atol=1e-3 * teeth.max())

@@ -160,8 +160,9 @@ class Instant:
         """The torque the rest of a body passes into some of its shafts (N*m at the first): what their
         inertia takes, less the torques applied to them, plus what couplings at them pass on, each
         brought to the first shaft by the speeds' ratio; linear in the accelerations and the coupling
-        torques (``applied`` False: their part alone).  ``shafts``: one shaft's name, or a tuple."""
-        shafts = (shafts,) if isinstance(shafts, str) else shafts
+        torques (``applied`` False: their part alone).  ``shafts``: one shaft's name, or a tuple; the shafts parts
+        declare geared onto them are theirs (a drum's rope point, the load hanging from it)."""
+        shafts = self.layout.with_parts((shafts,) if isinstance(shafts, str) else tuple(shafts))
         into = 0.0
         for shaft in shafts:
             body, ratio = self.layout.shaft(shaft)

@@ -62,6 +62,8 @@ class Layout:
         self.bodies: list[str] = []
         self.body_speeds: list = []
         self.shafts: dict[str, tuple[int, object]] = {}  # shaft -> (body index, speed ratio to the body)
+        # a shaft a part declares on another, of which it is a part (a drum's rope point) -> that other
+        self.parents: dict[str, str] = {}
         for element in elements:
             for body, speed in element.bodies().items():
                 self._new_shaft(element, body, (len(self.bodies), 1.0))
@@ -70,6 +72,8 @@ class Layout:
             for shaft, (parent, ratio) in element.shafts().items():
                 body, factor = self.shaft(parent, element)
                 self._new_shaft(element, shaft, (body, factor * ratio))
+                if element.shafts_are_parts:
+                    self.parents[shaft] = parent
         self.couplings = [i for i, e in enumerate(elements) if isinstance(e, AbstractCoupling)]
         self.coupling_names = [elements[i].section for i in self.couplings]
         self.state_names = [f"{body}.speed" for body in self.bodies]
@@ -147,6 +151,15 @@ class Layout:
             known = ", ".join(self.shafts) or "none"
             raise LayoutError(f"{who}.shaft", f"there is no shaft {name!r} in this machine (shafts: {known})") \
                 from None
+
+    def with_parts(self, shafts: tuple) -> tuple:
+        """``shafts`` and every shaft a part declares as a part of one of them (``shafts_are_parts``), of those in
+        turn, and so on: the rope's point on a drum, a load geared to it, are of the drum, and what acts on them is
+        taken by the drum.  (A drawn shaft geared to the first of its train is no part of it.)"""
+        found = list(shafts)
+        for shaft in found:  # grows as it goes
+            found += [child for child, parent in self.parents.items() if parent == shaft and child not in found]
+        return tuple(found)
 
     @property
     def coupling_elements(self) -> list:

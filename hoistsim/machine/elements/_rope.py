@@ -56,7 +56,7 @@ class AbstractRope(AbstractElement):
 
     def wound(self, x):
         """Rope the drum has wound on since the start (m; negative: paid out)."""
-        return x.state("rope_stretch") - self.initial_stretch + x.state("load_position")
+        return x.state("rope_stretch") - self.initial_stretch + x.angle("load")
 
     def stretch_rate(self, x):
         return x.speed("rope_point") - x.speed("load")
@@ -79,6 +79,9 @@ class AbstractRope(AbstractElement):
     def torques(self, x) -> tuple:
         force = self.force(x)
         return (("rope_point", -force), ("load", force))
+
+    def angles(self) -> tuple:
+        return ("load",)  # the load's height (the mass load's position)
 
     def states(self) -> dict:
         return {"rope_stretch": self.initial_stretch, "rope_damping_loss": 0.0}

@@ -60,8 +60,11 @@ class Ground(OneWayHold, AbstractCoupling):
     def joins(self) -> tuple:
         return ("load", None)
 
+    def angles(self) -> tuple:
+        return ("load",)  # the load's height (the mass load's position)
+
     def gap(self, x):
-        return x.state("load_position")
+        return x.angle("load")
 
     def states(self) -> dict:
         return {"landing_loss": 0.0}

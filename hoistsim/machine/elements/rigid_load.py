@@ -2,29 +2,15 @@
 
 from __future__ import annotations
 
-from ._load import AbstractLoad
+from ._load import HangingLoad
 
 
-class RigidLoad(AbstractLoad):
-    """A mass M on a rigid rope of radius R on the drum shaft: reduced by equal kinetic energy and power.
-
-    Inertia M R^2 and torque -M g R on the drum shaft; the load moves with the
-    rope's point on the drum (the shaft ``load``, R times the drum's speed, is
-    what a ground under it holds).
-    """
+class RigidLoad(HangingLoad):
+    """A mass M on a rigid rope of radius R on the drum shaft: the mass ``load`` geared to the rope's point on the
+    drum (the shaft ``rope_point``, R times the drum's speed), so it reaches the drum shaft as an inertia M R^2
+    and its weight as a torque -M g R (what a ground under it holds)."""
 
     @classmethod
     def from_spec(cls, spec) -> "RigidLoad":
-        return cls(mass=spec.mass, gravity=spec.resolved("gravity"), rope_radius=spec.rope_radius, drum=spec.shaft)
-
-    def shafts(self) -> dict:
-        return {"rope_point": (self.drum, self.rope_radius), "load": ("rope_point", 1.0)}
-
-    def inertias(self) -> tuple:
-        return ((self.drum, self.mass * self.rope_radius**2),)
-
-    def torques(self, x) -> tuple:
-        return ((self.drum, -self.mass * self.gravity * self.rope_radius),)
-
-    def load_speed(self, x):
-        return self.rope_radius * x.speed(self.drum)
+        return cls(mass=spec.mass, initial_velocity=0.0, section="load", geared_to="rope_point",
+                   gravity=spec.resolved("gravity"), rope_radius=spec.rope_radius, drum=spec.shaft)
