@@ -120,8 +120,9 @@ def drawn_parts(run: dict, kind: str) -> dict | list:
 
 
 def on_line(run: dict, *sides: str) -> bool:
-    """Whether a part joins masses (on a line: forces in N, speeds in m/s), by the bodies it names."""
-    masses = drawn_parts(run, "masses")
+    """Whether a part joins masses (on a line: forces in N, speeds in m/s), by the bodies it names: the drawn
+    masses, and the drawn load (a mass named load)."""
+    masses = [*drawn_parts(run, "masses"), *(["load"] if drawn_parts(run, "load") else [])]
     return any(side in masses for side in sides)
 
 

@@ -11,7 +11,7 @@ from ..errors import ScenarioError
 from . import tables
 from . import units as u
 from .schema_clutch import ConeSpec, FrictionSpec
-from .schema_masses import LineKeys
+from .schema_masses import LineKeys, line_starts
 from .schema_parts import ClutchHeatingSpec, fade_tables, kinetic_within_static
 from .schema_shaft_parts import OnShaft
 from .signals import signal
@@ -92,7 +92,7 @@ class FrictionClutchSpec(OnShaft, FrictionSpec):
         """With the inertias of its halves on shaft a and on shaft b written in (kg*m^2; a drawn clutch's halves
         are its shafts': none)."""
         return self.with_resolved(halves=(0.0, 0.0),
-                                  on_line=any(side in scenario.drivetrain.masses for side in self.between))
+                                  on_line=any(side in line_starts(scenario.drivetrain) for side in self.between))
 
     def fade(self) -> dict | None:
         """Its friction against its faces' temperature (tables on common knots), None for constant friction."""

@@ -30,7 +30,7 @@ from .schema_drive import (DRIVE_PARTS, DcMachineSpec, InductionMachineSpec, Spe
                            check_drive_parts)
 from .schema_speed_torques import SPEED_PARTS, EddyCurrentBrakeSpec, HeatCapacitorSpec, SpeedLaws, check_speed_parts
 from .schema_linkage import PlanetarySpec, check_linkages, start_speeds
-from .schema_masses import ForceSpec, MassSpec, StopsSpec, check_line_parts
+from .schema_masses import LOAD, ForceSpec, MassSpec, StopsSpec, check_line_parts, line_starts
 from .schema_motion_source import MotionSourceSpec
 from .schema_vehicle import VehicleSpec
 from .schema_shaft_parts import (SHAFT_PARTS, BrakeOnShaftSpec, OnShaft, RatchetOnShaftSpec, RotorSpec,
@@ -261,14 +261,18 @@ class DrivetrainSpec(Section):
                 if name in self.shafts:
                     raise ScenarioError(f"drivetrain.{kind}.{name}", "is also the name of a shaft: names must "
                                         "differ (they name the outputs)")
+        lines = line_starts(self)  # the masses on the line, the load among them
+        if self.load is not None and LOAD in self.masses:
+            raise ScenarioError(f"drivetrain.masses.{LOAD}", "is the name of the drivetrain's load, a mass on the line "
+                                "parts may join already: name this mass otherwise")
         for stops in self.stops.values():
-            stops.check_start(self.masses)
+            stops.check_start(lines)
         for vehicle in self.vehicles.values():
             vehicle.check_mass(self.masses)
         for i, force in enumerate(self.forces):
-            if force.mass not in self.masses:
+            if force.mass not in lines:
                 raise ScenarioError(f"drivetrain.forces.{i}.mass", f"there is no mass {force.mass!r} (masses: "
-                                    f"{', '.join(self.masses) or 'none'})")
+                                    f"{', '.join(lines) or 'none'})")
         known = ", ".join(self.shafts)
         for i, torque in enumerate(self.torques):
             if torque.shaft not in self.shafts:
@@ -281,7 +285,7 @@ class DrivetrainSpec(Section):
                 key = "shaft" if kind == "bearing_frictions" and part.between is None else "between"
                 for side in (a, b):
                     grounded = side == GROUND and (side == b or kind == "springs")  # a spring's housing: either
-                    massed = kind in ("springs", "clutches", "bearing_frictions") and side in self.masses  # on a line
+                    massed = kind in ("springs", "clutches", "bearing_frictions") and side in lines  # on a line
                     if side not in self.shafts and not massed and not (grounded and kind != "one_way_clutches"):
                         raise ScenarioError(f"drivetrain.{kind}.{name}.{key}", f"there is no shaft {side!r} "
                                             f"(shafts: {known}{_GROUNDED[kind]})")
@@ -289,7 +293,7 @@ class DrivetrainSpec(Section):
                     raise ScenarioError(f"drivetrain.{kind}.{name}.between", f"joins shaft {a!r} to itself")
         for kind in ("clutches", "one_way_clutches"):
             for name, clutch in getattr(self, kind).items():
-                on_line = any(side in self.masses for side in clutch.between)
+                on_line = any(side in lines for side in clutch.between)
                 if (clutch.effective_radius is None) == (clutch.cone is None) and not on_line:
                     raise ScenarioError(f"drivetrain.{kind}.{name}.effective_radius", "give either effective_radius "
                                         "or cone (inner_radius, outer_radius, half_angle), one of them")

@@ -74,18 +74,22 @@ class StopsSpec(Section):
             raise ScenarioError(".upper", f"must be above the lower stop ({self.lower:g} m), got {self.upper:g} m")
         return self
 
-    def check_start(self, masses: dict) -> None:
-        """Its mass is a mass of the drivetrain and starts between the stops."""
+    def check_start(self, starts: dict) -> None:
+        """Its mass is a mass of the drivetrain (``starts``: each one's position at the start, the load's too) and
+        starts between the stops."""
         where = f"drivetrain.stops.{self.name}"
-        if self.mass not in masses:
+        if self.mass not in starts:
             raise ScenarioError(f"{where}.mass", f"there is no mass {self.mass!r} (masses: "
-                                f"{', '.join(masses) or 'none'})")
-        start = masses[self.mass].position
+                                f"{', '.join(starts) or 'none'})")
+        start = starts[self.mass]
         for key, end, beyond in (("lower", self.lower, start < (self.lower or 0.0)),
                                  ("upper", self.upper, start > (self.upper or 0.0))):
             if end is not None and beyond:
                 raise ScenarioError(f"{where}.{key}", f"is {'above' if key == 'lower' else 'below'} the start of mass "
                                     f"{self.mass!r} ({start:g} m): a mass starts between its stops")
+
+
+LOAD = "load"  # a drawn drivetrain's load: the mass on a line parts may join by this name
 
 
 @dataclass(frozen=True)
@@ -128,6 +132,8 @@ def check_line_parts(data: dict, kinds: dict) -> None:
     keys.  ``kinds``: each kind of part (its key in the drivetrain) -> its spec, those whose spec says its
     ``line_keys``."""
     masses = data.get("masses") if isinstance(data.get("masses"), dict) else {}
+    if isinstance(data.get(LOAD), dict):  # the hanging load is a mass on a line too
+        masses = {**masses, LOAD: {}}
     for kind, spec in kinds.items():
         said: LineKeys = spec.line_keys
         parts = data.get(kind)
@@ -158,7 +164,13 @@ def check_line_parts(data: dict, kinds: dict) -> None:
                                         f"(like {kind_of.example})")
 
 
+def line_starts(drivetrain) -> dict:
+    """Each mass on the line's position at the start (m): the drawn masses', and the load's (its height, 0 where it
+    starts) where the drivetrain has one."""
+    load = {} if drivetrain.load is None else {LOAD: 0.0}
+    return {name: mass.position for name, mass in drivetrain.masses.items()} | load
+
+
 def start_positions(drivetrain) -> dict:
     """Each body's angle or position at the start (rad or m), the ground's 0."""
-    return ({name: shaft.angle for name, shaft in drivetrain.shafts.items()}
-            | {name: mass.position for name, mass in drivetrain.masses.items()} | {GROUND: 0.0})
+    return {name: shaft.angle for name, shaft in drivetrain.shafts.items()} | line_starts(drivetrain) | {GROUND: 0.0}

@@ -7,8 +7,11 @@
   falls to zero (the separation): its contact, its phases, its force at every row, its peak, and EN 13001-2's
   design force for the impact, phi7 = 1.25 times M g + sqrt((M g)^2 + k M v^2).
 - New values of its keys compile nothing.
+- A drawn drivetrain's load is the mass ``load`` a line's parts join: a drawn gap under it is the load's own buffer
+  (the same trajectory and force), and a force on it that bears its weight lets its stretched rope throw it up as
+  the closed form says.
 - Bad input: a buffer on a rigid rope, with the ground under the load, a clearance not above zero, on a drawn load
-  without a rope: one line naming the key, nothing written.
+  without a rope, a mass named ``load`` beside a drawn load: one line naming the key, nothing written.
 """
 
 from __future__ import annotations
@@ -150,3 +153,77 @@ def test_a_drawn_loads_buffer_needs_its_rope(tmp_path):
                      "buffer": {"clearance": "0.5 m", "stiffness": "2e5 N/m"}}},
             "simulation": {"duration": "1 s", "output_interval": "1 ms"}})
     refused_in_one_line(SCENE, drawn, "drivetrain.load.buffer", "needs an elastic rope", tmp_path)
+
+
+def _drawn(buffer_as: str, **more):
+    """A drum paying out 0.5 m/s of rope to 500 kg on an elastic rope, a buffer 0.5 m down: the load's own
+    ``buffer`` key, or a drawn gap between the ground and the load (the mass ``load``)."""
+    from hoistsim import scenario_from_dict
+
+    buffer = {"clearance": "0.5 m", "stiffness": "200 kN/m", "damping": "4 kN*s/m"}
+    load = {"shaft": "drum", "rope_radius": "20 cm", "mass": "500 kg",
+            "rope": {"stiffness": "475 kN/m", "damping_ratio": 0.02}}
+    drivetrain = {"shafts": {"drum": {"inertia": "20 kg*m^2", "speed": "-2.5 rad/s"}}, "load": load, **more}
+    if buffer_as == "key":
+        load["buffer"] = buffer
+    else:
+        drivetrain["springs"] = {"buffer": {"between": ["ground", "load"], "stiffness": "200 kN/m",
+                                            "damping": "4 kN*s/m", "unstretched_length": "-0.5 m", "gap": True}}
+    return scenario_from_dict({"name": "drawn", "drivetrain": drivetrain, "simulation": {
+        "duration": "1.2 s", "output_interval": "1 ms", "rtol": 1e-10, "atol": 1e-12}})
+
+
+def _on_the_grid(run, column):
+    """A column at the output grid's rows (every ms), without the rows of events the runs differ in."""
+    steps = run.time / 1e-3
+    rows = np.abs(steps - np.round(steps)) < 1e-6
+    _, first = np.unique(np.round(steps[rows]), return_index=True)
+    return run[column][rows][first]
+
+
+def test_the_load_is_a_mass_on_the_line_that_a_drawn_part_joins():
+    """A drawn drivetrain's load is the mass ``load``: a drawn gap between the ground and it is the load's own
+    buffer (the same law, the same contact and force at every row), and a constant force on it is a lighter
+    weight (g less F / M: the same height at every row)."""
+    keyed, drawn = simulate(_drawn("key")), simulate(_drawn("spring"))
+    contact = drawn.instants["time"][list(drawn.instants["kind"]).index("contact")]
+    assert contact == pytest.approx(keyed.instants["time"][list(keyed.instants["kind"]).index("contact")], abs=1e-9)
+    np.testing.assert_allclose(_on_the_grid(drawn, "load_position"), _on_the_grid(keyed, "load_position"), rtol=0,
+                               atol=1e-8)
+    np.testing.assert_allclose(-_on_the_grid(drawn, "buffer_force"), _on_the_grid(keyed, "buffer_force"), rtol=0,
+                               atol=1e-6 * keyed["buffer_force"].max())
+    assert drawn.summary["energy_relative_residual"] < 1e-8
+
+
+def test_a_force_on_the_drawn_load_that_bears_its_weight_lets_the_rope_throw_it_up():
+    """A force M g up on the load (the mass ``load``) hanging still on its stretched rope (k, undamped), the drum
+    held: the load's weight is borne, the rope's stretch M g / k throws it up, x = (M g / k)(1 - cos w t),
+    w = sqrt(k / M), until the rope is unstretched at w t = pi / 2 (it goes slack there); then it flies on at
+    (M g / k) w.  Its height at every row."""
+    from hoistsim import scenario_from_dict
+
+    m, k, g = 500.0, 475e3, 9.81
+    run = simulate(scenario_from_dict({"name": "thrown", "drivetrain": {
+        "shafts": {"drum": {"inertia": "20 kg*m^2"}},
+        "load": {"shaft": "drum", "rope_radius": "20 cm", "mass": f"{m} kg", "rope": {"stiffness": f"{k} N/m"}},
+        "brakes": {"held": {"shaft": "drum", "release_time": "1 s"}},  # holding the drum throughout
+        "forces": [{"mass": "load", "force": [["0 s", f"{m * g} N"], ["0.1 s", f"{m * g} N"]]}]},
+        "simulation": {"duration": "0.1 s", "output_interval": "0.5 ms", "rtol": 1e-11, "atol": 1e-13}}))
+    stretch, w = m * g / k, math.sqrt(k / m)
+    slack = math.pi / (2 * w)
+    expected = np.where(run.time < slack, stretch * (1 - np.cos(w * run.time)),
+                        stretch + stretch * w * (run.time - slack))
+    np.testing.assert_allclose(run["load_position"], expected, rtol=0, atol=1e-9 * expected.max())
+    kinds = list(run.instants["kind"])
+    assert run.instants["time"][kinds.index("rope_slack")] == pytest.approx(slack, abs=1e-9)
+    assert run.summary["energy_relative_residual"] < 1e-9
+
+
+def test_a_mass_named_load_beside_the_drawn_load_is_refused(tmp_path):
+    def named(data):
+        data.clear()
+        data.update({"name": "drawn", "drivetrain": {
+            "shafts": {"drum": {"inertia": "10 kg*m^2"}}, "masses": {"load": {"mass": "1 kg"}},
+            "load": {"shaft": "drum", "rope_radius": "0.2 m", "mass": "500 kg"}},
+            "simulation": {"duration": "1 s", "output_interval": "1 ms"}})
+    refused_in_one_line(SCENE, named, "drivetrain.masses.load", "is the name of the drivetrain's load", tmp_path)

@@ -114,14 +114,25 @@ def test_a_load_of_nothing_but_round_off_through_a_lossy_mesh():
 
 
 
+# found by the random search: tsit5 stops at t = 0.0656 s in this one, and did at t = 0.1055 s in the next (which
+# runs to its end since the tooth load's sum took the shafts parts declare on the drum, the same zeros in another
+# order: the stop is one of round-off, not yet found)
+STOPPING = ([["0 s", "0 N"], ["0.5 s", "3996.0 N"]], 0.0, 0.0, 1.0, (0.5, 101.0, 0.94140625, None), None,
+            0.658203125, 1.0)
+STOPPED = ([["0 s", "0 N"], ["0.25 s", "6804.0 N"]], 0.0, 0.0, 2.0, (0.0, 2984.0, 0.203125, 0.05), None, 0.765625,
+           0.5)
+
+
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="known: the solver stops on too small a step (at 0.0656 s, at 0.1055 s) in "
-                   "these scenes without a load, with a lossy mesh, a brake and no pawl; why is not yet found")
-@pytest.mark.parametrize("args", [
-    # found by the random search: tsit5 stops at t = 0.0656 s
-    ([["0 s", "0 N"], ["0.5 s", "3996.0 N"]], 0.0, 0.0, 1.0, (0.5, 101.0, 0.94140625, None), None, 0.658203125, 1.0),
-    # and at t = 0.1055 s
-    ([["0 s", "0 N"], ["0.25 s", "6804.0 N"]], 0.0, 0.0, 2.0, (0.0, 2984.0, 0.203125, 0.05), None, 0.765625, 0.5),
-])
-def test_scenes_the_search_found_the_solver_stopping_on(args):
-    simulate(build(*args))
+@pytest.mark.xfail(strict=True, reason="known: the solver stops on too small a step (at 0.0656 s) in this scene "
+                   "without a load, with a lossy mesh, a brake and no pawl; why is not yet found")
+def test_a_scene_the_search_found_the_solver_stopping_on():
+    simulate(build(*STOPPING))
+
+
+@pytest.mark.slow
+def test_a_scene_the_solver_stopped_on_runs_to_its_end():
+    scene = build(*STOPPED)
+    run = simulate(scene)
+    assert run.time[-1] == scene.simulation.duration
+    assert run.energy_balance["relative_residual"] < 1e-8

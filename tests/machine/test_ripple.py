@@ -98,10 +98,11 @@ def test_resisting_ripple_on_the_drum_follows_the_energy_theorem():
 
 
 def test_an_angle_is_a_state_only_where_an_element_reads_it():
+    # the load is a mass on a line: its position (its height) is the one angle every hoist keeps
     plain = build_plan(_scene())[0].layout
-    assert not any(name.endswith("_angle") for name in plain.state_names)
+    assert [n for n in plain.state_names if n.endswith("_angle")] == ["load_angle"]
     rippled = build_plan(_scene(ripple={"harmonics": [{"order": 1, "amplitude": "100 N*m"}]}))[0].layout
-    assert [n for n in rippled.state_names if n.endswith("_angle")] == ["motor_angle"]
+    assert sorted(n for n in rippled.state_names if n.endswith("_angle")) == ["load_angle", "motor_angle"]
     assert rippled.columns()["motor_angle"][0] == "rad"
 
 

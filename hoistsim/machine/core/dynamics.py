@@ -161,7 +161,7 @@ class Instant:
         inertia takes, less the torques applied to them, plus what couplings at them pass on, each
         brought to the first shaft by the speeds' ratio; linear in the accelerations and the coupling
         torques (``applied`` False: their part alone).  ``shafts``: one shaft's name, or a tuple; the shafts parts
-        declare geared onto them are theirs (a drum's rope point, the load hanging from it)."""
+        declare as parts of them are theirs (a point on a shaft's rim, a body tied to it)."""
         shafts = self.layout.with_parts((shafts,) if isinstance(shafts, str) else tuple(shafts))
         into = 0.0
         for shaft in shafts:

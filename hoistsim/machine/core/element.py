@@ -72,8 +72,8 @@ class AbstractElement:
     # many cycles as it likes; one that switches without end inside a cycle is chattering)
     cycles: ClassVar[dict[str, str]] = {}
     inertia_varies: ClassVar[bool] = False  # brings varying_inertias
-    # the shafts it declares (``shafts``) are parts of the shafts they are geared to (a drum's rope point): what
-    # acts on them is what that shaft takes (the torque a mesh's teeth pass into it, a drum's tooth force)
+    # the shafts it declares (``shafts``) are parts of the shafts they turn with (a point on a shaft's rim):
+    # what acts on them is what that shaft takes (the torque passed into it, x.torque_into)
     shafts_are_parts: ClassVar[bool] = False
 
     def __init_subclass__(cls, **kwargs):

@@ -62,7 +62,7 @@ class Layout:
         self.bodies: list[str] = []
         self.body_speeds: list = []
         self.shafts: dict[str, tuple[int, object]] = {}  # shaft -> (body index, speed ratio to the body)
-        # a shaft a part declares on another, of which it is a part (a drum's rope point) -> that other
+        # a shaft a part declares on another, of which it is a part (a point on its rim) -> that other
         self.parents: dict[str, str] = {}
         for element in elements:
             for body, speed in element.bodies().items():
@@ -154,8 +154,8 @@ class Layout:
 
     def with_parts(self, shafts: tuple) -> tuple:
         """``shafts`` and every shaft a part declares as a part of one of them (``shafts_are_parts``), of those in
-        turn, and so on: the rope's point on a drum, a load geared to it, are of the drum, and what acts on them is
-        taken by the drum.  (A drawn shaft geared to the first of its train is no part of it.)"""
+        turn, and so on: a point on a shaft's rim, and a body tied to it, are of the shaft, and what acts on them
+        is taken by it.  (A drawn shaft tied to the first of its train is no part of it.)"""
         found = list(shafts)
         for shaft in found:  # grows as it goes
             found += [child for child, parent in self.parents.items() if parent == shaft and child not in found]
