@@ -92,7 +92,7 @@ class FrictionClutchSpec(OnShaft, FrictionSpec):
         """With the inertias of its halves on shaft a and on shaft b written in (kg*m^2; a drawn clutch's halves
         are its shafts': none)."""
         return self.with_resolved(halves=(0.0, 0.0),
-                                  on_line=any(side in line_starts(scenario.drivetrain) for side in self.between))
+                                  on_line=not line_starts(scenario.drivetrain).keys().isdisjoint(self.between))
 
     def fade(self) -> dict | None:
         """Its friction against its faces' temperature (tables on common knots), None for constant friction."""

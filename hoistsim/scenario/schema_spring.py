@@ -60,7 +60,7 @@ class SpringSpec(Section):
         """With its twist at the start written in: b's angle less a's (a shaft's ``angle``, the ground's 0)."""
         start = start_positions(scenario.drivetrain)
         return self.with_resolved(initial_twist=start[self.between[1]] - start[self.between[0]],
-                                  on_line=any(side in line_starts(scenario.drivetrain) for side in self.between))
+                                  on_line=not line_starts(scenario.drivetrain).keys().isdisjoint(self.between))
 
     @model_validator(mode="after")
     def _a_spring_or_a_damper(self):

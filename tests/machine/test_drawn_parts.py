@@ -48,9 +48,11 @@ def _same_run(hoist, drawn, renamed, rel, tighter=None):
             continue
         mine = np.asarray(column[rows[0]], float)
         other = np.asarray(drawn.series[renamed.get(name, name)][rows[1]], float)
-        # as the summaries': a scale of at least 1 in SI, and round-off (the teeth of an open clutch carry a zero
-        # that is the difference of the drum's terms, some 1e-12 N either way)
-        allowed = rel * max(np.max(np.abs(mine)), 1.0) + 1e-9
+        # the scale of its kind of quantity in the run: the largest column of its units (a round-off zero, the
+        # teeth of an open clutch, is held to the run's forces, not to its own 1e-12 N)
+        scale = max(np.max(np.abs(np.asarray(c, float))) for n, c in hoist.series.items()
+                    if hoist.units.get(n) == hoist.units.get(name))
+        allowed = rel * max(scale, 1e-300)
         if tighter is not None:
             allowed += 2.0 * np.max(np.abs(mine - np.asarray(tighter.series[name][rows[2]], float)))
         assert np.max(np.abs(mine - other)) <= allowed, name
